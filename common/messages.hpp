@@ -1,0 +1,71 @@
+// Plain C++ forms of what flows between roles. Algorithm libraries speak these; only
+// common/dds converts them to and from the IDL types on the wire.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace wsn::common {
+
+/// Identifies a sensor: its index in the layout (row-major for grids).
+using SensorId = std::uint32_t;
+/// Track identities are global: (supernode + 1) << 40 | per-supernode serial.
+using TrackId = std::uint64_t;
+/// Ground-truth target id; kFalseAlarm marks a report that no target caused.
+using TargetId = std::int32_t;
+inline constexpr TargetId kFalseAlarm = -1;
+
+/// A reading z >= eta of one sensor at one tick.
+struct SensorReading {
+  SensorId sensor = 0;
+  double z = 0.0;
+  friend bool operator==(const SensorReading&, const SensorReading&) = default;
+};
+
+/// A fused report (Oh eq. 6) from the local-maximum sensor, in believed coordinates.
+struct Report {
+  std::int32_t tick = 0;
+  SensorId sensor = 0;
+  double x = 0.0;
+  double y = 0.0;
+  TargetId target = kFalseAlarm;
+  friend bool operator==(const Report&, const Report&) = default;
+};
+
+/// A report as a supernode receives it: generated at tick_generated, delivered at
+/// tick_delivered >= tick_generated.
+struct Observation {
+  std::int32_t tick_generated = 0;
+  std::int32_t tick_delivered = 0;
+  SensorId sensor = 0;
+  double x = 0.0;
+  double y = 0.0;
+  TargetId target = kFalseAlarm;
+  friend bool operator==(const Observation&, const Observation&) = default;
+};
+
+/// A track's estimate at one tick.
+struct TrackEstimate {
+  TrackId track = 0;
+  double x = 0.0;
+  double y = 0.0;
+  double vx = 0.0;
+  double vy = 0.0;
+  friend bool operator==(const TrackEstimate&, const TrackEstimate&) = default;
+};
+
+/// Everything a supernode needs to continue a track another supernode started.
+struct TrackHandoff {
+  TrackId track = 0;
+  std::uint32_t to_supernode = 0;
+  std::int32_t last_tick = 0;         ///< tick of `state`
+  std::array<double, 4> state{};      ///< x, y, vx, vy
+  std::array<double, 16> covariance{};  ///< row-major 4x4
+  std::int32_t hits = 0;
+  std::int32_t misses = 0;
+  bool confirmed = false;
+  friend bool operator==(const TrackHandoff&, const TrackHandoff&) = default;
+};
+
+}  // namespace wsn::common

@@ -1,0 +1,141 @@
+// The scenario: every parameter of a run, named as in the papers, with the paper's values as
+// defaults. Loaded from YAML by loadScenario() with strict validation; written back fully
+// resolved (every default filled in) by writeResolvedScenario().
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "common/geometry.hpp"
+
+namespace wsn::common {
+
+/// Sensor placement over the region.
+struct SensorLayoutConfig {
+  enum class Kind { kGrid, kRandom };
+  Kind kind = Kind::kGrid;
+  /// Grid: separation between neighbouring sensors; sensors sit at cell centres, so a
+  /// 100 x 100 region with spacing 1 holds sensors at 0.5, 1.5, ..., 99.5 (Oh §VII).
+  double spacing = 1.0;
+  /// Random: number of sensors placed uniformly over the region.
+  std::uint32_t count = 10000;
+};
+
+/// Signal-strength sensor model, Oh eq. (5): z = beta / (1 + gamma |s - x|^alpha) + w within
+/// the sensing range Rs, z = w outside, w ~ N(0, noise_sigma^2); detection when z >= eta.
+struct SensorModelConfig {
+  double alpha = 2.0;
+  /// Oh §VII: beta = 3 (1 + gamma Rs^alpha); filled in by the loader when not given.
+  double beta = 9.75;
+  double gamma = 1.0;
+  double eta = 2.0;
+  double sensing_range = 1.5;
+  double noise_sigma = 1.0;
+};
+
+/// Oh §VII-B: a sensor believes it is at s* + N(0, sigma^2 I).
+struct LocalisationConfig {
+  double sigma = 0.0;
+};
+
+/// One explicitly scripted target: alive on ticks [appear_tick, disappear_tick).
+struct TargetSpec {
+  std::int32_t appear_tick = 1;
+  std::int32_t disappear_tick = 0;  ///< 0: until the end of the run (or leaving the region)
+  Vec2 position;
+  Vec2 velocity;  ///< per tick
+};
+
+/// Speed classes of Oh §VII-A: |vx|, |vy| uniform in [min, max] per tick, random signs.
+enum class SpeedClass { kSlow, kMedium, kFast };
+
+struct TargetsConfig {
+  std::vector<TargetSpec> scripted;
+  /// Random births: Poisson(birth_rate * V) new targets per tick, uniform over the region.
+  double birth_rate = 0.0;
+  /// Each target alive at t-1 disappears at t with this probability (Oh §III-A, pz).
+  double death_probability = 0.0;
+  SpeedClass speed_class = SpeedClass::kMedium;
+};
+
+/// Dynamics, Oh eq. (8): x_{t+delta} = A x_t + G w_t, w ~ N(0, diag(q^2, q^2)).
+struct DynamicsConfig {
+  double delta = 1.0;
+  double process_noise_sigma = 0.15;
+};
+
+/// Network model, Oh §V.
+struct NetworkConfig {
+  /// Radio range defining the communication graph; calibrated so that the default scenario
+  /// reproduces the loss and delay counts of Oh §VII-E (see docs/NETWORK.md).
+  double communication_range = 12.0;
+  double pte = 0.3;  ///< transmission failure rate per edge
+  double pde = 0.3;  ///< per-hop delay rate
+};
+
+/// A numeric engine parameter as written in the file; line 0 when it is a filled-in default.
+struct EngineParam {
+  double value = 0.0;
+  int line = 0;
+};
+
+/// Supernode tracker: which engine and its parameters (validated by the engine registry).
+struct TrackerConfig {
+  std::string engine = "gnn";
+  int engine_line = 0;
+  /// Sliding window of ws ticks of delivered observations (Oh §VI, ws = 10).
+  std::int32_t window_size = 10;
+  std::map<std::string, EngineParam> params;
+};
+
+/// Metric settings (Oh eq. 9-10 need none; OSPA needs cut-off c and order p).
+struct MetricsConfig {
+  double ospa_c = 5.0;
+  double ospa_p = 2.0;
+};
+
+/// Run length, seed and process layout.
+struct RunConfig {
+  std::int32_t ticks = 100;  ///< T
+  std::uint64_t seed = 1;
+  std::int32_t node_processes = 2;  ///< one sensor tile per node process
+  std::int32_t max_ticks_in_flight = 4;  ///< back-pressure bound of the lockstep pipeline
+};
+
+struct Scenario {
+  std::string source_path;  ///< the file it was loaded from, for messages
+  std::string name = "unnamed";
+  Rect region{0.0, 0.0, 100.0, 100.0};
+  SensorLayoutConfig sensors;
+  SensorModelConfig sensor_model;
+  LocalisationConfig localisation;
+  TargetsConfig targets;
+  DynamicsConfig dynamics;
+  std::vector<Vec2> supernodes;
+  NetworkConfig network;
+  TrackerConfig tracker;
+  MetricsConfig metrics;
+  RunConfig run;
+};
+
+/// A scenario that could not be loaded: what() reads "file:line: what was expected".
+class ScenarioError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Loads and strictly validates a scenario file: unknown keys, wrong types, out-of-range
+/// values and a missing file throw ScenarioError naming file, line and what was expected.
+Scenario loadScenario(const std::string& path);
+
+/// Same, from YAML text; `name_for_errors` stands in for the file name in messages.
+Scenario parseScenario(const std::string& yaml_text, const std::string& name_for_errors);
+
+/// YAML with every field present (defaults filled in), which loads back to an equal scenario.
+std::string resolvedScenarioYaml(const Scenario& scenario);
+
+}  // namespace wsn::common

@@ -1,0 +1,55 @@
+// The sensor field: true and believed positions of every sensor (Oh §V, §VII-B), a pure
+// function of (scenario, seed), plus a cell index for range queries.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "common/geometry.hpp"
+#include "common/messages.hpp"
+#include "common/scenario.hpp"
+
+namespace wsn::common {
+
+class SensorLayout {
+ public:
+  explicit SensorLayout(const Scenario& scenario);
+
+  std::size_t size() const { return true_positions_.size(); }
+  Vec2 truePosition(SensorId id) const { return true_positions_[id]; }
+  /// Where the sensor believes it is: true + N(0, sigma^2 I), Oh §VII-B.
+  Vec2 believedPosition(SensorId id) const { return believed_positions_[id]; }
+  const std::vector<Vec2>& truePositions() const { return true_positions_; }
+
+  /// Calls f(id) for every sensor whose true position lies within `radius` of p (inclusive),
+  /// in increasing id order.
+  template <typename F>
+  void forEachWithin(Vec2 p, double radius, F&& f) const {
+    std::vector<SensorId> found;
+    collectWithin(p, radius, found);
+    for (SensorId id : found) f(id);
+  }
+  /// Ids (sorted) of sensors whose true position lies within `radius` of p (inclusive).
+  void collectWithin(Vec2 p, double radius, std::vector<SensorId>& out) const;
+
+  /// The fixed cell grid that also partitions the noise sampling (independent of tiling).
+  double cellSize() const { return cell_size_; }
+  std::int32_t cellColumns() const { return columns_; }
+  std::int32_t cellRows() const { return rows_; }
+  std::int32_t cellOf(Vec2 p) const;
+  /// Sensors (sorted ids) whose true position falls in cell `cell`.
+  const std::vector<SensorId>& sensorsInCell(std::int32_t cell) const { return cells_[cell]; }
+  /// Lower-left corner and extent of a cell.
+  Rect cellRect(std::int32_t cell) const;
+
+ private:
+  Rect region_;
+  std::vector<Vec2> true_positions_;
+  std::vector<Vec2> believed_positions_;
+  double cell_size_ = 1.0;
+  std::int32_t columns_ = 1;
+  std::int32_t rows_ = 1;
+  std::vector<std::vector<SensorId>> cells_;
+};
+
+}  // namespace wsn::common

@@ -1,0 +1,38 @@
+// Ground truth: target trajectories as a pure function of (scenario, seed), Oh eq. (8), so
+// that every process computes the same targets without exchanging them.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "common/messages.hpp"
+#include "common/scenario.hpp"
+
+namespace wsn::common {
+
+/// One target's state at one tick.
+struct TargetState {
+  TargetId id = 0;
+  double x = 0.0;
+  double y = 0.0;
+  double vx = 0.0;
+  double vy = 0.0;
+  friend bool operator==(const TargetState&, const TargetState&) = default;
+};
+
+/// All targets alive at each tick 1..T, sorted by id.
+class Truth {
+ public:
+  explicit Truth(const Scenario& scenario);
+  /// Targets alive at `tick` (empty outside 1..T).
+  const std::vector<TargetState>& at(std::int32_t tick) const;
+  std::int32_t ticks() const { return static_cast<std::int32_t>(per_tick_.size()) - 1; }
+  /// Number of distinct targets over the whole run.
+  std::int32_t targetCount() const { return target_count_; }
+
+ private:
+  std::vector<std::vector<TargetState>> per_tick_;  // index 0 unused
+  std::int32_t target_count_ = 0;
+};
+
+}  // namespace wsn::common

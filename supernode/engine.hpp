@@ -1,0 +1,75 @@
+// The supernode tracking-engine interface: one small contract that every engine (gnn, mcmcda,
+// rulebased, ...) implements, plus the registry that maps scenario names to engines.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/messages.hpp"
+#include "common/scenario.hpp"
+#include "supernode/observation_window.hpp"
+
+namespace wsn::supernode {
+
+/// What an engine is built from.
+struct EngineContext {
+  const common::Scenario& scenario;  ///< tracker.params resolved (every default present)
+  std::uint32_t supernode = 0;       ///< index of the supernode running the engine
+};
+
+/// A live track's predicted position at the next tick, for handoff decisions.
+struct TrackPrediction {
+  common::TrackId track = 0;
+  common::Vec2 next_position;
+};
+
+/// A tracking engine owns its tracks; the supernode feeds it a window per tick.
+class Engine {
+ public:
+  virtual ~Engine() = default;
+  /// Continues a track that a neighbouring supernode handed over (its state is at
+  /// handoff.last_tick, the tick before the one about to be stepped).
+  virtual void adopt(const common::TrackHandoff& handoff) = 0;
+  /// Processes the window after it advanced to window.newestTick() and delayed
+  /// observations went into their own slots.
+  virtual void step(const ObservationWindow& window) = 0;
+  /// Confirmed tracks at the newest tick, sorted by track id.
+  virtual std::vector<common::TrackEstimate> confirmedTracks() const = 0;
+  /// Predicted next-tick position of every live track (tentative ones included), sorted by id.
+  virtual std::vector<TrackPrediction> predictions() const = 0;
+  /// Removes a live track and returns what the receiving supernode needs to continue it.
+  virtual common::TrackHandoff release(common::TrackId track, std::uint32_t to_supernode) = 0;
+};
+
+/// A numeric engine parameter with its paper default and admissible range.
+struct ParamSpec {
+  std::string name;
+  double default_value = 0.0;
+  double min = 0.0;
+  double max = 0.0;
+  std::string description;
+};
+
+/// One registered engine.
+struct EngineSpec {
+  std::string name;
+  std::string description;
+  std::vector<ParamSpec> params;
+  std::function<std::unique_ptr<Engine>(const EngineContext&)> create;
+};
+
+/// All engines, in registration order.
+const std::vector<EngineSpec>& engineRegistry();
+
+/// Checks scenario.tracker.engine and .params against the registry and fills in defaults;
+/// throws common::ScenarioError "file:line: ..." on an unknown engine or parameter or a
+/// value out of range.
+void resolveEngineParams(common::Scenario& scenario);
+
+/// Builds the engine named in the (resolved) scenario.
+std::unique_ptr<Engine> makeEngine(const EngineContext& context);
+
+}  // namespace wsn::supernode
