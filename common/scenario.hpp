@@ -1,6 +1,6 @@
 // The scenario: every parameter of a run, named as in the papers, with the paper's values as
 // defaults. Loaded from YAML by loadScenario() with strict validation; written back fully
-// resolved (every default filled in) by writeResolvedScenario().
+// resolved (every default filled in) by resolvedScenarioYaml().
 #pragma once
 
 #include <cstdint>
@@ -57,7 +57,8 @@ struct TargetsConfig {
   std::vector<TargetSpec> scripted;
   /// Random births: Poisson(birth_rate * V) new targets per tick, uniform over the region.
   double birth_rate = 0.0;
-  /// Each target alive at t-1 disappears at t with this probability (Oh §III-A, pz).
+  /// Each randomly born target alive at t-1 disappears at t with this probability (Oh §III-A,
+  /// pz); scripted targets keep their scripted lifetime.
   double death_probability = 0.0;
   SpeedClass speed_class = SpeedClass::kMedium;
 };
@@ -72,7 +73,7 @@ struct DynamicsConfig {
 struct NetworkConfig {
   /// Radio range defining the communication graph; calibrated so that the default scenario
   /// reproduces the loss and delay counts of Oh §VII-E (see docs/NETWORK.md).
-  double communication_range = 12.0;
+  double communication_range = 11.6;
   double pte = 0.3;  ///< transmission failure rate per edge
   double pde = 0.3;  ///< per-hop delay rate
 };

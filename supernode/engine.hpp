@@ -51,6 +51,7 @@ struct ParamSpec {
   double min = 0.0;
   double max = 0.0;
   std::string description;
+  bool integer = false;  ///< the value must be a whole number (a count)
 };
 
 /// One registered engine.

@@ -1,0 +1,208 @@
+#include "aggregator/metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <tuple>
+
+#include "common/assignment.hpp"
+#include "common/output.hpp"
+
+namespace wsn::aggregator {
+namespace {
+
+using common::TargetState;
+using common::TrackEstimate;
+using common::Vec2;
+
+bool truthLess(const TargetState& a, const TargetState& b) {
+  return std::tie(a.id, a.x, a.y, a.vx, a.vy) < std::tie(b.id, b.x, b.y, b.vx, b.vy);
+}
+
+bool trackLess(const TrackEstimate& a, const TrackEstimate& b) {
+  return std::tie(a.track, a.x, a.y, a.vx, a.vy) < std::tie(b.track, b.x, b.y, b.vx, b.vy);
+}
+
+bool isFinite(const TrackEstimate& t) {
+  return std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.vx) && std::isfinite(t.vy);
+}
+
+/// Position of target `id` in a tick's sorted truth, if alive.
+const TargetState* findTarget(const std::vector<TargetState>& truth, common::TargetId id) {
+  const auto it = std::lower_bound(truth.begin(), truth.end(), id,
+                                   [](const TargetState& s, common::TargetId key) { return s.id < key; });
+  return it != truth.end() && it->id == id ? &*it : nullptr;
+}
+
+/// Track `id` in a tick's sorted tracks (the first, should a tracker repeat an id).
+const TrackEstimate* findTrack(const std::vector<TrackEstimate>& tracks, common::TrackId id) {
+  const auto it = std::lower_bound(tracks.begin(), tracks.end(), id,
+                                   [](const TrackEstimate& s, common::TrackId key) { return s.track < key; });
+  return it != tracks.end() && it->track == id ? &*it : nullptr;
+}
+
+double squaredError(const TargetState& truth, const TrackEstimate& track) {
+  const double dx = track.x - truth.x;
+  const double dy = track.y - truth.y;
+  return dx * dx + dy * dy;
+}
+
+/// JSON number with 6 decimals; a non-finite value (which valid inputs never produce) becomes
+/// null so that the file stays valid JSON.
+std::string real(double value) { return std::isfinite(value) ? common::fixed6(value) : "null"; }
+
+}  // namespace
+
+double ospaDistance(const std::vector<Vec2>& x, const std::vector<Vec2>& y, double c, double p) {
+  // Schuhmacher, Vo & Vo 2008, eq. (3), with X the smaller set.
+  const auto& small = x.size() <= y.size() ? x : y;
+  const auto& large = x.size() <= y.size() ? y : x;
+  const std::size_t m = small.size();
+  const std::size_t n = large.size();
+  if (n == 0) return 0.0;
+  std::vector<double> cost(m * n);
+  for (std::size_t i = 0; i < m; ++i)
+    for (std::size_t j = 0; j < n; ++j) cost[i * n + j] = std::pow(std::min(c, common::distance(small[i], large[j])), p);
+  const auto assignment = common::solveAssignment(cost, m, n);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < m; ++i) sum += cost[i * n + static_cast<std::size_t>(assignment[i])];
+  sum += std::pow(c, p) * static_cast<double>(n - m);
+  return std::pow(sum / static_cast<double>(n), 1.0 / p);
+}
+
+MetricsAccumulator::MetricsAccumulator(const common::MetricsConfig& config) : config_(config) {
+  if (!(config_.ospa_c > 0.0) || !std::isfinite(config_.ospa_c))
+    throw std::invalid_argument("metrics: ospa_c must be finite and > 0, got " + common::fixed6(config_.ospa_c));
+  if (!(config_.ospa_p >= 1.0) || !std::isfinite(config_.ospa_p))
+    throw std::invalid_argument("metrics: ospa_p must be finite and >= 1, got " + common::fixed6(config_.ospa_p));
+}
+
+void MetricsAccumulator::add(std::int32_t tick, const std::vector<TargetState>& truth,
+                             const std::vector<TrackEstimate>& tracks) {
+  if (ticks_.count(tick) != 0) throw std::invalid_argument("metrics: tick " + std::to_string(tick) + " added twice");
+  TickRecord record;
+  record.truth = truth;
+  std::sort(record.truth.begin(), record.truth.end(), truthLess);
+  for (const auto& track : tracks) {
+    if (!isFinite(track)) {
+      ++ignored_nonfinite_;
+      continue;
+    }
+    record.tracks.push_back(track);
+    track_ids_.insert(track.track);
+  }
+  std::sort(record.tracks.begin(), record.tracks.end(), trackLess);
+
+  std::vector<Vec2> truth_positions, track_positions;
+  for (const auto& target : record.truth) truth_positions.push_back({target.x, target.y});
+  for (const auto& track : record.tracks) track_positions.push_back({track.x, track.y});
+  record.ospa = ospaDistance(truth_positions, track_positions, config_.ospa_c, config_.ospa_p);
+  ticks_.emplace(tick, std::move(record));
+}
+
+MetricsSummary MetricsAccumulator::finish() const {
+  MetricsSummary s;
+  s.ospa_c = config_.ospa_c;
+  s.ospa_p = config_.ospa_p;
+  s.track_ids = static_cast<std::int64_t>(track_ids_.size());
+  s.tracks_ignored_nonfinite = ignored_nonfinite_;
+  s.ticks_scored = static_cast<std::int64_t>(ticks_.size());
+  if (ticks_.empty()) return s;
+  s.first_tick = ticks_.begin()->first;
+  s.last_tick = ticks_.rbegin()->first;
+
+  double ospa_sum = 0.0;
+  for (const auto& [t, record] : ticks_) {
+    // Oh eq. (9): K_t and K*_t.
+    const auto k = static_cast<std::int64_t>(record.tracks.size());
+    const auto k_true = static_cast<std::int64_t>(record.truth.size());
+    s.sum_k += k;
+    s.sum_k_true += k_true;
+    s.sum_abs_k_error += std::abs(k - k_true);
+    s.ospa_per_tick.push_back(record.ospa);
+    ospa_sum += record.ospa;
+
+    // Oh eq. (10): M_t = min(K_t, K*_t) matches on positions at t - 1, t, t + 1.
+    const std::size_t rows = record.truth.size();
+    const std::size_t cols = record.tracks.size();
+    if (rows == 0 || cols == 0) continue;
+    const TickRecord* before = nullptr;
+    const TickRecord* after = nullptr;
+    if (t > std::numeric_limits<std::int32_t>::min()) {
+      const auto it = ticks_.find(t - 1);
+      if (it != ticks_.end()) before = &it->second;
+    }
+    if (t < std::numeric_limits<std::int32_t>::max()) {
+      const auto it = ticks_.find(t + 1);
+      if (it != ticks_.end()) after = &it->second;
+    }
+    std::vector<double> cost(rows * cols);
+    for (std::size_t j = 0; j < rows; ++j)
+      for (std::size_t i = 0; i < cols; ++i) {
+        const TargetState& target = record.truth[j];
+        const TrackEstimate& track = record.tracks[i];
+        double sum = squaredError(target, track);
+        int used = 1;
+        for (const TickRecord* neighbour : {before, after}) {
+          if (neighbour == nullptr) continue;
+          const TargetState* target_s = findTarget(neighbour->truth, target.id);
+          const TrackEstimate* track_s = findTrack(neighbour->tracks, track.track);
+          if (target_s == nullptr || track_s == nullptr) continue;
+          sum += squaredError(*target_s, *track_s);
+          ++used;
+        }
+        cost[j * cols + i] = sum / static_cast<double>(used);
+      }
+    const auto match = common::solveAssignment(cost, rows, cols);
+    for (std::size_t j = 0; j < rows; ++j) {
+      if (match[j] < 0) continue;
+      ++s.sum_matches;
+      s.sum_squared_position_error += squaredError(record.truth[j], record.tracks[static_cast<std::size_t>(match[j])]);
+    }
+  }
+
+  const auto ticks = static_cast<double>(s.ticks_scored);
+  s.mean_k = static_cast<double>(s.sum_k) / ticks;
+  s.mean_k_true = static_cast<double>(s.sum_k_true) / ticks;
+  s.ospa_mean = ospa_sum / ticks;
+  s.eps_k_defined = s.sum_k_true > 0;
+  if (s.eps_k_defined) s.eps_k = static_cast<double>(s.sum_abs_k_error) / static_cast<double>(s.sum_k_true);
+  s.eps_x_defined = s.sum_matches > 0;
+  if (s.eps_x_defined) s.eps_x = std::sqrt(s.sum_squared_position_error / static_cast<double>(s.sum_matches));
+  return s;
+}
+
+std::string toJson(const MetricsSummary& s) {
+  std::ostringstream out;
+  auto flag = [](bool value) { return value ? "true" : "false"; };
+  out << "{\n";
+  out << "    \"ticks_scored\": " << s.ticks_scored << ",\n";
+  out << "    \"first_tick\": " << s.first_tick << ",\n";
+  out << "    \"last_tick\": " << s.last_tick << ",\n";
+  out << "    \"eps_k\": " << real(s.eps_k) << ",\n";
+  out << "    \"eps_k_defined\": " << flag(s.eps_k_defined) << ",\n";
+  out << "    \"eps_x\": " << real(s.eps_x) << ",\n";
+  out << "    \"eps_x_defined\": " << flag(s.eps_x_defined) << ",\n";
+  out << "    \"mean_k\": " << real(s.mean_k) << ",\n";
+  out << "    \"mean_k_true\": " << real(s.mean_k_true) << ",\n";
+  out << "    \"sum_k\": " << s.sum_k << ",\n";
+  out << "    \"sum_k_true\": " << s.sum_k_true << ",\n";
+  out << "    \"sum_abs_k_error\": " << s.sum_abs_k_error << ",\n";
+  out << "    \"sum_matches\": " << s.sum_matches << ",\n";
+  out << "    \"sum_squared_position_error\": " << real(s.sum_squared_position_error) << ",\n";
+  out << "    \"ospa_c\": " << real(s.ospa_c) << ",\n";
+  out << "    \"ospa_p\": " << real(s.ospa_p) << ",\n";
+  out << "    \"ospa_mean\": " << real(s.ospa_mean) << ",\n";
+  out << "    \"ospa_per_tick\": [";
+  for (std::size_t i = 0; i < s.ospa_per_tick.size(); ++i) out << (i == 0 ? "" : ", ") << real(s.ospa_per_tick[i]);
+  out << "],\n";
+  out << "    \"track_ids\": " << s.track_ids << ",\n";
+  out << "    \"tracks_ignored_nonfinite\": " << s.tracks_ignored_nonfinite << "\n";
+  out << "  }";
+  return out.str();
+}
+
+}  // namespace wsn::aggregator

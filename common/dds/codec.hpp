@@ -1,0 +1,49 @@
+// Conversions between the wire types generated from idl/wsntrack.idl and the plain C++
+// messages of common/messages.hpp. Encoding borrows the C++ vectors' storage (no copies, no
+// ownership handed to Cyclone); decoding copies out of the loaned sample.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "common/messages.hpp"
+#include "wsntrack.h"
+
+namespace wsn::dds {
+
+/// A decoded batch: who produced it, for which tick, and its items.
+template <typename Item>
+struct Batch {
+  std::uint64_t run_id = 0;
+  std::uint32_t producer = 0;
+  std::int32_t tick = 0;
+  std::vector<Item> items;
+};
+
+/// Builds a sequence view over a vector; valid while the vector lives and is not resized.
+template <typename Seq, typename T>
+Seq sequenceView(std::vector<T>& items) {
+  Seq seq{};
+  seq._maximum = static_cast<std::uint32_t>(items.size());
+  seq._length = static_cast<std::uint32_t>(items.size());
+  seq._buffer = items.data();
+  seq._release = false;
+  return seq;
+}
+
+std::vector<wsn_msg_SensorReading> encode(const std::vector<common::SensorReading>& readings);
+std::vector<common::SensorReading> decode(const dds_sequence_wsn_msg_SensorReading& seq);
+
+std::vector<wsn_msg_Report> encode(const std::vector<common::Report>& reports);
+std::vector<common::Report> decode(const dds_sequence_wsn_msg_Report& seq, std::int32_t tick);
+
+std::vector<wsn_msg_Observation> encode(const std::vector<common::Observation>& observations);
+std::vector<common::Observation> decode(const dds_sequence_wsn_msg_Observation& seq, std::int32_t tick_delivered);
+
+std::vector<wsn_msg_TrackEstimate> encode(const std::vector<common::TrackEstimate>& tracks);
+std::vector<common::TrackEstimate> decode(const dds_sequence_wsn_msg_TrackEstimate& seq);
+
+std::vector<wsn_msg_TrackHandoff> encode(const std::vector<common::TrackHandoff>& handoffs);
+std::vector<common::TrackHandoff> decode(const dds_sequence_wsn_msg_TrackHandoff& seq);
+
+}  // namespace wsn::dds

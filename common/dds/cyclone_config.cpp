@@ -1,0 +1,45 @@
+#include "common/dds/cyclone_config.hpp"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace wsn::dds {
+
+std::string cycloneConfigTemplate(std::uint64_t run_id, int participants) {
+  std::ostringstream xml;
+  // MaxAutoParticipantIndex bounds the ports probed on the unicast peer: one per process,
+  // with headroom for Cyclone's off-by-one.
+  xml << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      << "<CycloneDDS xmlns=\"https://cdds.io/config\">\n"
+      << "  <Domain Id=\"any\">\n"
+      << "    <General>\n"
+      << "      <Interfaces><NetworkInterface name=\"lo\"/></Interfaces>\n"
+      << "      <AllowMulticast>false</AllowMulticast>\n"
+      << "    </General>\n"
+      << "    <Discovery>\n"
+      << "      <ParticipantIndex>" << kParticipantIndexPlaceholder << "</ParticipantIndex>\n"
+      << "      <MaxAutoParticipantIndex>" << participants + 1 << "</MaxAutoParticipantIndex>\n"
+      << "      <Peers><Peer address=\"127.0.0.1\"/></Peers>\n"
+      << "      <Tag>wsntrack-" << std::hex << run_id << std::dec << "</Tag>\n"
+      << "    </Discovery>\n"
+      << "  </Domain>\n"
+      << "</CycloneDDS>\n";
+  return xml.str();
+}
+
+std::string cycloneConfigFor(const std::string& config_template, int participant_index) {
+  std::string xml = config_template;
+  const std::string placeholder = kParticipantIndexPlaceholder;
+  const auto at = xml.find(placeholder);
+  if (at == std::string::npos) throw std::invalid_argument("Cyclone configuration has no participant-index placeholder");
+  xml.replace(at, placeholder.size(), std::to_string(participant_index));
+  return xml;
+}
+
+std::pair<int, int> cyclonePorts(int domain, int index) {
+  // RTPS port mapping with Cyclone's defaults: PB 7400, DG 250, PG 2, d1 10, d3 11.
+  const int base = 7400 + 250 * domain + 2 * index;
+  return {base + 10, base + 11};
+}
+
+}  // namespace wsn::dds

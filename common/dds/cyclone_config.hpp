@@ -1,0 +1,26 @@
+// The per-run Cyclone DDS configuration: loopback only, multicast off, unicast peer
+// 127.0.0.1, a discovery tag unique to the run, and an explicit participant index per process
+// (Cyclone 0.10's automatic index probing has an off-by-one; the launcher knows every process).
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace wsn::dds {
+
+/// Placeholder in the stored template that each process replaces by its participant index.
+inline constexpr const char* kParticipantIndexPlaceholder = "${WSN_PARTICIPANT_INDEX}";
+
+/// The XML template for a run with `participants` processes (the launcher included).
+std::string cycloneConfigTemplate(std::uint64_t run_id, int participants);
+
+/// The template with the placeholder replaced by `participant_index`.
+std::string cycloneConfigFor(const std::string& config_template, int participant_index);
+
+/// UDP unicast ports Cyclone uses on `domain` for participant `index` (discovery, data).
+std::pair<int, int> cyclonePorts(int domain, int index);
+
+/// Largest domain id whose ports still fit below 65536.
+inline constexpr int kMaxDomainId = 230;
+
+}  // namespace wsn::dds

@@ -1,0 +1,90 @@
+#include "common/dds/entity.hpp"
+
+namespace wsn::dds {
+
+dds_return_t check(dds_return_t rc, const std::string& what) {
+  if (rc < 0) throw DdsError(what + " failed: " + dds_strretcode(rc));
+  return rc;
+}
+
+Qos Qos::reliableKeepAll() {
+  Qos q;
+  dds_qset_reliability(q.get(), DDS_RELIABILITY_RELIABLE, DDS_SECS(30));
+  dds_qset_history(q.get(), DDS_HISTORY_KEEP_ALL, 0);
+  dds_qset_durability(q.get(), DDS_DURABILITY_VOLATILE);
+  return q;
+}
+
+Qos Qos::lastValueTransientLocal() {
+  Qos q;
+  dds_qset_reliability(q.get(), DDS_RELIABILITY_RELIABLE, DDS_SECS(30));
+  dds_qset_history(q.get(), DDS_HISTORY_KEEP_LAST, 1);
+  dds_qset_durability(q.get(), DDS_DURABILITY_TRANSIENT_LOCAL);
+  return q;
+}
+
+Domain::Domain(dds_domainid_t id, const std::string& config_xml)
+    : Entity(check(dds_create_domain(id, config_xml.c_str()), "dds_create_domain " + std::to_string(id))), id_(id) {}
+
+Participant::Participant(dds_domainid_t domain)
+    : Entity(check(dds_create_participant(domain, nullptr, nullptr), "dds_create_participant")) {}
+
+Topic::Topic(const Participant& participant, const dds_topic_descriptor_t& descriptor, const std::string& name)
+    : Entity(check(dds_create_topic(participant.handle(), &descriptor, name.c_str(), nullptr, nullptr),
+                   "dds_create_topic " + name)) {}
+
+Writer::Writer(const Participant& participant, const Topic& topic, const Qos& qos)
+    : Entity(check(dds_create_writer(participant.handle(), topic.handle(), qos.get(), nullptr), "dds_create_writer")) {
+  check(dds_set_status_mask(handle(), DDS_PUBLICATION_MATCHED_STATUS), "dds_set_status_mask(writer)");
+}
+
+std::int32_t Writer::matchedReaders() const {
+  dds_publication_matched_status_t status;
+  check(dds_get_publication_matched_status(handle(), &status), "dds_get_publication_matched_status");
+  return static_cast<std::int32_t>(status.current_count);
+}
+
+void Writer::waitForAcknowledgements(std::chrono::milliseconds timeout) const {
+  const dds_return_t rc = dds_wait_for_acks(handle(), DDS_MSECS(timeout.count()));
+  if (rc != DDS_RETCODE_TIMEOUT) check(rc, "dds_wait_for_acks");
+}
+
+Reader::Reader(const Participant& participant, const Topic& topic, const Qos& qos)
+    : Entity(check(dds_create_reader(participant.handle(), topic.handle(), qos.get(), nullptr), "dds_create_reader")) {
+  check(dds_set_status_mask(handle(), DDS_SUBSCRIPTION_MATCHED_STATUS), "dds_set_status_mask(reader)");
+}
+
+std::int32_t Reader::matchedWriters() const {
+  dds_subscription_matched_status_t status;
+  check(dds_get_subscription_matched_status(handle(), &status), "dds_get_subscription_matched_status");
+  return static_cast<std::int32_t>(status.current_count);
+}
+
+ReadCondition::ReadCondition(const Reader& reader)
+    : Entity(check(dds_create_readcondition(reader.handle(), DDS_ANY_STATE), "dds_create_readcondition")) {}
+
+GuardCondition::GuardCondition(const Participant& participant)
+    : Entity(check(dds_create_guardcondition(participant.handle()), "dds_create_guardcondition")) {}
+
+void GuardCondition::trigger() { check(dds_set_guardcondition(handle(), true), "dds_set_guardcondition"); }
+
+bool GuardCondition::triggered() const {
+  bool value = false;
+  check(dds_read_guardcondition(handle(), &value), "dds_read_guardcondition");
+  return value;
+}
+
+WaitSet::WaitSet(const Participant& participant)
+    : Entity(check(dds_create_waitset(participant.handle()), "dds_create_waitset")) {}
+
+void WaitSet::attach(dds_entity_t entity, dds_attach_t token) {
+  check(dds_waitset_attach(handle(), entity, token), "dds_waitset_attach");
+}
+
+std::vector<dds_attach_t> WaitSet::wait(std::chrono::milliseconds timeout) {
+  dds_attach_t triggered[64];
+  const dds_return_t n = check(dds_waitset_wait(handle(), triggered, 64, DDS_MSECS(timeout.count())), "dds_waitset_wait");
+  return {triggered, triggered + std::min<dds_return_t>(n, 64)};
+}
+
+}  // namespace wsn::dds

@@ -1,0 +1,91 @@
+#include "common/dds/process_main.hpp"
+
+#include <boost/program_options.hpp>
+#include <csignal>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "common/dds/cyclone_config.hpp"
+
+namespace wsn::dds {
+namespace {
+
+std::atomic<bool> g_stop_requested{false};
+
+extern "C" void onStopSignal(int) { g_stop_requested.store(true); }
+
+}  // namespace
+
+std::string readConfigTemplate(const std::string& run_dir) {
+  const std::string path = run_dir + "/cyclonedds.xml";
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot read the run's Cyclone DDS configuration");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+int runRoleProcess(int argc, char** argv, const std::string& role, const std::string& summary, bool indexed,
+                   const RoleRunner& runner) {
+  namespace po = boost::program_options;
+  RoleContext context;
+  context.role = role;
+  int participant_index = 0;
+  int domain = 0;
+  std::string run_id_hex;
+  double stall_timeout_s = 60.0;
+
+  po::options_description options("Options");
+  options.add_options()("help,h", "show this help and exit")(
+      "run-dir", po::value(&context.run_dir)->required(),
+      "run directory prepared by 'wsntrack run' (holds scenario.yaml and cyclonedds.xml)")(
+      "run-id", po::value(&run_id_hex)->required(), "run id (hex) that tags every sample of this run")(
+      "domain", po::value(&domain)->required(), "Cyclone DDS domain id of the run")(
+      "participant-index", po::value(&participant_index)->required(),
+      "this process's Cyclone participant index (unique within the run)")(
+      "tiles", po::value(&context.shape.tiles)->required(), "number of sensor-node processes in the cluster")(
+      "stall-timeout", po::value(&stall_timeout_s)->default_value(60.0),
+      "seconds without any input after which the role gives up (a producer died)");
+  if (indexed) options.add_options()("index", po::value(&context.index)->required(), "tile or supernode index of this process");
+
+  try {
+    po::variables_map vm;
+    po::store(po::parse_command_line(argc, argv, options), vm);
+    if (vm.count("help")) {
+      std::cout << "Usage: wsntrack-" << role << " [options]\n\n" << summary << "\n\n"
+                << "Normally started by 'wsntrack run', which prepares the run directory and gives\n"
+                << "every process its participant index.\n\n"
+                << options << "\n";
+      return 0;
+    }
+    po::notify(vm);
+    context.run_id = std::stoull(run_id_hex, nullptr, 16);
+  } catch (const std::exception& error) {
+    std::cerr << "wsntrack-" << role << ": " << error.what() << "\n(try --help)\n";
+    return 2;
+  }
+  if (domain < 0 || domain > kMaxDomainId) {
+    std::cerr << "wsntrack-" << role << ": --domain must be in [0, " << kMaxDomainId << "], got " << domain << "\n";
+    return 2;
+  }
+
+  std::signal(SIGTERM, onStopSignal);
+  std::signal(SIGINT, onStopSignal);
+  context.stop = &g_stop_requested;
+  context.stall_timeout = std::chrono::milliseconds(static_cast<long>(stall_timeout_s * 1000));
+  context.domain = static_cast<dds_domainid_t>(domain);
+
+  try {
+    context.scenario = common::loadScenario(context.run_dir + "/scenario.yaml");
+    context.shape.supernodes = static_cast<std::int32_t>(context.scenario.supernodes.size());
+    Domain domain_handle(context.domain, cycloneConfigFor(readConfigTemplate(context.run_dir), participant_index));
+    runner(context);
+    return 0;
+  } catch (const std::exception& error) {
+    std::cerr << "wsntrack-" << role << " " << context.index << ": " << error.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace wsn::dds

@@ -1,0 +1,166 @@
+#include "common/dds/role_runtime.hpp"
+
+#include <set>
+#include <sstream>
+
+#include "wsntrack.h"
+
+namespace wsn::dds {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Wake-ups at this interval only serve to notice an outside stop request and the stall
+// deadline; data arrival wakes the waitset immediately.
+constexpr std::chrono::milliseconds kWakeInterval{200};
+
+void throwIfStopped(const RoleContext& context) {
+  if (context.stop != nullptr && context.stop->load()) throw RoleAborted(context.role + " stopped on request");
+}
+
+}  // namespace
+
+RunTopics::RunTopics(const Participant& participant)
+    : sensor_boundary(participant, wsn_msg_SensorBoundary_desc, topic_names::kSensorBoundary),
+      report_batch(participant, wsn_msg_ReportBatch_desc, topic_names::kReportBatch),
+      delivery_batch(participant, wsn_msg_DeliveryBatch_desc, topic_names::kDeliveryBatch),
+      handoff_batch(participant, wsn_msg_HandoffBatch_desc, topic_names::kHandoffBatch),
+      track_batch(participant, wsn_msg_TrackBatch_desc, topic_names::kTrackBatch),
+      global_track_batch(participant, wsn_msg_GlobalTrackBatch_desc, topic_names::kGlobalTrackBatch),
+      process_status(participant, wsn_msg_ProcessStatus_desc, topic_names::kProcessStatus) {}
+
+StatusPublisher::StatusPublisher(const Participant& participant, const RunTopics& topics, const RoleContext& context)
+    : writer_(participant, topics.process_status, Qos::lastValueTransientLocal()),
+      run_id_(context.run_id),
+      role_(context.role),
+      index_(context.index) {}
+
+void StatusPublisher::publish(int state, std::int32_t tick, const std::string& message) {
+  wsn_msg_ProcessStatus sample{};
+  sample.run_id = run_id_;
+  sample.role = const_cast<char*>(role_.c_str());
+  sample.index = index_;
+  sample.state = static_cast<wsn_msg_ProcessState>(state);
+  sample.tick = tick;
+  sample.message = const_cast<char*>(message.c_str());
+  writer_.write(sample);
+}
+
+void StatusPublisher::starting() { publish(wsn_msg_STARTING, 0, ""); }
+void StatusPublisher::ready() { publish(wsn_msg_READY, 0, ""); }
+void StatusPublisher::running(std::int32_t tick) { publish(wsn_msg_RUNNING, tick, ""); }
+void StatusPublisher::done(std::int32_t tick) { publish(wsn_msg_DONE, tick, ""); }
+void StatusPublisher::failed(const std::string& message) { publish(wsn_msg_FAILED, 0, message); }
+
+RoleLoop::RoleLoop(const Participant& participant, const RoleContext& context)
+    : context_(context), waitset_(participant) {}
+
+void RoleLoop::watch(Reader& reader, std::function<void()> drain) {
+  conditions_.emplace_back(reader);
+  drains_.push_back(std::move(drain));
+  waitset_.attach(conditions_.back().handle(), static_cast<dds_attach_t>(drains_.size() - 1));
+}
+
+void RoleLoop::waitUntil(const std::function<bool()>& done, const std::function<std::string()>& describe) {
+  auto last_arrival = Clock::now();
+  while (!done()) {
+    throwIfStopped(context_);
+    const auto triggered = waitset_.wait(kWakeInterval);
+    if (triggered.empty()) {
+      if (Clock::now() - last_arrival > context_.stall_timeout) {
+        throw RoleAborted(context_.role + " " + std::to_string(context_.index) + " stalled: no data for " +
+                          std::to_string(context_.stall_timeout.count() / 1000) + " s while waiting for " + describe());
+      }
+      continue;
+    }
+    last_arrival = Clock::now();
+    for (dds_attach_t token : triggered) drains_[static_cast<std::size_t>(token)]();
+  }
+}
+
+void waitForDiscovery(const Participant& participant, const std::vector<std::pair<const Writer*, int>>& writers,
+                      const std::vector<std::pair<const Reader*, int>>& readers, const RoleContext& context,
+                      std::chrono::milliseconds timeout) {
+  WaitSet waitset(participant);
+  for (const auto& [writer, expected] : writers) waitset.attach(writer->handle(), 0);
+  for (const auto& [reader, expected] : readers) waitset.attach(reader->handle(), 0);
+  auto missing = [&]() {
+    std::ostringstream out;
+    for (const auto& [writer, expected] : writers)
+      if (writer->matchedReaders() < expected)
+        out << " writer " << writer->handle() << " has " << writer->matchedReaders() << "/" << expected << " readers;";
+    for (const auto& [reader, expected] : readers)
+      if (reader->matchedWriters() < expected)
+        out << " reader " << reader->handle() << " has " << reader->matchedWriters() << "/" << expected << " writers;";
+    return out.str();
+  };
+  const auto deadline = Clock::now() + timeout;
+  while (!missing().empty()) {
+    throwIfStopped(context);
+    if (Clock::now() > deadline)
+      throw RoleAborted(context.role + " " + std::to_string(context.index) + ": discovery incomplete:" + missing());
+    waitset.wait(kWakeInterval);  // matched-status changes wake it
+  }
+}
+
+void waitForClusterReady(const Participant& participant, const RunTopics& topics, const RoleContext& context,
+                         std::chrono::milliseconds timeout) {
+  Reader reader(participant, topics.process_status, Qos::lastValueTransientLocal());
+  ReadCondition condition(reader);
+  WaitSet waitset(participant);
+  waitset.attach(condition.handle(), 0);
+  std::set<std::pair<std::string, std::uint32_t>> ready;
+  const auto expected = static_cast<std::size_t>(context.shape.processes());
+  const auto deadline = Clock::now() + timeout;
+  while (ready.size() < expected) {
+    throwIfStopped(context);
+    if (Clock::now() > deadline)
+      throw RoleAborted(context.role + ": only " + std::to_string(ready.size()) + " of " + std::to_string(expected) +
+                        " processes became ready");
+    waitset.wait(kWakeInterval);
+    reader.take<wsn_msg_ProcessStatus>([&](const wsn_msg_ProcessStatus& s) {
+      if (s.run_id != context.run_id) return;
+      if (s.state == wsn_msg_FAILED) throw RoleAborted(std::string(s.role) + " failed: " + s.message);
+      if (s.state != wsn_msg_STARTING) ready.emplace(s.role, s.index);
+    });
+  }
+}
+
+}  // namespace wsn::dds
+
+namespace wsn::dds {
+
+PipelineProgress::PipelineProgress(const Participant& participant, const RunTopics& topics,
+                                   const RoleContext& context, RoleLoop& loop)
+    : context_(context), loop_(loop), reader_(participant, topics.global_track_batch, Qos::reliableKeepAll()) {
+  loop_.watch(reader_, [this] {
+    reader_.take<wsn_msg_GlobalTrackBatch>([this](const wsn_msg_GlobalTrackBatch& batch) {
+      if (batch.run_id != context_.run_id || batch.tick <= completed_through_) return;
+      arrived_.insert(batch.tick);
+      while (!arrived_.empty() && *arrived_.begin() == completed_through_ + 1) {
+        completed_through_ = *arrived_.begin();
+        arrived_.erase(arrived_.begin());
+      }
+    });
+  });
+}
+
+void PipelineProgress::waitForCompleted(std::int32_t tick) {
+  loop_.waitUntil([&] { return completed_through_ >= tick; },
+                  [&] { return "the aggregator's global tracks of tick " + std::to_string(completed_through_ + 1); });
+}
+
+void runWithStatus(StatusPublisher& status, const std::function<void()>& body) {
+  try {
+    body();
+  } catch (const std::exception& error) {
+    try {
+      status.failed(error.what());
+    } catch (...) {
+      // Reporting is best effort: the original error is the one that matters.
+    }
+    throw;
+  }
+}
+
+}  // namespace wsn::dds

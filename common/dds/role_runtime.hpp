@@ -1,0 +1,183 @@
+// What every role process shares: the run's topics, process-status publishing, discovery
+// and start barriers, and the per-tick inbox that implements self-clocking lockstep (a
+// consumer handles tick t once it holds tick t from every producer; DESIGN.md principle 3).
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "common/dds/entity.hpp"
+#include "common/scenario.hpp"
+
+namespace wsn::dds {
+
+/// Topic names of a run (the run is isolated by its domain and discovery tag; run_id in the
+/// data also rejects stale samples of a previous run).
+namespace topic_names {
+inline constexpr const char* kSensorBoundary = "wsn_sensor_boundary";
+inline constexpr const char* kReportBatch = "wsn_report_batch";
+inline constexpr const char* kDeliveryBatch = "wsn_delivery_batch";
+inline constexpr const char* kHandoffBatch = "wsn_handoff_batch";
+inline constexpr const char* kTrackBatch = "wsn_track_batch";
+inline constexpr const char* kGlobalTrackBatch = "wsn_global_track_batch";
+inline constexpr const char* kProcessStatus = "wsn_process_status";
+}  // namespace topic_names
+
+/// The processes of a cluster: one per tile, the network, one per supernode, the aggregator.
+struct ClusterShape {
+  std::int32_t tiles = 2;
+  std::int32_t supernodes = 1;
+  std::int32_t processes() const { return tiles + supernodes + 2; }
+};
+
+/// Identity and settings of one role instance.
+struct RoleContext {
+  std::string role;           ///< "node", "network", "supernode", "aggregator"
+  std::uint32_t index = 0;    ///< tile or supernode index; 0 for singletons
+  std::uint64_t run_id = 0;
+  dds_domainid_t domain = 0;
+  std::string run_dir;
+  common::Scenario scenario;  ///< resolved
+  ClusterShape shape;
+  /// Give up when no sample arrived for this long while waiting (a producer died).
+  std::chrono::milliseconds stall_timeout{60000};
+  /// Set from outside (signal handler, launcher) to make the role stop at its next wake-up.
+  const std::atomic<bool>* stop = nullptr;
+};
+
+/// Thrown when a role stops before finishing: stopped from outside or stalled.
+class RoleAborted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// All topics of a run on one participant.
+struct RunTopics {
+  explicit RunTopics(const Participant& participant);
+  Topic sensor_boundary;
+  Topic report_batch;
+  Topic delivery_batch;
+  Topic handoff_batch;
+  Topic track_batch;
+  Topic global_track_batch;
+  Topic process_status;
+};
+
+/// Publishes this role's lifecycle on the status topic.
+class StatusPublisher {
+ public:
+  StatusPublisher(const Participant& participant, const RunTopics& topics, const RoleContext& context);
+  void starting();
+  void ready();
+  void running(std::int32_t tick);
+  void done(std::int32_t tick);
+  void failed(const std::string& message);
+
+ private:
+  void publish(int state, std::int32_t tick, const std::string& message);
+  Writer writer_;
+  std::uint64_t run_id_;
+  std::string role_;
+  std::uint32_t index_;
+};
+
+/// Batches held per tick and producer until a tick is complete.
+template <typename BatchT>
+class TickInbox {
+ public:
+  /// Files a batch; returns false (and counts it) for a duplicate or a tick already consumed.
+  bool put(std::int32_t tick, std::uint32_t producer, BatchT batch) {
+    if (tick <= consumed_through_ || pending_[tick].count(producer) != 0) {
+      ++rejected_;
+      return false;
+    }
+    pending_[tick].emplace(producer, std::move(batch));
+    return true;
+  }
+  std::size_t count(std::int32_t tick) const {
+    const auto it = pending_.find(tick);
+    return it == pending_.end() ? 0 : it->second.size();
+  }
+  bool has(std::int32_t tick, std::uint32_t producer) const {
+    const auto it = pending_.find(tick);
+    return it != pending_.end() && it->second.count(producer) != 0;
+  }
+  /// Removes tick's batches, in producer order (canonical, whatever the arrival order).
+  std::map<std::uint32_t, BatchT> take(std::int32_t tick) {
+    auto node = pending_.extract(tick);
+    consumed_through_ = std::max(consumed_through_, tick);
+    return node.empty() ? std::map<std::uint32_t, BatchT>{} : std::move(node.mapped());
+  }
+  std::uint64_t rejected() const { return rejected_; }
+
+ private:
+  std::map<std::int32_t, std::map<std::uint32_t, BatchT>> pending_;
+  std::int32_t consumed_through_ = 0;
+  std::uint64_t rejected_ = 0;
+};
+
+/// A role's event loop: a waitset over its readers; each arrival is drained into inboxes by
+/// the callback registered with the reader.
+class RoleLoop {
+ public:
+  RoleLoop(const Participant& participant, const RoleContext& context);
+  /// Registers a reader and the function that takes its samples.
+  void watch(Reader& reader, std::function<void()> drain);
+  /// Blocks until done() holds, draining readers as samples arrive. Throws RoleAborted when
+  /// stopped from outside, or when nothing arrives for the stall timeout (describe() says
+  /// what was still missing).
+  void waitUntil(const std::function<bool()>& done, const std::function<std::string()>& describe);
+
+ private:
+  const RoleContext& context_;
+  WaitSet waitset_;
+  std::vector<ReadCondition> conditions_;
+  std::vector<std::function<void()>> drains_;
+};
+
+/// Blocks until every writer matched `expected` readers and every reader matched `expected`
+/// writers, so that nothing published afterwards can miss a consumer. Throws on timeout.
+void waitForDiscovery(const Participant& participant, const std::vector<std::pair<const Writer*, int>>& writers,
+                      const std::vector<std::pair<const Reader*, int>>& readers, const RoleContext& context,
+                      std::chrono::milliseconds timeout);
+
+/// Blocks until every process of the cluster reported READY (or later) on the status topic.
+void waitForClusterReady(const Participant& participant, const RunTopics& topics, const RoleContext& context,
+                         std::chrono::milliseconds timeout);
+
+}  // namespace wsn::dds
+
+namespace wsn::dds {
+
+/// Follows the aggregator's GlobalTrackBatch ticks: the pipeline's end. Sources use it for
+/// back-pressure (at most max_ticks_in_flight ticks ahead); every role waits for the last tick
+/// before leaving so that nothing it wrote is still in flight when its writers are deleted.
+class PipelineProgress {
+ public:
+  PipelineProgress(const Participant& participant, const RunTopics& topics, const RoleContext& context,
+                   RoleLoop& loop);
+  /// Highest tick t such that the global batches of all ticks <= t arrived.
+  std::int32_t completedThrough() const { return completed_through_; }
+  void waitForCompleted(std::int32_t tick);
+  Reader& reader() { return reader_; }
+
+ private:
+  const RoleContext& context_;
+  RoleLoop& loop_;
+  Reader reader_;
+  std::set<std::int32_t> arrived_;
+  std::int32_t completed_through_ = 0;
+};
+
+/// Runs `body`, publishing READY-to-FAILED status around it: any exception is reported on the
+/// status topic (so the launcher and peers learn why) and rethrown.
+void runWithStatus(StatusPublisher& status, const std::function<void()>& body);
+
+}  // namespace wsn::dds

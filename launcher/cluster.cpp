@@ -1,0 +1,322 @@
+#include "launcher/cluster.hpp"
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "aggregator/role.hpp"
+#include "common/dds/cyclone_config.hpp"
+#include "common/dds/entity.hpp"
+#include "common/dds/role_runtime.hpp"
+#include "network_model/role.hpp"
+#include "node/role.hpp"
+#include "supernode/role.hpp"
+#include "wsntrack.h"
+
+namespace wsn::launcher {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::atomic<bool> g_interrupted{false};
+extern "C" void onInterrupt(int) { g_interrupted.store(true); }
+
+/// One role instance of the cluster and its participant index.
+struct RoleSlot {
+  std::string role;
+  std::uint32_t index = 0;
+  int participant_index = 0;
+  std::string name() const { return role + " " + std::to_string(index); }
+};
+
+std::vector<RoleSlot> clusterSlots(const common::Scenario& scenario) {
+  std::vector<RoleSlot> slots;
+  int participant = 0;
+  for (std::int32_t i = 0; i < scenario.run.node_processes; ++i) slots.push_back({"node", static_cast<std::uint32_t>(i), participant++});
+  slots.push_back({"network", 0, participant++});
+  for (std::size_t j = 0; j < scenario.supernodes.size(); ++j) slots.push_back({"supernode", static_cast<std::uint32_t>(j), participant++});
+  slots.push_back({"aggregator", 0, participant++});
+  return slots;
+}
+
+dds::RoleContext contextFor(const RoleSlot& slot, const ClusterOptions& options, const std::atomic<bool>* stop) {
+  dds::RoleContext context;
+  context.role = slot.role;
+  context.index = slot.index;
+  context.run_id = options.identity.run_id;
+  context.domain = static_cast<dds_domainid_t>(options.identity.domain);
+  context.run_dir = options.run_dir;
+  context.scenario = options.scenario;
+  context.shape = {options.scenario.run.node_processes, static_cast<std::int32_t>(options.scenario.supernodes.size())};
+  context.stall_timeout = std::chrono::milliseconds(static_cast<long>(options.stall_timeout_s * 1000));
+  context.stop = stop;
+  return context;
+}
+
+const std::map<std::string, std::function<void(const dds::RoleContext&)>>& roleRunners() {
+  static const std::map<std::string, std::function<void(const dds::RoleContext&)>> runners = {
+      {"node", node::runNodeRole},
+      {"network", network_model::runNetworkRole},
+      {"supernode", supernode::runSupernodeRole},
+      {"aggregator", aggregator::runAggregatorRole},
+  };
+  return runners;
+}
+
+/// Shows the aggregator's tick on stderr: in place on a terminal, every 10 % otherwise.
+class ProgressDisplay {
+ public:
+  ProgressDisplay(std::int32_t ticks, bool enabled) : ticks_(ticks), enabled_(enabled), tty_(::isatty(2) != 0) {}
+  void update(std::int32_t tick) {
+    if (!enabled_ || tick <= shown_) return;
+    shown_ = tick;
+    if (tty_) {
+      std::fprintf(stderr, "\r  tick %d/%d", tick, ticks_);
+      std::fflush(stderr);
+    } else if (tick == ticks_ || tick * 10 / ticks_ > (last_line_ * 10) / ticks_) {
+      std::fprintf(stderr, "  tick %d/%d\n", tick, ticks_);
+      last_line_ = tick;
+    }
+  }
+  void finish() {
+    if (enabled_ && tty_ && shown_ > 0) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  std::int32_t ticks_;
+  bool enabled_;
+  bool tty_;
+  std::int32_t shown_ = 0;
+  std::int32_t last_line_ = 0;
+};
+
+/// The launcher's own DDS observer of the status topic.
+class StatusObserver {
+ public:
+  StatusObserver(const ClusterOptions& options, int participant_index)
+      : domain_(static_cast<dds_domainid_t>(options.identity.domain),
+                dds::cycloneConfigFor(dds::cycloneConfigTemplate(options.identity.run_id,
+                                                                 participantCount(options.scenario, options.in_process)),
+                                      participant_index)),
+        participant_(domain_.id()),
+        topics_(participant_),
+        reader_(participant_, topics_.process_status, dds::Qos::lastValueTransientLocal()),
+        condition_(reader_),
+        waitset_(participant_),
+        run_id_(options.identity.run_id) {
+    waitset_.attach(condition_.handle(), 0);
+  }
+
+  /// Waits up to `timeout` for status samples; returns the aggregator's latest tick and
+  /// collects failure messages.
+  void poll(std::chrono::milliseconds timeout, std::int32_t& aggregator_tick, std::vector<std::string>& failures) {
+    waitset_.wait(timeout);
+    reader_.take<wsn_msg_ProcessStatus>([&](const wsn_msg_ProcessStatus& s) {
+      if (s.run_id != run_id_) return;
+      if (s.state == wsn_msg_FAILED) failures.push_back(std::string(s.role) + " " + std::to_string(s.index) + ": " + s.message);
+      if (std::strcmp(s.role, "aggregator") == 0 && (s.state == wsn_msg_RUNNING || s.state == wsn_msg_DONE))
+        aggregator_tick = std::max(aggregator_tick, s.tick);
+    });
+  }
+
+ private:
+  dds::Domain domain_;
+  dds::Participant participant_;
+  dds::RunTopics topics_;
+  dds::Reader reader_;
+  dds::ReadCondition condition_;
+  dds::WaitSet waitset_;
+  std::uint64_t run_id_;
+};
+
+std::string tailOf(const std::string& path, std::size_t lines) {
+  std::ifstream in(path);
+  std::vector<std::string> all;
+  for (std::string line; std::getline(in, line);) all.push_back(line);
+  std::ostringstream out;
+  for (std::size_t i = all.size() > lines ? all.size() - lines : 0; i < all.size(); ++i) out << "    " << all[i] << "\n";
+  return out.str();
+}
+
+pid_t spawn(const RoleSlot& slot, const ClusterOptions& options, const std::string& log_path) {
+  const std::string program = options.bin_dir + "/wsntrack-" + slot.role;
+  std::vector<std::string> args = {program,
+                                   "--run-dir", options.run_dir,
+                                   "--run-id", [&] { std::ostringstream h; h << std::hex << options.identity.run_id; return h.str(); }(),
+                                   "--domain", std::to_string(options.identity.domain),
+                                   "--participant-index", std::to_string(slot.participant_index),
+                                   "--tiles", std::to_string(options.scenario.run.node_processes),
+                                   "--stall-timeout", std::to_string(options.stall_timeout_s)};
+  if (slot.role == "node" || slot.role == "supernode") {
+    args.push_back("--index");
+    args.push_back(std::to_string(slot.index));
+  }
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
+  if (pid == 0) {
+    const int fd = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      ::dup2(fd, 1);
+      ::dup2(fd, 2);
+      ::close(fd);
+    }
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    ::execv(program.c_str(), argv.data());
+    std::fprintf(stderr, "cannot execute %s: %s\n", program.c_str(), std::strerror(errno));
+    ::_exit(127);
+  }
+  return pid;
+}
+
+ClusterResult runProcesses(const ClusterOptions& options) {
+  ClusterResult result;
+  const auto slots = clusterSlots(options.scenario);
+  const auto started = Clock::now();
+  std::map<pid_t, std::size_t> running;  // pid -> slot
+  result.outcomes.resize(slots.size());
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    result.outcomes[i].name = slots[i].name();
+    result.outcomes[i].log_path = options.run_dir + "/logs/" + slots[i].role + "-" + std::to_string(slots[i].index) + ".log";
+  }
+  auto stopAll = [&](int signal_number) {
+    for (const auto& [pid, slot] : running) ::kill(pid, signal_number);
+  };
+  auto reap = [&](bool block) {
+    int status = 0;
+    pid_t pid;
+    while ((pid = ::waitpid(-1, &status, block ? 0 : WNOHANG)) > 0) {
+      const auto it = running.find(pid);
+      if (it == running.end()) continue;
+      auto& outcome = result.outcomes[it->second];
+      outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      running.erase(it);
+      if (outcome.exit_code != 0 && result.failure.empty())
+        result.failure = outcome.name + " exited with code " + std::to_string(outcome.exit_code) + "; log " +
+                         outcome.log_path + ":\n" + tailOf(outcome.log_path, 8);
+      if (block) break;
+    }
+  };
+
+  try {
+    // The observer takes the last participant index, after every role process.
+    StatusObserver observer(options, static_cast<int>(slots.size()));
+    for (std::size_t i = 0; i < slots.size(); ++i) running[spawn(slots[i], options, result.outcomes[i].log_path)] = i;
+
+    ProgressDisplay progress(options.scenario.run.ticks, options.show_progress);
+    std::int32_t tick = 0;
+    std::vector<std::string> failures;
+    while (!running.empty() && result.failure.empty()) {
+      observer.poll(std::chrono::milliseconds(200), tick, failures);
+      progress.update(tick);
+      reap(false);
+      if (!failures.empty() && result.failure.empty()) result.failure = failures.front();
+      if (g_interrupted.load()) result.failure = "interrupted";
+      if (Clock::now() - started > options.timeout)
+        result.failure = "timed out after " + std::to_string(options.timeout.count()) + " s";
+    }
+    progress.finish();
+  } catch (const std::exception& error) {
+    if (result.failure.empty()) result.failure = std::string("launcher: ") + error.what();
+  }
+
+  // Stop whatever is left: politely first, then for good. Every pid we started is reaped.
+  if (!running.empty()) {
+    stopAll(SIGTERM);
+    const auto deadline = Clock::now() + std::chrono::seconds(3);
+    while (!running.empty() && Clock::now() < deadline) {
+      reap(false);
+      if (!running.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    stopAll(SIGKILL);
+    while (!running.empty()) reap(true);
+  }
+  result.wall_s = std::chrono::duration<double>(Clock::now() - started).count();
+  result.ok = result.failure.empty();
+  return result;
+}
+
+ClusterResult runThreads(const ClusterOptions& options) {
+  ClusterResult result;
+  const auto slots = clusterSlots(options.scenario);
+  const auto started = Clock::now();
+  std::atomic<bool> stop{false};
+  std::atomic<std::size_t> finished{0};
+  std::mutex mutex;
+  result.outcomes.resize(slots.size());
+
+  std::vector<dds::RoleContext> contexts;
+  for (const auto& slot : slots) contexts.push_back(contextFor(slot, options, &stop));
+  std::vector<std::thread> threads;
+  auto fail = [&](const std::string& why) {
+    std::lock_guard lock(mutex);
+    if (result.failure.empty()) result.failure = why;
+    stop.store(true);
+  };
+  try {
+    // One domain (participant index 0) shared by all role threads; the observer joins it too
+    // and outlives them.
+    StatusObserver observer(options, 0);
+    for (std::size_t i = 0; i < slots.size(); ++i) {
+      result.outcomes[i].name = slots[i].name();
+      threads.emplace_back([&, i] {
+        try {
+          roleRunners().at(slots[i].role)(contexts[i]);
+        } catch (const std::exception& error) {
+          {
+            std::lock_guard lock(mutex);
+            result.outcomes[i].exit_code = 1;
+            result.outcomes[i].message = error.what();
+          }
+          fail(slots[i].name() + ": " + error.what());
+        }
+        ++finished;
+      });
+    }
+    ProgressDisplay progress(options.scenario.run.ticks, options.show_progress);
+    std::int32_t tick = 0;
+    std::vector<std::string> failures;
+    while (finished.load() < slots.size()) {
+      observer.poll(std::chrono::milliseconds(200), tick, failures);
+      progress.update(tick);
+      if (g_interrupted.load()) fail("interrupted");
+      if (Clock::now() - started > options.timeout) fail("timed out after " + std::to_string(options.timeout.count()) + " s");
+    }
+    progress.finish();
+    for (auto& thread : threads) thread.join();
+  } catch (const std::exception& error) {
+    fail(std::string("launcher: ") + error.what());
+    for (auto& thread : threads)
+      if (thread.joinable()) thread.join();
+  }
+  result.wall_s = std::chrono::duration<double>(Clock::now() - started).count();
+  result.ok = result.failure.empty();
+  return result;
+}
+
+}  // namespace
+
+int participantCount(const common::Scenario& scenario, bool in_process) {
+  if (in_process) return 1;
+  return static_cast<int>(clusterSlots(scenario).size()) + 1;
+}
+
+ClusterResult runCluster(const ClusterOptions& options) {
+  std::signal(SIGINT, onInterrupt);
+  std::signal(SIGTERM, onInterrupt);
+  return options.in_process ? runThreads(options) : runProcesses(options);
+}
+
+}  // namespace wsn::launcher

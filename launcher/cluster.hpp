@@ -1,0 +1,47 @@
+// Starting and supervising a whole cluster on this host: every role as its own process (or as
+// threads of this process with --in-process), progress from the status topic, and a clean
+// stop of every process it started — after a failure as after success.
+#pragma once
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "common/scenario.hpp"
+#include "launcher/run_directory.hpp"
+
+namespace wsn::launcher {
+
+struct ClusterOptions {
+  std::string run_dir;
+  RunIdentity identity;
+  common::Scenario scenario;  ///< resolved, overrides applied
+  bool in_process = false;
+  std::string bin_dir;  ///< where the wsntrack-<role> executables are
+  std::chrono::seconds timeout{1800};
+  double stall_timeout_s = 60.0;
+  bool show_progress = true;
+};
+
+/// How one process (or role thread) ended.
+struct RoleOutcome {
+  std::string name;      ///< e.g. "node 1"
+  int exit_code = 0;     ///< 0 success; for processes killed by a signal, 128 + signal
+  std::string message;   ///< why it failed, when known
+  std::string log_path;  ///< multi-process mode: its stdout/stderr
+};
+
+struct ClusterResult {
+  bool ok = false;
+  std::vector<RoleOutcome> outcomes;
+  double wall_s = 0.0;  ///< from start of the first process to the exit of the last
+  std::string failure;  ///< first failure, for the user
+};
+
+/// Runs the cluster to completion (or failure, timeout, SIGINT) and stops everything it started.
+ClusterResult runCluster(const ClusterOptions& options);
+
+/// Number of Cyclone participants of a run: every process plus the launcher's observer.
+int participantCount(const common::Scenario& scenario, bool in_process);
+
+}  // namespace wsn::launcher

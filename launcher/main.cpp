@@ -1,0 +1,248 @@
+// wsntrack: run a tracking cluster on this host, or validate a scenario.
+#include <unistd.h>
+
+#include <boost/program_options.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <regex>
+#include <sstream>
+
+#include "common/scenario.hpp"
+#include "launcher/cluster.hpp"
+#include "launcher/run_directory.hpp"
+#include "supernode/engine.hpp"
+
+namespace po = boost::program_options;
+using namespace wsn;
+
+namespace {
+
+constexpr const char* kUsage =
+    "Usage: wsntrack <command> [options]\n\n"
+    "Multi-target tracking in a wireless sensor network (Oh et al., hierarchical MCMCDA),\n"
+    "run as a real multi-process cluster over Cyclone DDS on the loopback interface.\n\n"
+    "Commands:\n"
+    "  run SCENARIO       start every process of the cluster on this host and write a run directory\n"
+    "  validate FILE...   check scenario files without running them\n"
+    "  engines            list the supernode tracking engines and their parameters\n"
+    "  help               show this text\n\n"
+    "'wsntrack <command> --help' explains each command's options.\n";
+
+/// Loads a scenario and resolves its engine parameters: every check a run would make.
+common::Scenario loadResolved(const std::string& path) {
+  auto scenario = common::loadScenario(path);
+  supernode::resolveEngineParams(scenario);
+  return scenario;
+}
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// The first number after "key": in one of our own JSON files (fixed, known layout).
+std::optional<double> jsonNumber(const std::string& json, const std::string& key) {
+  const std::regex pattern("\"" + key + "\"\\s*:\\s*(-?[0-9.eE+-]+)");
+  std::smatch match;
+  if (!std::regex_search(json, match, pattern)) return std::nullopt;
+  return std::stod(match[1].str());
+}
+
+std::string show(std::optional<double> value, int decimals) {
+  if (!value) return "n/a";
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, *value);
+  return buffer;
+}
+
+void printSummary(const std::string& run_dir, const launcher::ClusterResult& result, bool in_process) {
+  const auto metrics = readFile(run_dir + "/metrics.json");
+  const auto network = readFile(run_dir + "/network.json");
+  const auto row = [](const std::string& name, const std::string& value) {
+    std::cout << "  " << name << std::string(name.size() < 26 ? 26 - name.size() : 1, ' ') << value << "\n";
+  };
+  std::cout << "\nRun directory: " << run_dir << "\n";
+  row("mode", in_process ? "in-process (threads over DDS)" : "multi-process over DDS");
+  row("targets (truth)", show(jsonNumber(metrics, "truth_targets"), 0));
+  row("tracks (global ids)", show(jsonNumber(metrics, "track_ids"), 0));
+  row("eps_K  (Oh eq. 9)", show(jsonNumber(metrics, "eps_k"), 4));
+  row("eps_X  (Oh eq. 10)", show(jsonNumber(metrics, "eps_x"), 4));
+  row("OSPA (mean)", show(jsonNumber(metrics, "ospa_mean"), 4));
+  row("reports sent", show(jsonNumber(network, "sent"), 0));
+  row("reports lost", show(jsonNumber(network, "lost"), 0));
+  row("reports delayed", show(jsonNumber(network, "delayed"), 0));
+  row("dropped (older than ws)", show(jsonNumber(metrics, "observations_dropped_stale"), 0));
+  row("wall time (tick loop)", show(jsonNumber(metrics, "wall_s"), 3) + " s");
+  row("ticks/s (tick loop)", show(jsonNumber(metrics, "ticks_per_s"), 1));
+  row("wall time (all)", show(result.wall_s, 3) + " s");
+}
+
+int commandValidate(const std::vector<std::string>& args) {
+  po::options_description options("Options");
+  options.add_options()("help,h", "show this help")("files", po::value<std::vector<std::string>>(), "scenario files");
+  po::positional_options_description positional;
+  positional.add("files", -1);
+  po::variables_map vm;
+  po::store(po::command_line_parser(args).options(options).positional(positional).run(), vm);
+  if (vm.count("help") || !vm.count("files")) {
+    std::cout << "Usage: wsntrack validate FILE...\n\nChecks each scenario strictly (unknown keys, types, ranges,"
+                 " engine parameters)\nand prints file:line and what was expected for the first problem of each"
+                 " file.\nExit code 0 when every file is valid, 1 otherwise.\n\n"
+              << options << "\n";
+    return vm.count("help") ? 0 : 2;
+  }
+  int failures = 0;
+  for (const auto& file : vm["files"].as<std::vector<std::string>>()) {
+    try {
+      const auto scenario = loadResolved(file);
+      std::cout << file << ": ok (" << scenario.name << ": " << scenario.run.ticks << " ticks, "
+                << scenario.supernodes.size() << " supernodes, engine " << scenario.tracker.engine << ")\n";
+    } catch (const std::exception& error) {
+      std::cerr << error.what() << "\n";
+      ++failures;
+    }
+  }
+  return failures == 0 ? 0 : 1;
+}
+
+int commandEngines() {
+  for (const auto& engine : supernode::engineRegistry()) {
+    std::cout << engine.name << ": " << engine.description << "\n";
+    for (const auto& p : engine.params)
+      std::cout << "  " << p.name << " (default " << p.default_value << ", range [" << p.min << ", " << p.max
+                << "]): " << p.description << "\n";
+  }
+  return 0;
+}
+
+std::string executableDirectory() {
+  return std::filesystem::canonical("/proc/self/exe").parent_path().string();
+}
+
+int commandRun(const std::vector<std::string>& args) {
+  std::string scenario_path;
+  std::string out_dir;
+  std::uint64_t seed = 0;
+  int nodes = 0;
+  int ticks = 0;
+  double timeout_s = 1800;
+  double stall_s = 60;
+  po::options_description options("Options");
+  options.add_options()("help,h", "show this help")(
+      "seed", po::value(&seed), "random seed (overrides run.seed of the scenario)")(
+      "out", po::value(&out_dir), "run directory (default runs/<scenario>-seed<seed>-<UTC time>-<pid>)")(
+      "overwrite", "reuse --out even if it is not empty (its contents are deleted)")(
+      "nodes", po::value(&nodes), "number of sensor-node processes (tiles); overrides run.node_processes")(
+      "ticks", po::value(&ticks), "number of ticks T; overrides run.ticks")(
+      "in-process", "run every role as a thread of this process (still over DDS)")(
+      "timeout", po::value(&timeout_s)->default_value(1800), "stop everything after this many seconds")(
+      "stall-timeout", po::value(&stall_s)->default_value(60),
+      "a role gives up after this many seconds without input (a peer died)")(
+      "quiet,q", "no progress display")("scenario", po::value(&scenario_path), "scenario file");
+  po::positional_options_description positional;
+  positional.add("scenario", 1);
+  po::variables_map vm;
+  po::store(po::command_line_parser(args).options(options).positional(positional).run(), vm);
+  po::notify(vm);
+  if (vm.count("help") || scenario_path.empty()) {
+    std::cout << "Usage: wsntrack run SCENARIO [--seed N] [--out DIR] [--nodes N] [--in-process]\n\n"
+                 "Starts every process of the cluster on this host — sensor-node tiles, the network\n"
+                 "model, one supernode per tracking group and the aggregator — over Cyclone DDS on\n"
+                 "loopback, shows progress, and prints a summary. Outputs (run directory):\n"
+                 "  scenario.yaml  truth.csv  observations.csv  tracks_supernode.csv  tracks.csv\n"
+                 "  network.json  metrics.json  logs/<role>-<index>.log\n\n"
+              << options << "\n";
+    return vm.count("help") ? 0 : 2;
+  }
+
+  common::Scenario scenario;
+  try {
+    scenario = loadResolved(scenario_path);
+  } catch (const std::exception& error) {
+    std::cerr << error.what() << "\n";
+    return 2;
+  }
+  if (vm.count("seed")) scenario.run.seed = seed;
+  if (vm.count("nodes")) {
+    if (nodes < 1 || nodes > 64) {
+      std::cerr << "wsntrack run: --nodes must be in [1, 64], got " << nodes << "\n";
+      return 2;
+    }
+    scenario.run.node_processes = nodes;
+  }
+  if (vm.count("ticks")) {
+    if (ticks < 1 || ticks > 1000000) {
+      std::cerr << "wsntrack run: --ticks must be in [1, 1000000], got " << ticks << "\n";
+      return 2;
+    }
+    scenario.run.ticks = ticks;
+  }
+
+  launcher::ClusterOptions cluster;
+  cluster.scenario = scenario;
+  cluster.in_process = vm.count("in-process") != 0;
+  cluster.show_progress = vm.count("quiet") == 0;
+  cluster.timeout = std::chrono::seconds(static_cast<long>(timeout_s));
+  cluster.stall_timeout_s = stall_s;
+  cluster.bin_dir = executableDirectory();
+  cluster.run_dir = out_dir.empty() ? launcher::defaultRunDirectory(scenario) : out_dir;
+  try {
+    launcher::createRunDirectory(cluster.run_dir, vm.count("overwrite") != 0);
+    cluster.identity.run_id = launcher::newRunId();
+    const int participants = launcher::participantCount(scenario, cluster.in_process);
+    cluster.identity.domain = launcher::pickFreeDomain(cluster.identity.run_id, participants);
+    launcher::writeRunInputs(cluster.run_dir, scenario, cluster.identity, participants);
+  } catch (const std::exception& error) {
+    std::cerr << "wsntrack run: " << error.what() << "\n";
+    return 1;
+  }
+
+  std::cerr << "wsntrack: " << scenario.name << " (seed " << scenario.run.seed << ", " << scenario.run.ticks
+            << " ticks) on " << scenario.run.node_processes << " node tiles, " << scenario.supernodes.size()
+            << " supernodes, engine " << scenario.tracker.engine << ", domain " << cluster.identity.domain
+            << (cluster.in_process ? ", in-process" : "") << "\n";
+  const auto result = launcher::runCluster(cluster);
+  if (!result.ok) {
+    std::cerr << "wsntrack run: FAILED: " << result.failure << "\n";
+    for (const auto& outcome : result.outcomes)
+      if (outcome.exit_code != 0)
+        std::cerr << "  " << outcome.name << ": exit " << outcome.exit_code
+                  << (outcome.message.empty() ? "" : " (" + outcome.message + ")") << "\n";
+    return 1;
+  }
+  printSummary(cluster.run_dir, result, cluster.in_process);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::cerr << kUsage;
+    return 2;
+  }
+  const std::string command = argv[1];
+  const std::vector<std::string> args(argv + 2, argv + argc);
+  try {
+    if (command == "run") return commandRun(args);
+    if (command == "validate") return commandValidate(args);
+    if (command == "engines") return commandEngines();
+    if (command == "help" || command == "--help" || command == "-h") {
+      std::cout << kUsage;
+      return 0;
+    }
+    std::cerr << "wsntrack: unknown command '" << command << "'\n\n" << kUsage;
+    return 2;
+  } catch (const po::error& error) {
+    std::cerr << "wsntrack " << command << ": " << error.what() << " (try 'wsntrack " << command << " --help')\n";
+    return 2;
+  } catch (const std::exception& error) {
+    std::cerr << "wsntrack " << command << ": " << error.what() << "\n";
+    return 1;
+  }
+}

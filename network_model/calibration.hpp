@@ -1,0 +1,46 @@
+// Expected loss and delay ratios of a topology under Oh et al. §V, used to calibrate the default
+// communication range against the paper's Fig. 6 and the counts of its §VII-E example.
+#pragma once
+
+#include <cstdint>
+
+#include "common/scenario.hpp"
+#include "network_model/topology.hpp"
+
+namespace wsn::network_model {
+
+/// Oh et al. §VII-E at pte = pde = 0.3: 1174 reports, 319 lost, 449 of the 855 received delayed.
+inline constexpr double kPaperReports = 1174.0;
+inline constexpr double kPaperLost = 319.0;
+inline constexpr double kPaperReceived = 855.0;
+inline constexpr double kPaperDelayed = 449.0;
+
+/// Ratios expected when every sensor sends one report (uniform average over sensors;
+/// unreachable sensors count as lost).
+struct ExpectedRatios {
+  double lost_to_total = 0.0;        ///< E[1 - pts]
+  double delayed_to_total = 0.0;     ///< E[pts (1 - (1-pde)^k)]
+  double delayed_to_received = 0.0;  ///< E[pts (1 - (1-pde)^k)] / E[pts]
+  /// E[pts P(1 <= d < ws)]: delayed but still inside the window (Fig. 6 right, dotted).
+  double delayed_in_window_to_total = 0.0;
+};
+
+/// Oh et al. §V, eq. (7) averaged over the topology's hop histogram.
+ExpectedRatios expectedRatios(const Topology& topology, double pte, double pde, std::int32_t window_size);
+
+/// Chi-square distance of (lost_to_total, delayed_to_received) from the §VII-E counts, each
+/// term scaled by its binomial variance at the paper's sample size (1174 resp. 855 reports).
+double paperMismatch(const ExpectedRatios& ratios);
+
+/// Where the supernodes of the calibration geometry sit.
+enum class SupernodePlacement {
+  kQuadrants,  ///< Oh §VII-E: one at the centre of each quadrant
+  kCentre,     ///< Oh §VII-C, D: a single one at the centre
+};
+
+/// The geometry of Oh §VII: 100 x 100 region, grid of spacing 1 (10^4 sensors), supernodes as
+/// given, the given range, pte and pde; everything else at its default.
+common::Scenario ohCalibrationScenario(double communication_range, SupernodePlacement placement, double pte,
+                                       double pde);
+
+}  // namespace wsn::network_model

@@ -1,0 +1,154 @@
+#include "network_model/router.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+#include "common/rng.hpp"
+#include "network_model/link_model.hpp"
+
+namespace wsn::network_model {
+namespace {
+
+/// Canonical report order: by sensor, then by content, so duplicates also sort reproducibly.
+bool reportBefore(const common::Report& a, const common::Report& b) {
+  return std::tie(a.sensor, a.x, a.y, a.target) < std::tie(b.sensor, b.x, b.y, b.target);
+}
+
+bool observationBefore(const common::Observation& a, const common::Observation& b) {
+  return std::tie(a.tick_generated, a.sensor, a.x, a.y, a.target) <
+         std::tie(b.tick_generated, b.sensor, b.x, b.y, b.target);
+}
+
+}  // namespace
+
+NetworkCounts& NetworkCounts::operator+=(const NetworkCounts& other) {
+  sent += other.sent;
+  lost += other.lost;
+  unreachable += other.unreachable;
+  delivered += other.delivered;
+  delayed += other.delayed;
+  beyond_window += other.beyond_window;
+  after_end += other.after_end;
+  rejected += other.rejected;
+  return *this;
+}
+
+Router::Router(const common::Scenario& scenario, const Topology& topology)
+    : topology_(&topology),
+      seed_(scenario.run.seed),
+      pte_(scenario.network.pte),
+      pde_(scenario.network.pde),
+      run_ticks_(scenario.run.ticks),
+      window_size_(scenario.tracker.window_size),
+      last_tick_(std::numeric_limits<std::int32_t>::min()),
+      pending_(topology.supernodeCount()),
+      per_supernode_(topology.supernodeCount()) {
+  success_by_hops_.resize(static_cast<std::size_t>(topology.maxHops()) + 1);
+  for (std::size_t k = 0; k < success_by_hops_.size(); ++k)
+    success_by_hops_[k] = successProbability(pte_, static_cast<int>(k));
+}
+
+std::span<const ReportFate> Router::submit(std::int32_t tick, std::span<const common::Report> reports) {
+  if (tick <= last_tick_)
+    throw std::logic_error("network router: tick " + std::to_string(tick) + " submitted after tick " +
+                           std::to_string(last_tick_));
+  last_tick_ = tick;
+
+  std::vector<common::Report> ordered;
+  ordered.reserve(reports.size());
+  for (const common::Report& report : reports) {
+    const bool valid = report.tick == tick && report.sensor < topology_->sensorCount() &&
+                       std::isfinite(report.x) && std::isfinite(report.y);
+    if (valid)
+      ordered.push_back(report);
+    else
+      ++total_.rejected;
+  }
+  std::sort(ordered.begin(), ordered.end(), reportBefore);
+
+  std::vector<ReportFate> fates;
+  fates.reserve(ordered.size());
+  // A sensor sends at most one report per tick, so each report normally owns fresh streams. A
+  // duplicate continues the streams of the report before it, which stays deterministic because
+  // duplicates are in canonical order.
+  std::optional<common::Stream> loss_stream;
+  std::optional<common::Stream> delay_stream;
+  for (std::size_t n = 0; n < ordered.size(); ++n) {
+    const common::Report& report = ordered[n];
+    if (n == 0 || ordered[n - 1].sensor != report.sensor) {
+      loss_stream.emplace(seed_, common::Purpose::kNetworkLoss, report.sensor, tick);
+      delay_stream.emplace(seed_, common::Purpose::kNetworkDelay, report.sensor, tick);
+    }
+    ReportFate fate;
+    fate.report = report;
+    fate.supernode = topology_->supernodeOf(report.sensor);
+    fate.hops = topology_->hops(report.sensor);
+    NetworkCounts& group = per_supernode_[fate.supernode];
+    ++group.sent;
+
+    if (fate.hops < 0) {
+      fate.lost = true;
+      ++group.unreachable;
+    } else if (!loss_stream->bernoulli(success_by_hops_[static_cast<std::size_t>(fate.hops)])) {
+      // Oh et al. §V: delivered with probability pts(pte, |sp(i)|).
+      fate.lost = true;
+      ++group.lost;
+    } else {
+      // Oh et al. eq. (7): d ~ NegBin(|sp(i)|, pde) extra ticks.
+      const std::int64_t d = drawDelay(*delay_stream, pde_, fate.hops);
+      fate.delay = static_cast<std::int32_t>(std::min<std::int64_t>(d, std::numeric_limits<std::int32_t>::max()));
+      if (d > static_cast<std::int64_t>(run_ticks_) - tick) {
+        ++group.after_end;
+      } else {
+        fate.tick_delivered = static_cast<std::int32_t>(tick + d);
+        ++group.delivered;
+        if (d > 0) ++group.delayed;
+        if (d >= window_size_) ++group.beyond_window;
+        pending_[fate.supernode][fate.tick_delivered].push_back(common::Observation{
+            report.tick, fate.tick_delivered, report.sensor, report.x, report.y, report.target});
+        ++pending_count_;
+      }
+    }
+    fates.push_back(fate);
+  }
+
+  const std::uint64_t rejected = total_.rejected;
+  total_ = NetworkCounts{};
+  for (const NetworkCounts& group : per_supernode_) total_ += group;
+  total_.rejected = rejected;
+
+  auto& stored = fates_[tick];
+  stored = std::move(fates);
+  return stored;
+}
+
+std::vector<common::Observation> Router::deliveriesDue(std::int32_t tick, std::uint32_t supernode) {
+  if (supernode >= pending_.size())
+    throw std::out_of_range("network router: no supernode " + std::to_string(supernode));
+  if (tick > last_tick_)
+    throw std::logic_error("network router: deliveries of tick " + std::to_string(tick) +
+                           " requested before that tick was submitted");
+  auto& store = pending_[supernode];
+  auto it = store.find(tick);
+  if (it == store.end()) return {};
+  std::vector<common::Observation> due = std::move(it->second);
+  store.erase(it);
+  pending_count_ -= due.size();
+  std::sort(due.begin(), due.end(), observationBefore);
+  return due;
+}
+
+std::span<const ReportFate> Router::fatesOf(std::int32_t tick) const {
+  const auto it = fates_.find(tick);
+  if (it == fates_.end()) return {};
+  return it->second;
+}
+
+void Router::forgetFatesBefore(std::int32_t tick) { fates_.erase(fates_.begin(), fates_.lower_bound(tick)); }
+
+}  // namespace wsn::network_model

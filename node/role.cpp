@@ -1,0 +1,82 @@
+#include "node/role.hpp"
+
+#include "common/dds/codec.hpp"
+#include "common/sensor_layout.hpp"
+#include "common/truth.hpp"
+#include "node/sensor_field.hpp"
+#include "node/tiling.hpp"
+
+namespace wsn::node {
+
+void runNodeRole(const dds::RoleContext& context) {
+  using namespace wsn::dds;
+  Participant participant(context.domain);
+  RunTopics topics(participant);
+  StatusPublisher status(participant, topics, context);
+  status.starting();
+  runWithStatus(status, [&] {
+    const auto& scenario = context.scenario;
+    const common::Truth truth(scenario);
+    const common::SensorLayout layout(scenario);
+    const auto tiles = makeTiles(layout, context.shape.tiles);
+    const SensorField field(scenario, layout, tiles.at(context.index));
+
+    Writer boundary_writer(participant, topics.sensor_boundary, Qos::reliableKeepAll());
+    Writer report_writer(participant, topics.report_batch, Qos::reliableKeepAll());
+    Reader boundary_reader(participant, topics.sensor_boundary, Qos::reliableKeepAll());
+    RoleLoop loop(participant, context);
+    PipelineProgress progress(participant, topics, context, loop);
+
+    TickInbox<std::vector<common::SensorReading>> boundary_inbox;
+    loop.watch(boundary_reader, [&] {
+      boundary_reader.take<wsn_msg_SensorBoundary>([&](const wsn_msg_SensorBoundary& batch) {
+        if (batch.run_id != context.run_id || batch.tile == context.index) return;
+        boundary_inbox.put(batch.tick, batch.tile, decode(batch.readings));
+      });
+    });
+
+    const int tiles_count = context.shape.tiles;
+    const int processes = context.shape.processes();
+    waitForDiscovery(participant, {{&boundary_writer, tiles_count}, {&report_writer, 1}},
+                     {{&boundary_reader, tiles_count}, {&progress.reader(), 1}}, context, std::chrono::seconds(30));
+    status.ready();
+    // Sources start only when every consumer is connected, so tick 1 reaches everybody.
+    waitForClusterReady(participant, topics, context, std::chrono::seconds(30));
+    (void)processes;
+
+    const std::int32_t ticks = scenario.run.ticks;
+    const std::int32_t in_flight = scenario.run.max_ticks_in_flight;
+    const auto others = static_cast<std::size_t>(tiles_count - 1);
+    for (std::int32_t t = 1; t <= ticks; ++t) {
+      progress.waitForCompleted(t - in_flight);
+      const auto& targets = truth.at(t);
+      const auto own = field.detect(t, targets);
+
+      auto boundary = encode(field.boundaryReadings(own));
+      wsn_msg_SensorBoundary boundary_sample{};
+      boundary_sample.run_id = context.run_id;
+      boundary_sample.tile = context.index;
+      boundary_sample.tick = t;
+      boundary_sample.readings = sequenceView<dds_sequence_wsn_msg_SensorReading>(boundary);
+      boundary_writer.write(boundary_sample);
+
+      loop.waitUntil([&] { return boundary_inbox.count(t) >= others; },
+                     [&] { return "boundary readings of tick " + std::to_string(t) + " from the other tiles"; });
+      std::vector<common::SensorReading> foreign;
+      for (auto& [tile, readings] : boundary_inbox.take(t)) foreign.insert(foreign.end(), readings.begin(), readings.end());
+
+      auto reports = encode(field.fuse(t, own, foreign, targets));
+      wsn_msg_ReportBatch report_sample{};
+      report_sample.run_id = context.run_id;
+      report_sample.tile = context.index;
+      report_sample.tick = t;
+      report_sample.reports = sequenceView<dds_sequence_wsn_msg_Report>(reports);
+      report_writer.write(report_sample);
+      status.running(t);
+    }
+    progress.waitForCompleted(ticks);
+    status.done(ticks);
+  });
+}
+
+}  // namespace wsn::node

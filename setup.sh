@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# One-command set-up for a fresh Debian machine: installs what is missing (apt-get), builds,
+# then either runs the default scenario as a multi-process cluster or runs the whole test suite.
+#
+#   ./setup.sh run [wsntrack run options]   # install, build, run scenarios/oh_quadrants.yaml
+#   ./setup.sh test [ctest options]         # install, build, run every test (unit + cluster)
+#   ./setup.sh build                        # install and build only
+set -euo pipefail
+cd "$(dirname "$0")"
+
+usage() { sed -n '2,8p' "$0" | sed 's/^# \{0,1\}//'; }
+mode="${1:-}"
+case "$mode" in
+  run|test|build) shift ;;
+  -h|--help|help) usage; exit 0 ;;
+  *) usage >&2; exit 2 ;;
+esac
+
+packages=(build-essential cmake pkg-config cyclonedds-dev cyclonedds-tools libeigen3-dev
+          libboost-program-options-dev catch2 libyaml-cpp-dev libbenchmark-dev procps)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}" >&2
+  sudo_cmd=()
+  [ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
+
+build_dir="${WSN_BUILD_DIR:-build}"
+jobs="$(nproc 2>/dev/null || echo 2)"
+cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+cmake --build "$build_dir" -j"$jobs"
+
+case "$mode" in
+  run) exec "$build_dir/bin/wsntrack" run scenarios/oh_quadrants.yaml "$@" ;;
+  test) cd "$build_dir" && exec ctest --output-on-failure -j"$jobs" "$@" ;;
+  build) ;;
+esac

@@ -1,0 +1,79 @@
+#include "supernode/supernode_tracker.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+namespace wsn::supernode {
+namespace {
+
+std::unique_ptr<const common::Scenario> resolvedCopy(const common::Scenario& scenario) {
+  auto copy = std::make_unique<common::Scenario>(scenario);
+  resolveEngineParams(*copy);
+  return copy;
+}
+
+bool observationLess(const common::Observation& a, const common::Observation& b) {
+  return std::tie(a.tick_generated, a.sensor, a.x, a.y, a.tick_delivered, a.target) <
+         std::tie(b.tick_generated, b.sensor, b.x, b.y, b.tick_delivered, b.target);
+}
+
+bool handoffLess(const common::TrackHandoff& a, const common::TrackHandoff& b) {
+  return std::tie(a.track, a.last_tick, a.to_supernode, a.state, a.covariance, a.hits, a.misses, a.confirmed) <
+         std::tie(b.track, b.last_tick, b.to_supernode, b.state, b.covariance, b.hits, b.misses, b.confirmed);
+}
+
+}  // namespace
+
+std::uint32_t nearestSupernode(const std::vector<common::Vec2>& supernodes, common::Vec2 position) {
+  std::uint32_t best = 0;
+  for (std::uint32_t j = 1; j < supernodes.size(); ++j)
+    if (common::squaredDistance(supernodes[j], position) < common::squaredDistance(supernodes[best], position))
+      best = j;
+  return best;
+}
+
+SupernodeTracker::SupernodeTracker(const common::Scenario& resolved, std::uint32_t supernode_index)
+    : scenario_(resolvedCopy(resolved)), index_(supernode_index), window_(scenario_->tracker.window_size) {
+  // Without supernodes in the scenario there is a single tracking group, index 0.
+  if (supernode_index >= std::max<std::size_t>(1, scenario_->supernodes.size()))
+    throw std::invalid_argument("supernode index " + std::to_string(supernode_index) + " out of range: the scenario has " +
+                                std::to_string(scenario_->supernodes.size()) + " supernodes");
+  engine_ = makeEngine(EngineContext{*scenario_, supernode_index});
+}
+
+SupernodeTracker::TickOutput SupernodeTracker::step(std::int32_t tick, std::span<const common::Observation> delivered,
+                                                    std::span<const common::TrackHandoff> incoming) {
+  window_.advanceTo(tick);
+  std::vector<common::Observation> observations(delivered.begin(), delivered.end());
+  std::sort(observations.begin(), observations.end(), observationLess);
+  for (const auto& observation : observations) window_.insert(observation);
+
+  std::vector<common::TrackHandoff> handoffs_in(incoming.begin(), incoming.end());
+  std::sort(handoffs_in.begin(), handoffs_in.end(), handoffLess);
+  for (const auto& handoff : handoffs_in) {
+    if (handoff.to_supernode != index_) {
+      ++misaddressed_handoffs_;
+      continue;
+    }
+    engine_->adopt(handoff);
+  }
+
+  engine_->step(window_);
+
+  TickOutput out;
+  out.tick = tick;
+  out.tracks = engine_->confirmedTracks();
+  // Oh §VI: a track whose predicted next state lies in another supernode's tracking group is
+  // passed to that supernode.
+  for (const auto& prediction : engine_->predictions()) {  // sorted by id
+    const std::uint32_t owner = nearestSupernode(scenario_->supernodes, prediction.next_position);
+    if (owner != index_) out.handoffs.push_back(engine_->release(prediction.track, owner));
+  }
+  out.observations_in_window = static_cast<std::uint32_t>(window_.size());
+  out.observations_dropped_stale = window_.droppedStale();
+  return out;
+}
+
+}  // namespace wsn::supernode

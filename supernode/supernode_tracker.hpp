@@ -1,0 +1,60 @@
+// One supernode's tracking (Oh §VI): the sliding observation window, the configured engine, and
+// the handoff of tracks whose predicted position enters another supernode's tracking group.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "common/messages.hpp"
+#include "common/scenario.hpp"
+#include "supernode/engine.hpp"
+#include "supernode/observation_window.hpp"
+
+namespace wsn::supernode {
+
+/// Oh §V, g(): index of the supernode nearest to `position` (ties go to the lower index);
+/// 0 when there are no supernodes.
+std::uint32_t nearestSupernode(const std::vector<common::Vec2>& supernodes, common::Vec2 position);
+
+/// Window + engine + handoff decision of supernode `supernode_index`; pure and deterministic.
+class SupernodeTracker {
+ public:
+  /// What one tick produced.
+  struct TickOutput {
+    std::int32_t tick = 0;
+    std::vector<common::TrackEstimate> tracks;      ///< confirmed tracks, sorted by id
+    std::vector<common::TrackHandoff> handoffs;     ///< released tracks, sorted by id
+    std::uint32_t observations_in_window = 0;
+    std::uint64_t observations_dropped_stale = 0;  ///< cumulative
+    friend bool operator==(const TickOutput&, const TickOutput&) = default;
+  };
+
+  /// `resolved`: the scenario (its tracker params are resolved again here, which is idempotent;
+  /// a bad engine or parameter throws common::ScenarioError). Throws std::invalid_argument when
+  /// supernode_index names no supernode of the scenario.
+  SupernodeTracker(const common::Scenario& resolved, std::uint32_t supernode_index);
+
+  /// Processes tick `tick`: slides the window, files the delivered observations into their slots,
+  /// adopts the incoming handoffs, steps the engine and releases the tracks predicted to enter
+  /// another supernode's Voronoi cell. Handoffs addressed to another supernode are ignored.
+  TickOutput step(std::int32_t tick, std::span<const common::Observation> delivered,
+                  std::span<const common::TrackHandoff> incoming);
+
+  std::uint32_t supernodeIndex() const { return index_; }
+  const ObservationWindow& window() const { return window_; }
+  const Engine& engine() const { return *engine_; }
+  /// Incoming handoffs that named another supernode (dropped, counted).
+  std::uint64_t misaddressedHandoffs() const { return misaddressed_handoffs_; }
+
+ private:
+  // Owned on the heap so that the engine's reference to it survives a move of the tracker.
+  std::unique_ptr<const common::Scenario> scenario_;
+  std::uint32_t index_;
+  ObservationWindow window_;
+  std::unique_ptr<Engine> engine_;
+  std::uint64_t misaddressed_handoffs_ = 0;
+};
+
+}  // namespace wsn::supernode

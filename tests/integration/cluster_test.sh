@@ -1,0 +1,105 @@
+#!/usr/bin/env bash
+# Integration tests that start real wsntrack clusters on loopback and check their outputs.
+# Usage: cluster_test.sh BIN_DIR SOURCE_DIR WORK_DIR CASE
+# Every process a case starts is stopped by its own PID (the launcher reaps its children);
+# each case ends by checking that no process of its runs is left.
+set -uo pipefail
+bin="$1"; src="$2"; work="$3"; case_name="$4"
+wsntrack="$bin/wsntrack"
+scenario="$src/scenarios/oh_quadrants.yaml"
+rm -rf "$work/$case_name"; mkdir -p "$work/$case_name"; cd "$work/$case_name" || exit 1
+
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+# Runs a cluster into directory $1 with extra options; fails the test if it fails.
+run_ok() {
+  local out="$1"; shift
+  timeout 300 "$wsntrack" run "$scenario" --quiet --out "$out" "$@" >"$out.stdout" 2>"$out.stderr" \
+    || { cat "$out.stderr" >&2; for f in "$out"/logs/*.log; do echo "== $f" >&2; tail -5 "$f" >&2; done; fail "run $out $*"; }
+}
+
+# metrics.json without its timing line: everything else is a function of (scenario, seed).
+deterministic_metrics() { grep -v '"timing"' "$1/metrics.json"; }
+
+same_outputs() {
+  local a="$1" b="$2"
+  for f in tracks.csv tracks_supernode.csv observations.csv truth.csv network.json scenario.yaml; do
+    cmp -s "$a/$f" "$b/$f" || fail "$f differs between $a and $b"
+  done
+  diff <(deterministic_metrics "$a") <(deterministic_metrics "$b") >/dev/null || fail "metrics.json differs between $a and $b"
+}
+
+no_leftovers() {
+  sleep 0.5
+  if pgrep -f "wsntrack-.*--run-dir $work/$case_name" >/dev/null; then
+    pgrep -af "wsntrack-.*--run-dir $work/$case_name" >&2
+    fail "processes left behind"
+  fi
+}
+
+case "$case_name" in
+  determinism)
+    # Same scenario and seed: byte-identical outputs multi-process with 1, 2, 4 node processes and in-process.
+    run_ok "$PWD/mp2" --seed 7 --nodes 2
+    run_ok "$PWD/mp1" --seed 7 --nodes 1
+    run_ok "$PWD/mp4" --seed 7 --nodes 4
+    run_ok "$PWD/ip2" --seed 7 --nodes 2 --in-process
+    for other in mp1 mp4 ip2; do same_outputs "$PWD/mp2" "$PWD/$other"; done
+    [ "$(wc -l <"$PWD/mp2/tracks.csv")" -gt 50 ] || fail "suspiciously few track rows"
+    grep -q '"eps_k"' "$PWD/mp2/metrics.json" || fail "metrics.json lacks eps_k"
+    grep -q '"wall_s"' "$PWD/mp2/metrics.json" || fail "metrics.json lacks wall_s"
+    no_leftovers ;;
+  seed_changes_results)
+    run_ok "$PWD/a" --seed 1 --ticks 30
+    run_ok "$PWD/b" --seed 2 --ticks 30
+    cmp -s "$PWD/a/observations.csv" "$PWD/b/observations.csv" && fail "different seeds gave identical observations"
+    no_leftovers ;;
+  concurrent_runs)
+    # Two runs at the same time on this host: both finish, each with the result it has alone.
+    run_ok "$PWD/alone" --seed 11 --ticks 40
+    run_ok "$PWD/x" --seed 11 --ticks 40 & p1=$!
+    run_ok "$PWD/y" --seed 12 --ticks 40 & p2=$!
+    wait $p1 || fail "first concurrent run failed"
+    wait $p2 || fail "second concurrent run failed"
+    same_outputs "$PWD/alone" "$PWD/x"
+    cmp -s "$PWD/x/observations.csv" "$PWD/y/observations.csv" && fail "concurrent runs saw each other's data"
+    no_leftovers ;;
+  bad_scenarios)
+    # Each bad scenario: non-zero exit, file:line and a clear message, and no process started or left.
+    check_bad() {
+      local file="$1" pattern="$2"
+      "$wsntrack" validate "$file" >/dev/null 2>err.txt && fail "validate accepted $file"
+      grep -Eq "$pattern" err.txt || { cat err.txt >&2; fail "validate message for $file lacks /$pattern/"; }
+      "$wsntrack" run "$file" --quiet --out "$PWD/run-$(basename "$file")" >/dev/null 2>err.txt && fail "run accepted $file"
+      grep -Eq "$pattern" err.txt || { cat err.txt >&2; fail "run message for $file lacks /$pattern/"; }
+    }
+    printf 'network:\n  pte: 0.3\n  ptee: 0.1\n' >unknown_key.yaml
+    check_bad unknown_key.yaml "unknown_key.yaml:3: .*unknown key 'ptee'"
+    printf 'run:\n  ticks: many\n' >wrong_type.yaml
+    check_bad wrong_type.yaml "wrong_type.yaml:2: .*run.ticks"
+    printf 'sensor_model:\n  sensing_range: -1.5\n' >negative_rs.yaml
+    check_bad negative_rs.yaml "negative_rs.yaml:2: .*sensing_range"
+    printf 'supernodes:\n  - {x: 50, y: 50}\n  - {x: 150, y: 20}\n' >outside.yaml
+    check_bad outside.yaml "outside.yaml:3: .*outside"
+    printf 'tracker:\n  engine: gnn\n  params: {gate_chii2: 3}\n' >bad_param.yaml
+    check_bad bad_param.yaml "bad_param.yaml:3: .*gate_chii2"
+    check_bad "$PWD/missing.yaml" "missing.yaml"
+    no_leftovers ;;
+  killed_process)
+    # A node process killed mid-run: the launcher reports the failure and stops every other process.
+    timeout 120 "$wsntrack" run "$scenario" --quiet --out "$PWD/k" --ticks 100000 >k.stdout 2>k.stderr & launcher=$!
+    victim=""
+    for _ in $(seq 1 100); do
+      victim=$(pgrep -f "wsntrack-node.*--run-dir $PWD/k" | head -1)
+      [ -n "$victim" ] && break
+      sleep 0.1
+    done
+    [ -n "$victim" ] || fail "no node process found"
+    sleep 3; kill -9 "$victim"  # well into the run: discovery takes well under a second
+    wait $launcher; rc=$?
+    [ "$rc" -ne 0 ] || fail "launcher exited 0 after a node was killed"
+    grep -q "node" k.stderr || { cat k.stderr >&2; fail "failure message does not name the node"; }
+    no_leftovers ;;
+  *) fail "unknown case $case_name" ;;
+esac
+echo "PASS: $case_name"
