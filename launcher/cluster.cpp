@@ -1,6 +1,7 @@
 #include "launcher/cluster.hpp"
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -196,11 +197,13 @@ ClusterResult runProcesses(const ClusterOptions& options) {
   };
   auto reap = [&](bool block) {
     int status = 0;
+    struct rusage usage {};
     pid_t pid;
-    while ((pid = ::waitpid(-1, &status, block ? 0 : WNOHANG)) > 0) {
+    while ((pid = ::wait4(-1, &status, block ? 0 : WNOHANG, &usage)) > 0) {
       const auto it = running.find(pid);
       if (it == running.end()) continue;
       auto& outcome = result.outcomes[it->second];
+      outcome.peak_rss_kb = usage.ru_maxrss;  // Linux reports kilobytes
       outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
       running.erase(it);
       if (outcome.exit_code != 0 && result.failure.empty())
@@ -301,6 +304,8 @@ ClusterResult runThreads(const ClusterOptions& options) {
     for (auto& thread : threads)
       if (thread.joinable()) thread.join();
   }
+  struct rusage usage {};
+  if (::getrusage(RUSAGE_SELF, &usage) == 0) result.in_process_peak_rss_kb = usage.ru_maxrss;
   result.wall_s = std::chrono::duration<double>(Clock::now() - started).count();
   result.ok = result.failure.empty();
   return result;

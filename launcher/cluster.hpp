@@ -29,12 +29,16 @@ struct RoleOutcome {
   int exit_code = 0;     ///< 0 success; for processes killed by a signal, 128 + signal
   std::string message;   ///< why it failed, when known
   std::string log_path;  ///< multi-process mode: its stdout/stderr
+  long peak_rss_kb = 0;  ///< multi-process mode: the process's peak resident set (wait4)
 };
 
 struct ClusterResult {
   bool ok = false;
   std::vector<RoleOutcome> outcomes;
   double wall_s = 0.0;  ///< from start of the first process to the exit of the last
+  /// In-process mode: peak resident set of this whole process (every role thread and the
+  /// launcher together); 0 in multi-process mode, where each outcome carries its own.
+  long in_process_peak_rss_kb = 0;
   std::string failure;  ///< first failure, for the user
 };
 

@@ -80,6 +80,14 @@ void printSummary(const std::string& run_dir, const launcher::ClusterResult& res
   row("wall time (tick loop)", show(jsonNumber(metrics, "wall_s"), 3) + " s");
   row("ticks/s (tick loop)", show(jsonNumber(metrics, "ticks_per_s"), 1));
   row("wall time (all)", show(result.wall_s, 3) + " s");
+  if (in_process) {
+    row("peak RSS (whole process)", show(static_cast<double>(result.in_process_peak_rss_kb) / 1024.0, 1) + " MiB");
+    return;
+  }
+  std::cout << "  peak RSS per process (MiB):";
+  for (const auto& outcome : result.outcomes)
+    std::cout << " " << outcome.name << " " << show(static_cast<double>(outcome.peak_rss_kb) / 1024.0, 1) << ";";
+  std::cout << "\n";
 }
 
 int commandValidate(const std::vector<std::string>& args) {

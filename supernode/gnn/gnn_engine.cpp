@@ -82,6 +82,7 @@ common::TrackId birthTrackId(std::uint32_t supernode, std::int32_t tick, common:
 
 GnnEngine::GnnEngine(const EngineContext& context)
     : supernode_(context.supernode),
+      region_(context.scenario.region),
       params_(GnnParams::fromScenario(context.scenario)),
       model_(context.scenario.dynamics.delta, context.scenario.dynamics.process_noise_sigma,
              params_.measurement_sigma) {}
@@ -208,7 +209,10 @@ void GnnEngine::processTick(std::vector<Track>& tracks, std::int32_t tick,
       // hits: it cannot make it once misses > N - M.
       const bool dead = track.confirmed ? track.misses >= params_.max_misses
                                         : track.misses > confirm_window - params_.confirm_hits;
-      if (dead) continue;
+      // A track that coasted out of the region can never be observed again: it followed a
+      // target that left, and keeping it for max_misses ticks only adds a false track.
+      const bool left = !region_.contains({track.state.x(kX), track.state.x(kY)});
+      if (dead || left) continue;
     }
     next.push_back(track);
   }

@@ -87,6 +87,7 @@ class GnnEngine final : public Engine {
   void foldAnchorTo(std::int32_t tick);
 
   std::uint32_t supernode_;
+  common::Rect region_;  ///< the surveillance region: no sensor sees a target outside it
   GnnParams params_;
   common::ConstantVelocityModel model_;
   bool started_ = false;

@@ -76,6 +76,30 @@ TEST_CASE("a straight-line target is confirmed after M hits and tracked with van
   CHECK(final_track.vy == Approx(0.5).margin(0.01));
 }
 
+TEST_CASE("a confirmed track that coasts out of the region is deleted at once", "[gnn]") {
+  Harness h(gnnScenario());
+  // A target moving +2 per tick along y = 50 is seen up to x = 98.5 (tick 10) and then leaves
+  // the region [0, 100]^2. Coasting predicts x = 100.5 at tick 11: outside, so the track goes,
+  // although max_misses = 3 would have kept it until tick 13.
+  for (std::int32_t t = 1; t <= 10; ++t) h.step(t, {observation(t, t, 78.5 + 2.0 * t, 50.0)});
+  REQUIRE(h.engine.confirmedTracks().size() == 1);
+  h.step(11);
+  CHECK(h.engine.confirmedTracks().empty());
+  CHECK(h.engine.liveTracks().empty());
+}
+
+TEST_CASE("a confirmed track that misses inside the region coasts for max_misses ticks", "[gnn]") {
+  Harness h(gnnScenario());
+  // Same target, observed up to x = 60.5 (tick 1..10, starting at 42.5): misses at 11 and 12
+  // leave it confirmed; the third consecutive miss (tick 13) deletes it (max_misses = 3).
+  for (std::int32_t t = 1; t <= 10; ++t) h.step(t, {observation(t, t, 40.5 + 2.0 * t, 50.0)});
+  h.step(11);
+  h.step(12);
+  CHECK(h.engine.confirmedTracks().size() == 1);
+  h.step(13);
+  CHECK(h.engine.confirmedTracks().empty());
+}
+
 TEST_CASE("two crossing targets keep their identities through the crossing", "[gnn]") {
   Harness h(gnnScenario());
   // A climbs, B descends; at t = 10 they are 0.3 apart at (15, 20) and (15.3, 20).
