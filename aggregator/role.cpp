@@ -29,11 +29,7 @@ std::string trackFields(const common::TrackEstimate& track) {
 void runAggregatorRole(const dds::RoleContext& context) {
   using namespace wsn::dds;
   using Clock = std::chrono::steady_clock;
-  Participant participant(context.domain);
-  RunTopics topics(participant);
-  StatusPublisher status(participant, topics, context);
-  status.starting();
-  runWithStatus(status, [&] {
+  runRole(context, [&](const Participant& participant, const RunTopics& topics, StatusPublisher& status) {
     const auto& scenario = context.scenario;
     const common::Truth truth(scenario);
     TrackMerger merger;

@@ -57,11 +57,7 @@ std::string networkJson(const common::Scenario& scenario, const Topology& topolo
 
 void runNetworkRole(const dds::RoleContext& context) {
   using namespace wsn::dds;
-  Participant participant(context.domain);
-  RunTopics topics(participant);
-  StatusPublisher status(participant, topics, context);
-  status.starting();
-  runWithStatus(status, [&] {
+  runRole(context, [&](const Participant& participant, const RunTopics& topics, StatusPublisher& status) {
     const auto& scenario = context.scenario;
     const common::SensorLayout layout(scenario);
     const Topology topology(scenario, layout);

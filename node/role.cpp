@@ -10,11 +10,7 @@ namespace wsn::node {
 
 void runNodeRole(const dds::RoleContext& context) {
   using namespace wsn::dds;
-  Participant participant(context.domain);
-  RunTopics topics(participant);
-  StatusPublisher status(participant, topics, context);
-  status.starting();
-  runWithStatus(status, [&] {
+  runRole(context, [&](const Participant& participant, const RunTopics& topics, StatusPublisher& status) {
     const auto& scenario = context.scenario;
     const common::Truth truth(scenario);
     const common::SensorLayout layout(scenario);

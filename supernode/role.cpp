@@ -9,11 +9,7 @@ namespace wsn::supernode {
 
 void runSupernodeRole(const dds::RoleContext& context) {
   using namespace wsn::dds;
-  Participant participant(context.domain);
-  RunTopics topics(participant);
-  StatusPublisher status(participant, topics, context);
-  status.starting();
-  runWithStatus(status, [&] {
+  runRole(context, [&](const Participant& participant, const RunTopics& topics, StatusPublisher& status) {
     const auto& scenario = context.scenario;
     const std::uint32_t self = context.index;
     const auto supernodes = static_cast<std::uint32_t>(context.shape.supernodes);

@@ -163,4 +163,13 @@ void runWithStatus(StatusPublisher& status, const std::function<void()>& body) {
   }
 }
 
+void runRole(const RoleContext& context,
+             const std::function<void(const Participant&, const RunTopics&, StatusPublisher&)>& body) {
+  Participant participant(context.domain);
+  RunTopics topics(participant);
+  StatusPublisher status(participant, topics, context);
+  status.starting();
+  runWithStatus(status, [&] { body(participant, topics, status); });
+}
+
 }  // namespace wsn::dds

@@ -180,4 +180,9 @@ class PipelineProgress {
 /// status topic (so the launcher and peers learn why) and rethrown.
 void runWithStatus(StatusPublisher& status, const std::function<void()>& body);
 
+/// The frame of every role: joins the run's domain, creates its topics and status publisher,
+/// reports STARTING, and runs `body` under runWithStatus.
+void runRole(const RoleContext& context,
+             const std::function<void(const Participant&, const RunTopics&, StatusPublisher&)>& body);
+
 }  // namespace wsn::dds
