@@ -1,6 +1,7 @@
 #include "aggregator/role.hpp"
 
 #include <chrono>
+#include <map>
 #include <sstream>
 
 #include "aggregator/metrics.hpp"
@@ -55,7 +56,9 @@ void runAggregatorRole(const dds::RoleContext& context) {
 
     common::CsvFile supernode_csv(context.run_dir + "/tracks_supernode.csv", "tick,supernode,track,x,y,vx,vy");
     common::CsvFile global_csv(context.run_dir + "/tracks.csv", "tick,track,x,y,vx,vy");
-    std::uint64_t dropped_stale_total = 0;
+    // Each supernode reports its running total of stale drops; the run's total is the sum of
+    // the last value of each.
+    std::map<std::uint32_t, std::uint64_t> dropped_stale_by_supernode;
     std::optional<Clock::time_point> first_tick_at;
     const std::int32_t ticks = scenario.run.ticks;
     for (std::int32_t t = 1; t <= ticks; ++t) {
@@ -66,7 +69,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
       for (auto& [supernode, batch] : inbox.take(t)) {
         for (const auto& track : batch.tracks)
           supernode_csv.row(std::to_string(t) + "," + std::to_string(supernode) + "," + trackFields(track));
-        dropped_stale_total += batch.observations_dropped_stale;
+        dropped_stale_by_supernode[supernode] = batch.observations_dropped_stale;
         inputs.push_back({supernode, std::move(batch.tracks)});
       }
       auto global = merger.merge(t, inputs);
@@ -81,7 +84,13 @@ void runAggregatorRole(const dds::RoleContext& context) {
       global_writer.write(sample);
       status.running(t);
     }
+    std::uint64_t dropped_stale_total = 0;
+    for (const auto& [supernode, dropped] : dropped_stale_by_supernode) dropped_stale_total += dropped;
+    // From the end of tick 1 to the end of tick T at the aggregator: T - 1 tick intervals of the
+    // steady pipeline (start-up and discovery excluded; the launcher reports the total).
     const double wall_s = std::chrono::duration<double>(Clock::now() - first_tick_at.value_or(Clock::now())).count();
+    const double ticks_per_s = wall_s > 0 ? (ticks - 1) / wall_s : 0.0;
+    const auto summary = metrics.finish();
     supernode_csv.close();
     global_csv.close();
 
@@ -90,10 +99,11 @@ void runAggregatorRole(const dds::RoleContext& context) {
     std::ostringstream json;
     json << "{\n  \"scenario\": \"" << scenario.name << "\",\n  \"seed\": " << scenario.run.seed
          << ",\n  \"ticks\": " << ticks << ",\n  \"engine\": \"" << scenario.tracker.engine
-         << "\",\n  \"truth_targets\": " << truth.targetCount()
-         << ",\n  \"observations_dropped_stale\": " << dropped_stale_total << ",\n  \"metrics\": "
-         << toJson(metrics.finish()) << ",\n  \"timing\": {\"wall_s\": " << common::fixed6(wall_s)
-         << ", \"ticks_per_s\": " << common::fixed6(wall_s > 0 ? ticks / wall_s : 0.0) << "}\n}\n";
+         << "\",\n  \"truth_targets\": " << truth.targetCount() << ",\n  \"eps_k\": " << common::fixed6(summary.eps_k)
+         << ",\n  \"eps_x\": " << common::fixed6(summary.eps_x) << ",\n  \"ospa\": " << common::fixed6(summary.ospa_mean)
+         << ",\n  \"observations_dropped_stale\": " << dropped_stale_total << ",\n  \"metrics\": " << toJson(summary)
+         << ",\n  \"timing\": {\"wall_s\": " << common::fixed6(wall_s) << ", \"ticks_per_s\": " << common::fixed6(ticks_per_s)
+         << "}\n}\n";
     common::writeTextFile(context.run_dir + "/metrics.json", json.str());
     status.done(ticks);
     global_writer.waitForAcknowledgements(std::chrono::seconds(10));

@@ -53,7 +53,7 @@ struct TrackMergerConfig {
 ///     that global track, 1 if a member's own id equals it); then the smallest ids. A cluster left
 ///     without a candidate (two far-apart tracks reported under one id) gets a fresh id minted by
 ///     the aggregator, `serial` with the supernode field 0 — a field no supernode uses, since
-///     supernode ids start at (0 + 1) << 40.
+///     supernode ids start at (0 + 1) << 48.
 ///  4. Merged state: the mean of the members' x, y, vx, vy, summed in canonical order.
 ///
 /// Output sorted by global id. The result is a pure function of the sequence of merge() calls and

@@ -10,7 +10,8 @@ namespace wsn::common {
 
 /// Identifies a sensor: its index in the layout (row-major for grids).
 using SensorId = std::uint32_t;
-/// Track identities are global: (supernode + 1) << 40 | per-supernode serial.
+/// Track identities are global: (supernode + 1) << 48 | per-supernode serial (engines mint them,
+/// e.g. gnn::birthTrackId); ids below 1 << 48 are the aggregator's own.
 using TrackId = std::uint64_t;
 /// Ground-truth target id; kFalseAlarm marks a report that no target caused.
 using TargetId = std::int32_t;

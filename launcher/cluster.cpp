@@ -1,6 +1,7 @@
 #include "launcher/cluster.hpp"
 
 #include <fcntl.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -163,9 +164,14 @@ pid_t spawn(const RoleSlot& slot, const ClusterOptions& options, const std::stri
     args.push_back("--index");
     args.push_back(std::to_string(slot.index));
   }
+  const pid_t launcher = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
   if (pid == 0) {
+    // A role must not outlive its launcher (killed with -9, say): the kernel sends SIGTERM when
+    // the parent dies; the getppid check closes the race of a parent that died before prctl.
+    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (::getppid() != launcher) ::_exit(1);
     const int fd = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd >= 0) {
       ::dup2(fd, 1);

@@ -45,6 +45,9 @@ struct ClusterResult {
 /// Runs the cluster to completion (or failure, timeout, SIGINT) and stops everything it started.
 ClusterResult runCluster(const ClusterOptions& options);
 
+/// Most Cyclone participants one run may have: their ports must stay inside its domain's range.
+inline constexpr int kMaxParticipants = 119;
+
 /// Number of Cyclone participants of a run: every process plus the launcher's observer.
 int participantCount(const common::Scenario& scenario, bool in_process);
 

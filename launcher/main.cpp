@@ -2,6 +2,8 @@
 #include <unistd.h>
 
 #include <boost/program_options.hpp>
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -135,14 +137,14 @@ std::string executableDirectory() {
 int commandRun(const std::vector<std::string>& args) {
   std::string scenario_path;
   std::string out_dir;
-  std::uint64_t seed = 0;
+  std::string seed_text;
   int nodes = 0;
   int ticks = 0;
   double timeout_s = 1800;
   double stall_s = 60;
   po::options_description options("Options");
   options.add_options()("help,h", "show this help")(
-      "seed", po::value(&seed), "random seed (overrides run.seed of the scenario)")(
+      "seed", po::value(&seed_text), "random seed, 0 .. 2^64-1 (overrides run.seed of the scenario)")(
       "out", po::value(&out_dir), "run directory (default runs/<scenario>-seed<seed>-<UTC time>-<pid>)")(
       "overwrite", "reuse --out even if it is not empty (its contents are deleted)")(
       "nodes", po::value(&nodes), "number of sensor-node processes (tiles); overrides run.node_processes")(
@@ -158,7 +160,8 @@ int commandRun(const std::vector<std::string>& args) {
   po::store(po::command_line_parser(args).options(options).positional(positional).run(), vm);
   po::notify(vm);
   if (vm.count("help") || scenario_path.empty()) {
-    std::cout << "Usage: wsntrack run SCENARIO [--seed N] [--out DIR] [--nodes N] [--in-process]\n\n"
+    std::cout << "Usage: wsntrack run SCENARIO [--seed N] [--out DIR [--overwrite]] [--nodes N] [--ticks T]\n"
+                 "                    [--in-process] [--timeout S] [--stall-timeout S] [--quiet]\n\n"
                  "Starts every process of the cluster on this host — sensor-node tiles, the network\n"
                  "model, one supernode per tracking group and the aggregator — over Cyclone DDS on\n"
                  "loopback, shows progress, and prints a summary. Outputs (run directory):\n"
@@ -175,7 +178,22 @@ int commandRun(const std::vector<std::string>& args) {
     std::cerr << error.what() << "\n";
     return 2;
   }
-  if (vm.count("seed")) scenario.run.seed = seed;
+  if (vm.count("seed")) {
+    std::uint64_t seed = 0;
+    const char* end = seed_text.data() + seed_text.size();
+    const auto [stop, error] = std::from_chars(seed_text.data(), end, seed);
+    if (seed_text.empty() || error != std::errc() || stop != end) {
+      std::cerr << "wsntrack run: --seed must be a whole number in [0, 2^64-1], got '" << seed_text << "'\n";
+      return 2;
+    }
+    scenario.run.seed = seed;
+  }
+  for (const auto& [name, value] : {std::pair{"--timeout", timeout_s}, std::pair{"--stall-timeout", stall_s}}) {
+    if (!std::isfinite(value) || value <= 0 || value > 604800) {
+      std::cerr << "wsntrack run: " << name << " must be in (0, 604800] seconds, got " << value << "\n";
+      return 2;
+    }
+  }
   if (vm.count("nodes")) {
     if (nodes < 1 || nodes > 64) {
       std::cerr << "wsntrack run: --nodes must be in [1, 64], got " << nodes << "\n";
@@ -191,6 +209,17 @@ int commandRun(const std::vector<std::string>& args) {
     scenario.run.ticks = ticks;
   }
 
+  // The overrides pass the same cross-field checks as the file (e.g. tiles vs. cells).
+  if (vm.count("seed") || vm.count("nodes") || vm.count("ticks")) {
+    try {
+      scenario = common::parseScenario(common::resolvedScenarioYaml(scenario), scenario_path + " with --seed/--nodes/--ticks");
+      supernode::resolveEngineParams(scenario);
+    } catch (const std::exception& error) {
+      std::cerr << "wsntrack run: " << error.what() << "\n";
+      return 2;
+    }
+  }
+
   launcher::ClusterOptions cluster;
   cluster.scenario = scenario;
   cluster.in_process = vm.count("in-process") != 0;
@@ -203,6 +232,12 @@ int commandRun(const std::vector<std::string>& args) {
     launcher::createRunDirectory(cluster.run_dir, vm.count("overwrite") != 0);
     cluster.identity.run_id = launcher::newRunId();
     const int participants = launcher::participantCount(scenario, cluster.in_process);
+    // Cyclone maps participant index i to ports 7400 + 250 d + 2 i + {10, 11}: beyond 119
+    // participants a run's ports would spill into the next domain's range.
+    if (participants > launcher::kMaxParticipants)
+      throw std::runtime_error("a run may have at most " + std::to_string(launcher::kMaxParticipants) +
+                               " DDS participants (node tiles + supernodes + 3), this one needs " +
+                               std::to_string(participants));
     cluster.identity.domain = launcher::pickFreeDomain(cluster.identity.run_id, participants);
     launcher::writeRunInputs(cluster.run_dir, scenario, cluster.identity, participants);
   } catch (const std::exception& error) {

@@ -73,7 +73,14 @@ void createRunDirectory(const std::string& path, bool overwrite) {
     if (!fs::is_directory(path, error)) throw std::runtime_error(path + ": exists and is not a directory");
     if (!fs::is_empty(path, error)) {
       if (!overwrite) throw std::runtime_error(path + ": run directory exists and is not empty (use --overwrite)");
-      fs::remove_all(path, error);
+      // Only what a previous run left may be cleared: never a directory of the user's own.
+      if (!fs::exists(fs::path(path) / "cyclonedds.xml") || !fs::exists(fs::path(path) / "scenario.yaml"))
+        throw std::runtime_error(path + ": not a wsntrack run directory (no cyclonedds.xml and scenario.yaml); "
+                                        "--overwrite only replaces an earlier run");
+      for (const auto& entry : fs::directory_iterator(path, error)) {
+        fs::remove_all(entry.path(), error);
+        if (error) break;
+      }
       if (error) throw std::runtime_error(path + ": cannot clear (" + error.message() + ")");
     }
   }

@@ -26,7 +26,9 @@ void runNodeRole(const dds::RoleContext& context) {
     TickInbox<std::vector<common::SensorReading>> boundary_inbox;
     loop.watch(boundary_reader, [&] {
       boundary_reader.take<wsn_msg_SensorBoundary>([&](const wsn_msg_SensorBoundary& batch) {
-        if (batch.run_id != context.run_id || batch.tile == context.index) return;
+        if (batch.run_id != context.run_id || batch.tile == context.index ||
+            batch.tile >= static_cast<std::uint32_t>(context.shape.tiles))
+          return;
         boundary_inbox.put(batch.tick, batch.tile, decode(batch.readings));
       });
     });
@@ -68,7 +70,6 @@ void runNodeRole(const dds::RoleContext& context) {
       report_sample.tick = t;
       report_sample.reports = sequenceView<dds_sequence_wsn_msg_Report>(reports);
       report_writer.write(report_sample);
-      status.running(t);
     }
     progress.waitForCompleted(ticks);
     status.done(ticks);

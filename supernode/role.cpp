@@ -73,7 +73,6 @@ void runSupernodeRole(const dds::RoleContext& context) {
       handoff_sample.tick = t;
       handoff_sample.handoffs = sequenceView<dds_sequence_wsn_msg_TrackHandoff>(outgoing);
       handoff_writer.write(handoff_sample);
-      status.running(t);
     }
     progress.waitForCompleted(ticks);
     status.done(ticks);

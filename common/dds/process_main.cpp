@@ -1,6 +1,8 @@
 #include "common/dds/process_main.hpp"
 
 #include <boost/program_options.hpp>
+#include <charconv>
+#include <cmath>
 #include <csignal>
 #include <fstream>
 #include <iostream>
@@ -32,6 +34,7 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
   RoleContext context;
   context.role = role;
   int participant_index = 0;
+  long long index = 0;
   int domain = 0;
   std::string run_id_hex;
   double stall_timeout_s = 60.0;
@@ -47,7 +50,7 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
       "tiles", po::value(&context.shape.tiles)->required(), "number of sensor-node processes in the cluster")(
       "stall-timeout", po::value(&stall_timeout_s)->default_value(60.0),
       "seconds without any input after which the role gives up (a producer died)");
-  if (indexed) options.add_options()("index", po::value(&context.index)->required(), "tile or supernode index of this process");
+  if (indexed) options.add_options()("index", po::value(&index)->required(), "tile or supernode index of this process");
 
   try {
     po::variables_map vm;
@@ -60,7 +63,17 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
       return 0;
     }
     po::notify(vm);
-    context.run_id = std::stoull(run_id_hex, nullptr, 16);
+    const char* end = run_id_hex.data() + run_id_hex.size();
+    const auto [stop, error] = std::from_chars(run_id_hex.data(), end, context.run_id, 16);
+    if (run_id_hex.empty() || error != std::errc() || stop != end)
+      throw std::invalid_argument("--run-id must be a 64-bit hexadecimal number, got '" + run_id_hex + "'");
+    if (index < 0 || index > 1000000) throw std::invalid_argument("--index must be in [0, 1000000]");
+    context.index = static_cast<std::uint32_t>(index);
+    if (context.shape.tiles < 1 || context.shape.tiles > 64) throw std::invalid_argument("--tiles must be in [1, 64]");
+    if (participant_index < 0 || participant_index > 1000)
+      throw std::invalid_argument("--participant-index must be in [0, 1000]");
+    if (!std::isfinite(stall_timeout_s) || stall_timeout_s <= 0 || stall_timeout_s > 604800)
+      throw std::invalid_argument("--stall-timeout must be in (0, 604800] seconds");
   } catch (const std::exception& error) {
     std::cerr << "wsntrack-" << role << ": " << error.what() << "\n(try --help)\n";
     return 2;

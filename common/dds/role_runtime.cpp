@@ -57,8 +57,20 @@ RoleLoop::RoleLoop(const Participant& participant, const RoleContext& context)
 
 void RoleLoop::watch(Reader& reader, std::function<void()> drain) {
   conditions_.emplace_back(reader);
+  watched_readers_.push_back(reader.handle());
   drains_.push_back(std::move(drain));
   waitset_.attach(conditions_.back().handle(), static_cast<dds_attach_t>(drains_.size() - 1));
+}
+
+void RoleLoop::unwatch(const Reader& reader) {
+  for (std::size_t i = 0; i < conditions_.size(); ++i) {
+    if (watched_readers_[i] != reader.handle()) continue;
+    // Deleting the condition also detaches it from the waitset; the slot stays (tokens are
+    // indices) with a drain that does nothing.
+    static_cast<Entity&>(conditions_[i]) = Entity{};
+    watched_readers_[i] = 0;
+    drains_[i] = [] {};
+  }
 }
 
 void RoleLoop::waitUntil(const std::function<bool()>& done, const std::function<std::string()>& describe) {

@@ -130,6 +130,9 @@ class RoleLoop {
   RoleLoop(const Participant& participant, const RoleContext& context);
   /// Registers a reader and the function that takes its samples.
   void watch(Reader& reader, std::function<void()> drain);
+  /// Stops watching a reader; a reader that dies before the loop must be unwatched first,
+  /// since deleting it deletes its read condition too.
+  void unwatch(const Reader& reader);
   /// Blocks until done() holds, draining readers as samples arrive. Throws RoleAborted when
   /// stopped from outside, or when nothing arrives for the stall timeout (describe() says
   /// what was still missing).
@@ -139,6 +142,7 @@ class RoleLoop {
   const RoleContext& context_;
   WaitSet waitset_;
   std::vector<ReadCondition> conditions_;
+  std::vector<dds_entity_t> watched_readers_;  // parallel to conditions_
   std::vector<std::function<void()>> drains_;
 };
 
@@ -167,6 +171,9 @@ class PipelineProgress {
   std::int32_t completedThrough() const { return completed_through_; }
   void waitForCompleted(std::int32_t tick);
   Reader& reader() { return reader_; }
+  PipelineProgress(const PipelineProgress&) = delete;
+  PipelineProgress& operator=(const PipelineProgress&) = delete;
+  ~PipelineProgress() { loop_.unwatch(reader_); }
 
  private:
   const RoleContext& context_;

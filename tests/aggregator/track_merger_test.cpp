@@ -17,7 +17,7 @@ using wsn::common::TrackId;
 namespace {
 
 /// A supernode's track id, as common/messages.hpp defines it.
-TrackId id(std::uint32_t supernode, std::uint64_t serial) { return (TrackId{supernode} + 1) << 40 | serial; }
+TrackId id(std::uint32_t supernode, std::uint64_t serial) { return (TrackId{supernode} + 1) << 48 | serial; }
 
 TrackEstimate track(TrackId track_id, double x, double y, double vx = 1.0, double vy = 0.0) {
   return {track_id, x, y, vx, vy};
@@ -151,11 +151,11 @@ TEST_CASE("One id reported at two far-apart places still gives unique global ids
   const TrackId a = id(0, 1);
   const auto global = merger.merge(1, {{0, {track(a, 10, 10)}}, {1, {track(a, 60, 60)}}});
   REQUIRE(global.size() == 2);
-  // One keeps a, the other gets an id minted by the aggregator (supernode field 0, i.e. < 1 << 40).
+  // One keeps a, the other gets an id minted by the aggregator (supernode field 0, i.e. < 1 << 48).
   const std::set<TrackId> ids{global[0].track, global[1].track};
   CHECK(ids.size() == 2);
   CHECK(ids.count(a) == 1);
-  CHECK(*ids.begin() < (TrackId{1} << 40));
+  CHECK(*ids.begin() < (TrackId{1} << 48));
   CHECK(sortedById(global));
 }
 

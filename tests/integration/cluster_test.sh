@@ -88,6 +88,47 @@ case "$case_name" in
     check_bad bad_param.yaml "bad_param.yaml:3: .*gate_chii2"
     check_bad "$PWD/missing.yaml" "missing.yaml"
     no_leftovers ;;
+  stale_drops)
+    # A short window and long delays: the supernodes' stale drops, summed by the aggregator, are
+    # exactly the delivered reports the network delayed by ws ticks or more.
+    sed -e 's/window_size: 10/window_size: 2/' -e 's/pde: 0.3/pde: 0.5/' "$scenario" >short_window.yaml
+    scenario="$PWD/short_window.yaml" run_ok "$PWD/s" --ticks 50
+    beyond=$(grep -o '"beyond_window": [0-9]*' "$PWD/s/network.json" | head -1 | grep -o '[0-9]*$')
+    dropped=$(grep -o '"observations_dropped_stale": [0-9]*' "$PWD/s/metrics.json" | grep -o '[0-9]*$')
+    late=$(awk -F, '$10 == "delivered" && $6 >= 2' "$PWD/s/observations.csv" | wc -l)
+    [ "$beyond" -gt 0 ] || fail "no report delayed beyond the window: the case tests nothing"
+    [ "$dropped" = "$beyond" ] || fail "metrics.json drops $dropped != network.json beyond_window $beyond"
+    [ "$late" = "$beyond" ] || fail "observations.csv has $late delivered rows with delay >= 2, network.json $beyond"
+    no_leftovers ;;
+  bad_cli)
+    # Bad options fail before any process starts; --overwrite never clears a directory that is
+    # not an earlier run.
+    mkdir -p mine && echo keep >mine/important.txt
+    "$wsntrack" run "$scenario" --quiet --out "$PWD/mine" --overwrite >/dev/null 2>err.txt && fail "run cleared mine/"
+    grep -q "not a wsntrack run directory" err.txt || { cat err.txt >&2; fail "no clear message for --overwrite"; }
+    [ -f mine/important.txt ] || fail "--overwrite deleted a user's file"
+    for bad in "--seed -1" "--seed 1x" "--timeout nan" "--stall-timeout 0" "--nodes 0" "--ticks abc"; do
+      # shellcheck disable=SC2086
+      "$wsntrack" run "$scenario" --quiet --out "$PWD/bad" $bad >/dev/null 2>err.txt; rc=$?
+      [ "$rc" -eq 2 ] || { cat err.txt >&2; fail "'$bad' gave exit $rc, expected 2"; }
+      grep -q -- "${bad%% *}" err.txt || { cat err.txt >&2; fail "message for '$bad' does not name the option"; }
+    done
+    no_leftovers ;;
+  launcher_killed)
+    # The launcher killed with -9: every role process it started follows it (parent-death signal).
+    # Started without `timeout`, so that $! is the launcher itself; ctest's TIMEOUT bounds it.
+    "$wsntrack" run "$scenario" --quiet --out "$PWD/l" --ticks 100000 >l.stdout 2>l.stderr & launcher=$!
+    for _ in $(seq 1 100); do
+      [ "$(pgrep -fc "wsntrack-.*--run-dir $PWD/l")" -ge 8 ] && break
+      sleep 0.1
+    done
+    [ "$(pgrep -fc "wsntrack-.*--run-dir $PWD/l")" -ge 8 ] || fail "the cluster did not start"
+    sleep 1; kill -9 "$launcher"; wait "$launcher" 2>/dev/null
+    for _ in $(seq 1 50); do
+      pgrep -f "wsntrack-.*--run-dir $PWD/l" >/dev/null || break
+      sleep 0.1
+    done
+    no_leftovers ;;
   killed_process)
     # A node process killed mid-run: the launcher reports the failure and stops every other process.
     timeout 120 "$wsntrack" run "$scenario" --quiet --out "$PWD/k" --ticks 100000 >k.stdout 2>k.stderr & launcher=$!
