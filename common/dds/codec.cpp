@@ -3,76 +3,78 @@
 #include <algorithm>
 
 namespace wsn::dds {
+namespace {
+
+/// Converts each element of a vector with `convert`.
+template <typename Out, typename In, typename F>
+std::vector<Out> mapVector(const std::vector<In>& in, F convert) {
+  std::vector<Out> out;
+  out.reserve(in.size());
+  for (const auto& element : in) out.push_back(convert(element));
+  return out;
+}
+
+/// Converts each element of a received IDL sequence with `convert`.
+template <typename Out, typename Seq, typename F>
+std::vector<Out> mapSequence(const Seq& seq, F convert) {
+  std::vector<Out> out;
+  out.reserve(seq._length);
+  for (std::uint32_t i = 0; i < seq._length; ++i) out.push_back(convert(seq._buffer[i]));
+  return out;
+}
+
+}  // namespace
 
 std::vector<wsn_msg_SensorReading> encode(const std::vector<common::SensorReading>& readings) {
-  std::vector<wsn_msg_SensorReading> out;
-  out.reserve(readings.size());
-  for (const auto& r : readings) out.push_back({r.sensor, r.z});
-  return out;
+  return mapVector<wsn_msg_SensorReading>(readings, [](const common::SensorReading& r) {
+    return wsn_msg_SensorReading{r.sensor, r.z};
+  });
 }
 
 std::vector<common::SensorReading> decode(const dds_sequence_wsn_msg_SensorReading& seq) {
-  std::vector<common::SensorReading> out;
-  out.reserve(seq._length);
-  for (std::uint32_t i = 0; i < seq._length; ++i) out.push_back({seq._buffer[i].sensor, seq._buffer[i].z});
-  return out;
+  return mapSequence<common::SensorReading>(seq, [](const wsn_msg_SensorReading& r) {
+    return common::SensorReading{r.sensor, r.z};
+  });
 }
 
 std::vector<wsn_msg_Report> encode(const std::vector<common::Report>& reports) {
-  std::vector<wsn_msg_Report> out;
-  out.reserve(reports.size());
-  for (const auto& r : reports) out.push_back({r.sensor, r.x, r.y, r.target});
-  return out;
+  return mapVector<wsn_msg_Report>(reports, [](const common::Report& r) {
+    return wsn_msg_Report{r.sensor, r.x, r.y, r.target};
+  });
 }
 
 std::vector<common::Report> decode(const dds_sequence_wsn_msg_Report& seq, std::int32_t tick) {
-  std::vector<common::Report> out;
-  out.reserve(seq._length);
-  for (std::uint32_t i = 0; i < seq._length; ++i) {
-    const auto& r = seq._buffer[i];
-    out.push_back({tick, r.sensor, r.x, r.y, r.target});
-  }
-  return out;
+  return mapSequence<common::Report>(seq, [tick](const wsn_msg_Report& r) {
+    return common::Report{tick, r.sensor, r.x, r.y, r.target};
+  });
 }
 
 std::vector<wsn_msg_Observation> encode(const std::vector<common::Observation>& observations) {
-  std::vector<wsn_msg_Observation> out;
-  out.reserve(observations.size());
-  for (const auto& o : observations) out.push_back({o.tick_generated, o.sensor, o.x, o.y, o.target});
-  return out;
+  return mapVector<wsn_msg_Observation>(observations, [](const common::Observation& o) {
+    return wsn_msg_Observation{o.tick_generated, o.sensor, o.x, o.y, o.target};
+  });
 }
 
 std::vector<common::Observation> decode(const dds_sequence_wsn_msg_Observation& seq, std::int32_t tick_delivered) {
-  std::vector<common::Observation> out;
-  out.reserve(seq._length);
-  for (std::uint32_t i = 0; i < seq._length; ++i) {
-    const auto& o = seq._buffer[i];
-    out.push_back({o.tick_generated, tick_delivered, o.sensor, o.x, o.y, o.target});
-  }
-  return out;
+  return mapSequence<common::Observation>(seq, [tick_delivered](const wsn_msg_Observation& o) {
+    return common::Observation{o.tick_generated, tick_delivered, o.sensor, o.x, o.y, o.target};
+  });
 }
 
 std::vector<wsn_msg_TrackEstimate> encode(const std::vector<common::TrackEstimate>& tracks) {
-  std::vector<wsn_msg_TrackEstimate> out;
-  out.reserve(tracks.size());
-  for (const auto& t : tracks) out.push_back({t.track, t.x, t.y, t.vx, t.vy});
-  return out;
+  return mapVector<wsn_msg_TrackEstimate>(tracks, [](const common::TrackEstimate& t) {
+    return wsn_msg_TrackEstimate{t.track, t.x, t.y, t.vx, t.vy};
+  });
 }
 
 std::vector<common::TrackEstimate> decode(const dds_sequence_wsn_msg_TrackEstimate& seq) {
-  std::vector<common::TrackEstimate> out;
-  out.reserve(seq._length);
-  for (std::uint32_t i = 0; i < seq._length; ++i) {
-    const auto& t = seq._buffer[i];
-    out.push_back({t.track, t.x, t.y, t.vx, t.vy});
-  }
-  return out;
+  return mapSequence<common::TrackEstimate>(seq, [](const wsn_msg_TrackEstimate& t) {
+    return common::TrackEstimate{t.track, t.x, t.y, t.vx, t.vy};
+  });
 }
 
 std::vector<wsn_msg_TrackHandoff> encode(const std::vector<common::TrackHandoff>& handoffs) {
-  std::vector<wsn_msg_TrackHandoff> out;
-  out.reserve(handoffs.size());
-  for (const auto& h : handoffs) {
+  return mapVector<wsn_msg_TrackHandoff>(handoffs, [](const common::TrackHandoff& h) {
     wsn_msg_TrackHandoff w{};
     w.track = h.track;
     w.to_supernode = h.to_supernode;
@@ -82,16 +84,12 @@ std::vector<wsn_msg_TrackHandoff> encode(const std::vector<common::TrackHandoff>
     w.hits = h.hits;
     w.misses = h.misses;
     w.confirmed = h.confirmed;
-    out.push_back(w);
-  }
-  return out;
+    return w;
+  });
 }
 
 std::vector<common::TrackHandoff> decode(const dds_sequence_wsn_msg_TrackHandoff& seq) {
-  std::vector<common::TrackHandoff> out;
-  out.reserve(seq._length);
-  for (std::uint32_t i = 0; i < seq._length; ++i) {
-    const auto& w = seq._buffer[i];
+  return mapSequence<common::TrackHandoff>(seq, [](const wsn_msg_TrackHandoff& w) {
     common::TrackHandoff h;
     h.track = w.track;
     h.to_supernode = w.to_supernode;
@@ -101,9 +99,8 @@ std::vector<common::TrackHandoff> decode(const dds_sequence_wsn_msg_TrackHandoff
     h.hits = w.hits;
     h.misses = w.misses;
     h.confirmed = w.confirmed;
-    out.push_back(h);
-  }
-  return out;
+    return h;
+  });
 }
 
 }  // namespace wsn::dds

@@ -87,6 +87,16 @@ case "$case_name" in
     printf 'tracker:\n  engine: gnn\n  params: {gate_chii2: 3}\n' >bad_param.yaml
     check_bad bad_param.yaml "bad_param.yaml:3: .*gate_chii2"
     check_bad "$PWD/missing.yaml" "missing.yaml"
+    # More processes than one domain's port range holds: refused before anything starts.
+    { sed '/^supernodes:/,/^$/d' "$scenario"; echo "supernodes:";
+      for i in $(seq 0 119); do echo "  - {x: $((i % 12 * 8 + 4)), y: $((i / 12 * 8 + 4))}"; done; } >crowd.yaml
+    "$wsntrack" validate crowd.yaml >/dev/null || fail "crowd.yaml should be a valid scenario"
+    "$wsntrack" run crowd.yaml --quiet --out "$PWD/crowd" >/dev/null 2>err.txt && fail "run accepted 125 participants"
+    grep -q "at most 119 DDS participants" err.txt || { cat err.txt >&2; fail "no clear message for too many processes"; }
+    # A role executable started by hand with a malformed run id: exit 2 before any DDS.
+    "$bin/wsntrack-node" --run-dir "$PWD" --run-id 12zz --domain 1 --participant-index 0 --tiles 2 --index 0 \
+      >/dev/null 2>err.txt; rc=$?
+    [ "$rc" -eq 2 ] && grep -q -- "--run-id must be" err.txt || { cat err.txt >&2; fail "wsntrack-node took a bad --run-id (exit $rc)"; }
     no_leftovers ;;
   stale_drops)
     # A short window and long delays: the supernodes' stale drops, summed by the aggregator, are
