@@ -1,0 +1,124 @@
+// One MCMCDA data-association problem (Oh et al., §III-B and eq. 3): the observations of a
+// window, their candidate-successor neighbourhoods and the per-track log-posterior terms.
+// Pure and immutable once built; the sampler (sampler.hpp) moves over partitions of it.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace wsn::supernode::mcmcda {
+
+/// The model of eq. (3) and eq. (8) as the sampler sees it.
+struct ModelParams {
+  double detection_probability = 0.7;     ///< pd: a live target's report reaches the window at a tick
+  double termination_probability = 0.02;  ///< pz: a target disappears at a tick
+  double birth_density = 1e-5;            ///< lambda_b: new targets per unit area per tick
+  double false_alarm_density = 6e-4;      ///< lambda_f: false reports per unit area per tick
+  double measurement_sigma = 0.5;         ///< r: R = r^2 I for a fused observation
+  double process_noise_sigma = 0.15;      ///< q of eq. (8)
+  double delta = 1.0;                     ///< sampling interval of eq. (8)
+  double initial_velocity_sigma = 1.5;    ///< prior std. deviation of a new track's velocity per axis
+  double max_speed = 3.0;                 ///< v-bar: distance per tick a target can cover
+  std::int32_t max_gap = 3;               ///< d-bar: largest tick gap between consecutive observations
+  double stop_probability = 0.1;          ///< gamma: the extension proposal stops after a step
+};
+
+/// The filter state of one axis of eq. (8) — position and velocity — with a covariance shared by
+/// both axes. R = r^2 I, Q and the prior are axis-symmetric, so the 4-state filter splits into two
+/// 2-state filters with the same covariance; this is exact, not an approximation.
+struct AxisCovariance {
+  double pp = 0.0;
+  double pv = 0.0;
+  double vv = 0.0;
+};
+
+/// A track's filtered state at `tick`.
+struct TrackState {
+  std::int32_t tick = 0;
+  double x = 0.0;
+  double y = 0.0;
+  double vx = 0.0;
+  double vy = 0.0;
+  AxisCovariance cov;
+};
+
+/// An observation of the problem. An *anchor* is not a report but the summary of a track's past
+/// (its state at `tick`, from before the window or from a neighbouring supernode): it can only be
+/// the first element of a track, and a track that starts at it is a continuation, not a birth.
+struct ProblemObservation {
+  std::int32_t tick = 0;
+  double x = 0.0;
+  double y = 0.0;
+  bool anchor = false;
+  TrackState prior;  ///< anchors only: the track's state at `tick`
+};
+
+class Problem {
+ public:
+  /// `observations` must be sorted by tick; `last_tick` is T of eq. (3) (the newest tick of the
+  /// window). Throws std::invalid_argument on unsorted input or parameters out of range.
+  Problem(const ModelParams& params, std::vector<ProblemObservation> observations, std::int32_t last_tick);
+
+  const ModelParams& params() const { return params_; }
+  std::int32_t size() const { return static_cast<std::int32_t>(observations_.size()); }
+  const ProblemObservation& observation(std::int32_t i) const { return observations_[static_cast<std::size_t>(i)]; }
+  std::int32_t tick(std::int32_t i) const { return observations_[static_cast<std::size_t>(i)].tick; }
+  bool isAnchor(std::int32_t i) const { return observations_[static_cast<std::size_t>(i)].anchor; }
+  std::int32_t lastTick() const { return last_tick_; }
+
+  /// True when j may directly follow i in a track: 1 <= t_j - t_i <= d-bar, |y_j - y_i| <=
+  /// v-bar (t_j - t_i), and j is not an anchor.
+  bool linked(std::int32_t i, std::int32_t j) const;
+  /// Candidate successors of i at gap d (1 <= d <= d-bar), in index order.
+  std::span<const std::int32_t> successors(std::int32_t i, std::int32_t gap) const;
+  /// All candidate successors of i, gap by gap.
+  std::span<const std::int32_t> successors(std::int32_t i) const;
+  /// Candidate predecessors of j (every i with linked(i, j)).
+  std::span<const std::int32_t> predecessors(std::int32_t j) const;
+
+  /// log pi contribution of a track relative to leaving its observations unassigned: eq. (3)'s
+  /// prior terms and Kalman likelihood for the track minus the terms of its observations as false
+  /// alarms (or, for an anchor, as a track that ended at once). log pi(omega) = sum over tracks
+  /// + const. `track` lists observation indices in tick order and must be a valid track.
+  /// When `final_state` is given, it receives the filtered state at the last observation.
+  double trackScore(std::span<const std::int32_t> track, TrackState* final_state = nullptr) const;
+
+  /// The filtered state of `track` at each of its observations (tick order) into `states`.
+  void filterTrack(std::span<const std::int32_t> track, std::vector<TrackState>& states) const;
+
+  /// Predicts `state` forward by `gap` ticks (eq. 8 applied gap times).
+  TrackState predict(const TrackState& state, std::int32_t gap) const;
+
+  /// The prior of a new track at its first observation: position y with variance r^2, velocity 0
+  /// with variance sigma_v^2.
+  TrackState initialState(std::int32_t i) const;
+
+ private:
+  struct GapModel {
+    double dt = 0.0;
+    AxisCovariance q;  // exact eq. (8) process noise accumulated over the gap
+  };
+  const GapModel& gapModel(std::int32_t gap) const { return gaps_[static_cast<std::size_t>(gap)]; }
+
+  ModelParams params_;
+  std::vector<ProblemObservation> observations_;
+  std::int32_t last_tick_;
+  // Candidate lists in CSR form: successors of i at gap d are
+  // succ_[succ_start_[i * dbar + d - 1] .. succ_start_[i * dbar + d]).
+  std::vector<std::int32_t> succ_start_;
+  std::vector<std::int32_t> succ_;
+  std::vector<std::int32_t> pred_start_;
+  std::vector<std::int32_t> pred_;
+  std::vector<GapModel> gaps_;  // index = gap in ticks, 0 .. max(d-bar, 1)
+  // Constant log terms of eq. (3).
+  double log_pd_ = 0.0;
+  double log_miss_ = 0.0;
+  double log_continue_ = 0.0;
+  double log_terminate_ = 0.0;
+  double log_birth_ = 0.0;
+  double log_false_alarm_ = 0.0;
+  double log_two_pi_ = 0.0;
+};
+
+}  // namespace wsn::supernode::mcmcda

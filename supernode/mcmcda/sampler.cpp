@@ -1,0 +1,584 @@
+#include "supernode/mcmcda/sampler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace wsn::supernode::mcmcda {
+namespace {
+
+constexpr double kNegInf = -std::numeric_limits<double>::infinity();
+
+double logSumExp(double a, double b) {
+  if (a == kNegInf) return b;
+  if (b == kNegInf) return a;
+  const double hi = std::max(a, b);
+  return hi + std::log1p(std::exp(std::min(a, b) - hi));
+}
+
+double logCount(std::int64_t n) { return std::log(static_cast<double>(n)); }
+
+}  // namespace
+
+std::string_view moveName(Move move) {
+  switch (move) {
+    case Move::kBirth: return "birth";
+    case Move::kDeath: return "death";
+    case Move::kSplit: return "split";
+    case Move::kMerge: return "merge";
+    case Move::kExtension: return "extension";
+    case Move::kReduction: return "reduction";
+    case Move::kUpdate: return "update";
+    case Move::kSwitch: return "switch";
+  }
+  return "?";
+}
+
+void canonicalise(Partition& partition) {
+  std::sort(partition.begin(), partition.end(),
+            [](const auto& a, const auto& b) { return a.front() < b.front(); });
+}
+
+std::string validatePartition(const Problem& problem, const Partition& partition) {
+  std::vector<bool> used(static_cast<std::size_t>(problem.size()), false);
+  for (std::size_t k = 0; k < partition.size(); ++k) {
+    const auto& track = partition[k];
+    const std::string which = "track " + std::to_string(k);
+    if (track.size() < 2) return which + " has fewer than two observations";
+    for (std::size_t m = 0; m < track.size(); ++m) {
+      const std::int32_t i = track[m];
+      if (i < 0 || i >= problem.size()) return which + " names observation " + std::to_string(i) + ", out of range";
+      if (used[static_cast<std::size_t>(i)]) return "observation " + std::to_string(i) + " is in two tracks";
+      used[static_cast<std::size_t>(i)] = true;
+      if (m > 0 && !problem.linked(track[m - 1], i))
+        return which + ": observation " + std::to_string(i) + " is not a candidate successor of " +
+               std::to_string(track[m - 1]);
+    }
+  }
+  return {};
+}
+
+double logPosterior(const Problem& problem, const Partition& partition) {
+  double sum = 0.0;
+  for (const auto& track : partition) sum += problem.trackScore(track);
+  return sum;
+}
+
+Sampler::Sampler(const Problem& problem) : problem_(problem) {
+  const auto n = static_cast<std::size_t>(problem.size());
+  track_of_.assign(n, -1);
+  position_.assign(n, -1);
+  best_track_of_ = track_of_;
+  // Every track holds at least two observations, so at most n / 2 are live; each can hold at most
+  // one observation per tick.
+  std::size_t longest = n == 0 ? 0 : 1;
+  for (std::size_t i = 1; i < n; ++i)
+    if (problem.tick(static_cast<std::int32_t>(i)) != problem.tick(static_cast<std::int32_t>(i - 1))) ++longest;
+  tracks_.resize(n / 2 + 1);
+  for (auto& track : tracks_) track.obs.reserve(longest);
+  std::size_t links = 0;
+  for (std::int32_t i = 0; i < problem.size(); ++i) links += problem.successors(i).size();
+  counts_.assign(static_cast<std::size_t>(problem.params().max_gap) + 1, 0);
+  scratch_list_.reserve(n);
+  scratch_pairs_.reserve(links);
+  for (auto* buffer : {&tail_, &target_a_, &target_b_, &backup_a_, &backup_b_}) buffer->reserve(longest);
+}
+
+void Sampler::setState(const Partition& partition) {
+  const std::string error = validatePartition(problem_, partition);
+  if (!error.empty()) throw std::invalid_argument("mcmcda: invalid initial partition: " + error);
+  while (track_count_ > 0) removeTrack(track_count_ - 1);
+  log_posterior_ = 0.0;
+  for (const auto& track : partition) addTrack(track, problem_.trackScore(track));
+  best_track_of_ = track_of_;
+  best_log_posterior_ = log_posterior_;
+}
+
+Partition Sampler::state() const {
+  Partition out;
+  for (std::int32_t k = 0; k < track_count_; ++k) out.push_back(tracks_[static_cast<std::size_t>(k)].obs);
+  canonicalise(out);
+  return out;
+}
+
+Partition Sampler::bestState() const {
+  Partition out;
+  std::vector<std::int32_t> index_of_slot(tracks_.size(), -1);
+  for (std::int32_t i = 0; i < problem_.size(); ++i) {  // indices ascend with tick: track order
+    const std::int32_t slot = best_track_of_[static_cast<std::size_t>(i)];
+    if (slot < 0) continue;
+    auto& index = index_of_slot[static_cast<std::size_t>(slot)];
+    if (index < 0) {
+      index = static_cast<std::int32_t>(out.size());
+      out.emplace_back();
+    }
+    out[static_cast<std::size_t>(index)].push_back(i);
+  }
+  canonicalise(out);
+  return out;
+}
+
+void Sampler::labels(std::vector<std::int32_t>& out) const {
+  out.assign(static_cast<std::size_t>(problem_.size()), -1);
+  for (std::int32_t k = 0; k < track_count_; ++k) {
+    const auto& obs = tracks_[static_cast<std::size_t>(k)].obs;
+    for (const std::int32_t i : obs) out[static_cast<std::size_t>(i)] = obs.front();
+  }
+}
+
+// ---- state changes --------------------------------------------------------------------------
+
+std::int32_t Sampler::addTrack(std::span<const std::int32_t> obs, double score) {
+  const std::int32_t slot = track_count_++;
+  auto& track = tracks_[static_cast<std::size_t>(slot)];
+  track.obs.assign(obs.begin(), obs.end());
+  track.score = score;
+  for (std::size_t m = 0; m < obs.size(); ++m) {
+    track_of_[static_cast<std::size_t>(obs[m])] = slot;
+    position_[static_cast<std::size_t>(obs[m])] = static_cast<std::int32_t>(m);
+  }
+  log_posterior_ += score;
+  return slot;
+}
+
+void Sampler::removeTrack(std::int32_t slot) {
+  auto& track = tracks_[static_cast<std::size_t>(slot)];
+  // Only observations still marked as this track's: a switch may already have handed some over.
+  for (const std::int32_t i : track.obs)
+    if (track_of_[static_cast<std::size_t>(i)] == slot) {
+      track_of_[static_cast<std::size_t>(i)] = -1;
+      position_[static_cast<std::size_t>(i)] = -1;
+    }
+  log_posterior_ -= track.score;
+  const std::int32_t last = track_count_ - 1;
+  if (slot != last) {
+    std::swap(tracks_[static_cast<std::size_t>(slot)], tracks_[static_cast<std::size_t>(last)]);
+    for (const std::int32_t i : tracks_[static_cast<std::size_t>(slot)].obs) track_of_[static_cast<std::size_t>(i)] = slot;
+  }
+  tracks_[static_cast<std::size_t>(last)].obs.clear();
+  --track_count_;
+}
+
+void Sampler::setTrack(std::int32_t slot, std::span<const std::int32_t> obs, double score) {
+  auto& track = tracks_[static_cast<std::size_t>(slot)];
+  for (const std::int32_t i : track.obs)
+    if (track_of_[static_cast<std::size_t>(i)] == slot) {
+      track_of_[static_cast<std::size_t>(i)] = -1;
+      position_[static_cast<std::size_t>(i)] = -1;
+    }
+  track.obs.assign(obs.begin(), obs.end());
+  for (std::size_t m = 0; m < obs.size(); ++m) {
+    track_of_[static_cast<std::size_t>(obs[m])] = slot;
+    position_[static_cast<std::size_t>(obs[m])] = static_cast<std::int32_t>(m);
+  }
+  log_posterior_ += score - track.score;
+  track.score = score;
+}
+
+void Sampler::noteBest() {
+  if (log_posterior_ > best_log_posterior_) {
+    best_track_of_ = track_of_;  // same size: copies in place
+    best_log_posterior_ = log_posterior_;
+  }
+}
+
+// ---- proposal machinery ---------------------------------------------------------------------
+
+double Sampler::logMoveProbability(Move move, std::int32_t tracks) const {
+  // Oh et al. (TAC 2009): birth only when K = 0; with K = 1 the six moves that need one track,
+  // uniformly; with K >= 2 all eight, uniformly.
+  if (tracks == 0) return move == Move::kBirth ? 0.0 : kNegInf;
+  if (tracks == 1) return (move == Move::kMerge || move == Move::kSwitch) ? kNegInf : -std::log(6.0);
+  return -std::log(8.0);
+}
+
+bool Sampler::accept(double log_ratio, common::Stream& rng) {
+  // One uniform per proposal, accepted or not, so the stream's use does not depend on the ratio.
+  return std::log(rng.uniformPositive()) < log_ratio;  // false for NaN
+}
+
+template <class Free>
+std::int32_t Sampler::freeGaps(std::int32_t from, const Free& free) const {
+  std::int32_t nonempty = 0;
+  for (std::int32_t d = 1; d <= problem_.params().max_gap; ++d) {
+    std::int32_t count = 0;
+    for (const std::int32_t j : problem_.successors(from, d))
+      if (free(j)) ++count;
+    counts_[static_cast<std::size_t>(d)] = count;
+    if (count > 0) ++nonempty;
+  }
+  return nonempty;
+}
+
+template <class Free>
+double Sampler::sampleExtension(std::int32_t from, bool forced, const Free& free, common::Stream& rng,
+                                std::vector<std::int32_t>& tail) const {
+  const double gamma = problem_.params().stop_probability;
+  tail.clear();
+  double log_q = 0.0;
+  std::int32_t current = from;
+  for (bool first = true;; first = false) {
+    const std::int32_t gaps = freeGaps(current, free);
+    const bool may_stop = !(forced && first);
+    if (gaps == 0) {
+      if (!may_stop) return std::numeric_limits<double>::quiet_NaN();
+      break;  // nothing to extend to: the process stops with probability 1
+    }
+    if (may_stop) {
+      if (rng.uniform() < gamma) {
+        log_q += std::log(gamma);
+        break;
+      }
+      log_q += std::log1p(-gamma);
+    }
+    auto which_gap = static_cast<std::int32_t>(rng.below(static_cast<std::uint64_t>(gaps)));
+    std::int32_t gap = 1;
+    for (;; ++gap)
+      if (counts_[static_cast<std::size_t>(gap)] > 0 && which_gap-- == 0) break;
+    const std::int32_t candidates = counts_[static_cast<std::size_t>(gap)];
+    auto which = static_cast<std::int32_t>(rng.below(static_cast<std::uint64_t>(candidates)));
+    std::int32_t next = -1;
+    for (const std::int32_t j : problem_.successors(current, gap))
+      if (free(j) && which-- == 0) {
+        next = j;
+        break;
+      }
+    log_q -= logCount(gaps) + logCount(candidates);
+    tail.push_back(next);
+    current = next;
+  }
+  return log_q;
+}
+
+template <class Free>
+double Sampler::logExtension(std::int32_t from, std::span<const std::int32_t> tail, bool forced,
+                             const Free& free) const {
+  if (forced && tail.empty()) return kNegInf;
+  const double gamma = problem_.params().stop_probability;
+  double log_q = 0.0;
+  std::int32_t current = from;
+  for (std::size_t k = 0; k < tail.size(); ++k) {
+    const std::int32_t next = tail[k];
+    if (!free(next) || !problem_.linked(current, next)) return kNegInf;
+    const std::int32_t gaps = freeGaps(current, free);
+    const std::int32_t gap = problem_.tick(next) - problem_.tick(current);
+    if (!(forced && k == 0)) log_q += std::log1p(-gamma);
+    log_q -= logCount(gaps) + logCount(counts_[static_cast<std::size_t>(gap)]);
+    current = next;
+  }
+  if (freeGaps(current, free) > 0) log_q += std::log(gamma);  // else the stop was certain
+  return log_q;
+}
+
+std::int32_t Sampler::collectBirthStarts(std::vector<std::int32_t>* out) const {
+  if (out != nullptr) out->clear();
+  std::int32_t count = 0;
+  for (std::int32_t i = 0; i < problem_.size(); ++i) {
+    if (track_of_[static_cast<std::size_t>(i)] >= 0) continue;
+    for (const std::int32_t j : problem_.successors(i))
+      if (track_of_[static_cast<std::size_t>(j)] < 0) {
+        ++count;
+        if (out != nullptr) out->push_back(i);
+        break;
+      }
+  }
+  return count;
+}
+
+std::int32_t Sampler::collectMergePairs(std::vector<std::array<std::int32_t, 2>>* out) const {
+  if (out != nullptr) out->clear();
+  std::int32_t count = 0;
+  for (std::int32_t u = 0; u < track_count_; ++u)
+    for (const std::int32_t j : problem_.successors(tracks_[static_cast<std::size_t>(u)].obs.back())) {
+      const std::int32_t v = track_of_[static_cast<std::size_t>(j)];
+      if (v >= 0 && position_[static_cast<std::size_t>(j)] == 0) {
+        ++count;
+        if (out != nullptr) out->push_back({u, v});
+      }
+    }
+  return count;
+}
+
+std::int32_t Sampler::countTracksAtLeast(std::size_t length) const {
+  std::int32_t count = 0;
+  for (std::int32_t k = 0; k < track_count_; ++k)
+    if (tracks_[static_cast<std::size_t>(k)].obs.size() >= length) ++count;
+  return count;
+}
+
+std::int32_t Sampler::switchPoints(std::int32_t a, std::int32_t b, std::int32_t k,
+                                   std::array<std::int32_t, 2>* pick) const {
+  // Swap the tails after a's p-th and b's q-th observation: a' = a[0, p) + b[q, nb),
+  // b' = b[0, q) + a[p, na). Both tails empty would change nothing; each new track needs two
+  // observations and a valid link where the tails join.
+  const auto& A = tracks_[static_cast<std::size_t>(a)].obs;
+  const auto& B = tracks_[static_cast<std::size_t>(b)].obs;
+  const auto na = static_cast<std::int32_t>(A.size());
+  const auto nb = static_cast<std::int32_t>(B.size());
+  std::int32_t count = 0;
+  for (std::int32_t p = 1; p <= na; ++p)
+    for (std::int32_t q = 1; q <= nb; ++q) {
+      if (p == na && q == nb) continue;
+      if (p + nb - q < 2 || q + na - p < 2) continue;
+      if (q < nb && !problem_.linked(A[static_cast<std::size_t>(p - 1)], B[static_cast<std::size_t>(q)])) continue;
+      if (p < na && !problem_.linked(B[static_cast<std::size_t>(q - 1)], A[static_cast<std::size_t>(p)])) continue;
+      if (count == k && pick != nullptr) *pick = {p, q};
+      ++count;
+    }
+  return count;
+}
+
+// ---- the moves ------------------------------------------------------------------------------
+
+void Sampler::step(common::Stream& rng) {
+  static constexpr Move kOneTrackMoves[] = {Move::kBirth,     Move::kDeath,     Move::kSplit,
+                                            Move::kExtension, Move::kReduction, Move::kUpdate};
+  Move move = Move::kBirth;
+  if (track_count_ == 1)
+    move = kOneTrackMoves[rng.below(6)];
+  else if (track_count_ >= 2)
+    move = static_cast<Move>(rng.below(kMoveCount));
+  ++stats_.proposed[static_cast<std::size_t>(move)];
+  switch (move) {
+    case Move::kBirth: birth(rng); break;
+    case Move::kDeath: death(rng); break;
+    case Move::kSplit: split(rng); break;
+    case Move::kMerge: merge(rng); break;
+    case Move::kExtension: extension(rng); break;
+    case Move::kReduction: reduction(rng); break;
+    case Move::kUpdate: update(rng); break;
+    case Move::kSwitch: trackSwitch(rng); break;
+  }
+  noteBest();
+}
+
+void Sampler::birth(common::Stream& rng) {
+  // Oh (TAC 2009): a new track starts at an unassigned observation that has an unassigned
+  // candidate successor and grows by the extension process (at least one step).
+  const std::int32_t K = track_count_;
+  const std::int32_t starts = collectBirthStarts(&scratch_list_);
+  if (starts == 0) return;
+  const std::int32_t first = scratch_list_[rng.below(static_cast<std::uint64_t>(starts))];
+  const auto unassigned = [this](std::int32_t j) { return track_of_[static_cast<std::size_t>(j)] < 0; };
+  const double log_path = sampleExtension(first, true, unassigned, rng, tail_);
+  target_a_.clear();
+  target_a_.push_back(first);
+  target_a_.insert(target_a_.end(), tail_.begin(), tail_.end());
+  const double score = problem_.trackScore(target_a_);
+  const double log_forward = logMoveProbability(Move::kBirth, K) - logCount(starts) + log_path;
+  const double log_reverse = logMoveProbability(Move::kDeath, K + 1) - logCount(K + 1);
+  if (accept(score + log_reverse - log_forward, rng)) {
+    addTrack(target_a_, score);
+    ++stats_.accepted[static_cast<std::size_t>(Move::kBirth)];
+  }
+}
+
+void Sampler::death(common::Stream& rng) {
+  const std::int32_t K = track_count_;
+  const auto slot = static_cast<std::int32_t>(rng.below(static_cast<std::uint64_t>(K)));
+  const auto& track = tracks_[static_cast<std::size_t>(slot)];
+  backup_a_.assign(track.obs.begin(), track.obs.end());
+  const double score = track.score;
+  const double log_forward = logMoveProbability(Move::kDeath, K) - logCount(K);
+  removeTrack(slot);
+  const auto unassigned = [this](std::int32_t j) { return track_of_[static_cast<std::size_t>(j)] < 0; };
+  const std::int32_t starts = collectBirthStarts(nullptr);
+  const double log_reverse = logMoveProbability(Move::kBirth, K - 1) - logCount(starts) +
+                             logExtension(backup_a_.front(), std::span(backup_a_).subspan(1), true, unassigned);
+  if (accept(-score + log_reverse - log_forward, rng))
+    ++stats_.accepted[static_cast<std::size_t>(Move::kDeath)];
+  else
+    addTrack(backup_a_, score);
+}
+
+void Sampler::split(common::Stream& rng) {
+  const std::int32_t K = track_count_;
+  const std::int32_t eligible = countTracksAtLeast(4);
+  if (eligible == 0) return;
+  auto which = static_cast<std::int32_t>(rng.below(static_cast<std::uint64_t>(eligible)));
+  std::int32_t slot = 0;
+  for (;; ++slot)
+    if (tracks_[static_cast<std::size_t>(slot)].obs.size() >= 4 && which-- == 0) break;
+  const auto& track = tracks_[static_cast<std::size_t>(slot)];
+  const auto n = static_cast<std::int32_t>(track.obs.size());
+  const auto cut = 2 + static_cast<std::int32_t>(rng.below(static_cast<std::uint64_t>(n - 3)));  // 2 .. n-2
+  backup_a_.assign(track.obs.begin(), track.obs.end());
+  const double old_score = track.score;
+  target_a_.assign(backup_a_.begin(), backup_a_.begin() + cut);
+  target_b_.assign(backup_a_.begin() + cut, backup_a_.end());
+  const double score_a = problem_.trackScore(target_a_);
+  const double score_b = problem_.trackScore(target_b_);
+  const double log_forward = logMoveProbability(Move::kSplit, K) - logCount(eligible) - logCount(n - 3);
+  setTrack(slot, target_a_, score_a);
+  const std::int32_t added = addTrack(target_b_, score_b);
+  const double log_reverse = logMoveProbability(Move::kMerge, K + 1) - logCount(collectMergePairs(nullptr));
+  if (accept(score_a + score_b - old_score + log_reverse - log_forward, rng)) {
+    ++stats_.accepted[static_cast<std::size_t>(Move::kSplit)];
+  } else {
+    removeTrack(added);
+    setTrack(slot, backup_a_, old_score);
+  }
+}
+
+void Sampler::merge(common::Stream& rng) {
+  const std::int32_t K = track_count_;
+  const std::int32_t pairs = collectMergePairs(&scratch_pairs_);
+  if (pairs == 0) return;
+  const auto [u, v] = scratch_pairs_[rng.below(static_cast<std::uint64_t>(pairs))];
+  const auto& first = tracks_[static_cast<std::size_t>(u)];
+  const auto& second = tracks_[static_cast<std::size_t>(v)];
+  backup_a_.assign(first.obs.begin(), first.obs.end());
+  backup_b_.assign(second.obs.begin(), second.obs.end());
+  const double score_a = first.score;
+  const double score_b = second.score;
+  target_a_.assign(backup_a_.begin(), backup_a_.end());
+  target_a_.insert(target_a_.end(), backup_b_.begin(), backup_b_.end());
+  const double score = problem_.trackScore(target_a_);
+  const double log_forward = logMoveProbability(Move::kMerge, K) - logCount(pairs);
+  // removeTrack(v) moves the last slot into v: u moves with it when it was last.
+  const std::int32_t merged = (u == K - 1) ? v : u;
+  removeTrack(v);
+  setTrack(merged, target_a_, score);
+  const auto n = static_cast<std::int32_t>(target_a_.size());
+  const double log_reverse =
+      logMoveProbability(Move::kSplit, K - 1) - logCount(countTracksAtLeast(4)) - logCount(n - 3);
+  if (accept(score - score_a - score_b + log_reverse - log_forward, rng)) {
+    ++stats_.accepted[static_cast<std::size_t>(Move::kMerge)];
+  } else {
+    setTrack(merged, backup_a_, score_a);
+    addTrack(backup_b_, score_b);
+  }
+}
+
+void Sampler::extension(common::Stream& rng) {
+  const auto slot = static_cast<std::int32_t>(rng.below(static_cast<std::uint64_t>(track_count_)));
+  const auto& obs = tracks_[static_cast<std::size_t>(slot)].obs;
+  const auto unassigned = [this](std::int32_t j) { return track_of_[static_cast<std::size_t>(j)] < 0; };
+  if (std::isnan(sampleExtension(obs.back(), true, unassigned, rng, tail_))) return;
+  target_a_.assign(obs.begin(), obs.end());
+  target_a_.insert(target_a_.end(), tail_.begin(), tail_.end());
+  proposeSingleTrack(Move::kExtension, slot, target_a_, logSingleTrackProposal(slot, target_a_), rng);
+}
+
+void Sampler::reduction(common::Stream& rng) {
+  const std::int32_t eligible = countTracksAtLeast(3);
+  if (eligible == 0) return;
+  auto which = static_cast<std::int32_t>(rng.below(static_cast<std::uint64_t>(eligible)));
+  std::int32_t slot = 0;
+  for (;; ++slot)
+    if (tracks_[static_cast<std::size_t>(slot)].obs.size() >= 3 && which-- == 0) break;
+  const auto& obs = tracks_[static_cast<std::size_t>(slot)].obs;
+  const auto n = static_cast<std::int32_t>(obs.size());
+  const auto keep = 2 + static_cast<std::int32_t>(rng.below(static_cast<std::uint64_t>(n - 2)));  // 2 .. n-1
+  target_a_.assign(obs.begin(), obs.begin() + keep);
+  proposeSingleTrack(Move::kReduction, slot, target_a_, logSingleTrackProposal(slot, target_a_), rng);
+}
+
+void Sampler::update(common::Stream& rng) {
+  const auto slot = static_cast<std::int32_t>(rng.below(static_cast<std::uint64_t>(track_count_)));
+  const auto& obs = tracks_[static_cast<std::size_t>(slot)].obs;
+  const auto n = static_cast<std::int32_t>(obs.size());
+  const auto keep = 1 + static_cast<std::int32_t>(rng.below(static_cast<std::uint64_t>(n - 1)));  // 1 .. n-1
+  // The discarded tail is free for the re-extension (it may pick the same observations again).
+  const auto free = [this, slot, keep](std::int32_t j) {
+    const std::int32_t owner = track_of_[static_cast<std::size_t>(j)];
+    return owner < 0 || (owner == slot && position_[static_cast<std::size_t>(j)] >= keep);
+  };
+  if (std::isnan(sampleExtension(obs[static_cast<std::size_t>(keep - 1)], true, free, rng, tail_))) return;
+  target_a_.assign(obs.begin(), obs.begin() + keep);
+  target_a_.insert(target_a_.end(), tail_.begin(), tail_.end());
+  if (std::equal(target_a_.begin(), target_a_.end(), obs.begin(), obs.end())) {
+    ++stats_.accepted[static_cast<std::size_t>(Move::kUpdate)];  // omega' = omega: nothing to do
+    return;
+  }
+  proposeSingleTrack(Move::kUpdate, slot, target_a_, logSingleTrackProposal(slot, target_a_), rng);
+}
+
+double Sampler::logSingleTrackProposal(std::int32_t slot, std::span<const std::int32_t> target) const {
+  // Extension, reduction and update all turn one track into another with the same first
+  // observation, and update can produce what the other two produce (and the same result from
+  // several cut points), so q(omega, omega') is the sum over every such way.
+  const std::int32_t K = track_count_;
+  const auto& current = tracks_[static_cast<std::size_t>(slot)].obs;
+  const auto n = static_cast<std::int32_t>(current.size());
+  const auto n_target = static_cast<std::int32_t>(target.size());
+  std::int32_t common = 0;
+  while (common < std::min(n, n_target) &&
+         current[static_cast<std::size_t>(common)] == target[static_cast<std::size_t>(common)])
+    ++common;
+  double total = kNegInf;
+  if (common == 0) return total;
+  const auto unassigned = [this](std::int32_t j) { return track_of_[static_cast<std::size_t>(j)] < 0; };
+  if (common == n && n_target > n)
+    total = logSumExp(total, logMoveProbability(Move::kExtension, K) - logCount(K) +
+                                 logExtension(current.back(), target.subspan(static_cast<std::size_t>(n)), true,
+                                              unassigned));
+  if (common == n_target && n_target < n && n_target >= 2)
+    total = logSumExp(total, logMoveProbability(Move::kReduction, K) - logCount(countTracksAtLeast(3)) -
+                                 logCount(n - 2));
+  for (std::int32_t keep = 1; keep <= std::min(common, n - 1); ++keep) {
+    if (n_target < keep + 1) break;
+    const auto free = [this, slot, keep](std::int32_t j) {
+      const std::int32_t owner = track_of_[static_cast<std::size_t>(j)];
+      return owner < 0 || (owner == slot && position_[static_cast<std::size_t>(j)] >= keep);
+    };
+    total = logSumExp(total, logMoveProbability(Move::kUpdate, K) - logCount(K) - logCount(n - 1) +
+                                 logExtension(current[static_cast<std::size_t>(keep - 1)],
+                                              target.subspan(static_cast<std::size_t>(keep)), true, free));
+  }
+  return total;
+}
+
+void Sampler::proposeSingleTrack(Move move, std::int32_t slot, std::span<const std::int32_t> target,
+                                 double log_q_forward, common::Stream& rng) {
+  const auto& track = tracks_[static_cast<std::size_t>(slot)];
+  backup_a_.assign(track.obs.begin(), track.obs.end());
+  const double old_score = track.score;
+  const double score = problem_.trackScore(target);
+  setTrack(slot, target, score);
+  const double log_q_reverse = logSingleTrackProposal(slot, backup_a_);
+  if (accept(score - old_score + log_q_reverse - log_q_forward, rng))
+    ++stats_.accepted[static_cast<std::size_t>(move)];
+  else
+    setTrack(slot, backup_a_, old_score);
+}
+
+void Sampler::trackSwitch(common::Stream& rng) {
+  const std::int32_t K = track_count_;
+  const auto a = static_cast<std::int32_t>(rng.below(static_cast<std::uint64_t>(K)));
+  auto b = static_cast<std::int32_t>(rng.below(static_cast<std::uint64_t>(K - 1)));
+  if (b >= a) ++b;
+  const std::int32_t points = switchPoints(a, b, -1, nullptr);
+  if (points == 0) return;
+  std::array<std::int32_t, 2> cut{};
+  switchPoints(a, b, static_cast<std::int32_t>(rng.below(static_cast<std::uint64_t>(points))), &cut);
+  const auto [p, q] = cut;
+  const auto& A = tracks_[static_cast<std::size_t>(a)];
+  const auto& B = tracks_[static_cast<std::size_t>(b)];
+  backup_a_.assign(A.obs.begin(), A.obs.end());
+  backup_b_.assign(B.obs.begin(), B.obs.end());
+  const double old_a = A.score;
+  const double old_b = B.score;
+  target_a_.assign(backup_a_.begin(), backup_a_.begin() + p);
+  target_a_.insert(target_a_.end(), backup_b_.begin() + q, backup_b_.end());
+  target_b_.assign(backup_b_.begin(), backup_b_.begin() + q);
+  target_b_.insert(target_b_.end(), backup_a_.begin() + p, backup_a_.end());
+  const double score_a = problem_.trackScore(target_a_);
+  const double score_b = problem_.trackScore(target_b_);
+  // The unordered pair has probability 2 / (K (K - 1)); the reverse switch uses the same pair.
+  const double log_pair = logMoveProbability(Move::kSwitch, K) - std::log(0.5 * K * (K - 1));
+  const double log_forward = log_pair - logCount(points);
+  setTrack(a, target_a_, score_a);
+  setTrack(b, target_b_, score_b);
+  const double log_reverse = log_pair - logCount(switchPoints(a, b, -1, nullptr));
+  if (accept(score_a + score_b - old_a - old_b + log_reverse - log_forward, rng)) {
+    ++stats_.accepted[static_cast<std::size_t>(Move::kSwitch)];
+  } else {
+    setTrack(a, backup_a_, old_a);
+    setTrack(b, backup_b_, old_b);
+  }
+}
+
+}  // namespace wsn::supernode::mcmcda
