@@ -5,6 +5,7 @@
 
 #include "supernode/engine.hpp"
 #include "supernode/gnn/gnn_engine.hpp"
+#include "supernode/mcmcda/mcmcda_engine.hpp"
 
 namespace wsn::supernode {
 namespace {
@@ -31,7 +32,8 @@ const EngineSpec* findEngine(const std::string& name) {
 const std::vector<EngineSpec>& engineRegistry() {
   static const std::vector<EngineSpec> registry = {
       gnn::engineSpec(),
-      // A new engine is a sibling folder plus one line here, e.g. mcmcda::engineSpec(),
+      mcmcda::engineSpec(),
+      // A new engine is a sibling folder plus one line here.
   };
   return registry;
 }

@@ -1,0 +1,424 @@
+#include "supernode/mcmcda/mcmcda_engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+#include "common/rng.hpp"
+
+namespace wsn::supernode::mcmcda {
+namespace {
+
+constexpr std::uint64_t kSupernodeShift = 48;
+
+double param(const common::Scenario& scenario, const std::string& name, double fallback) {
+  const auto it = scenario.tracker.params.find(name);
+  return it == scenario.tracker.params.end() ? fallback : it->second.value;
+}
+
+TrackState stateFromHandoff(const common::TrackHandoff& h) {
+  // Both engines' filters are axis-symmetric (R = r^2 I, Q and the prior per axis alike), so the
+  // x and y blocks of P agree; averaging them makes a foreign or rounded covariance symmetric too.
+  const auto P = [&](int r, int c) { return h.covariance[static_cast<std::size_t>(r * 4 + c)]; };
+  TrackState s;
+  s.tick = h.last_tick;
+  s.x = h.state[0];
+  s.y = h.state[1];
+  s.vx = h.state[2];
+  s.vy = h.state[3];
+  s.cov.pp = 0.5 * (P(0, 0) + P(1, 1));
+  s.cov.pv = 0.25 * (P(0, 2) + P(2, 0) + P(1, 3) + P(3, 1));
+  s.cov.vv = 0.5 * (P(2, 2) + P(3, 3));
+  return s;
+}
+
+bool finite(const TrackState& s) {
+  return std::isfinite(s.x) && std::isfinite(s.y) && std::isfinite(s.vx) && std::isfinite(s.vy) &&
+         std::isfinite(s.cov.pp) && std::isfinite(s.cov.pv) && std::isfinite(s.cov.vv) && s.cov.pp >= 0.0 &&
+         s.cov.vv >= 0.0;
+}
+
+common::TrackEstimate estimate(common::TrackId id, const TrackState& s) { return {id, s.x, s.y, s.vx, s.vy}; }
+
+}  // namespace
+
+EngineSpec engineSpec() {
+  EngineSpec spec;
+  spec.name = "mcmcda";
+  spec.description =
+      "sliding-window Markov chain Monte Carlo data association (Oh et al. §VI): samples partitions of the "
+      "window's observations into tracks and false alarms under eq. (3), keeps the best";
+  const McmcdaParams d;
+  const ModelParams& m = d.model;
+  spec.params = {
+      {"iterations", static_cast<double>(d.iterations), 1.0, 1e7, "nmc: chain iterations per tick", true},
+      {"detection_probability", m.detection_probability, 1e-3, 0.999,
+       "pd of eq. (3): probability that a live target's report reaches the window at a tick (detection "
+       "times delivery)"},
+      {"termination_probability", m.termination_probability, 1e-6, 0.999,
+       "pz of eq. (3): probability that a target disappears at a tick"},
+      {"birth_density", m.birth_density, 1e-12, 1.0, "lambda_b of eq. (3): new targets per unit area per tick"},
+      {"false_alarm_density", m.false_alarm_density, 1e-12, 1.0,
+       "lambda_f of eq. (3): delivered false reports per unit area per tick"},
+      {"measurement_sigma", m.measurement_sigma, 1e-3, 100.0,
+       "std. deviation of a fused observation's position error per axis, R = sigma^2 I (sensor separations)"},
+      {"initial_velocity_sigma", m.initial_velocity_sigma, 1e-3, 100.0,
+       "prior std. deviation of a new track's velocity per axis (sensor separations per tick)"},
+      {"max_speed", m.max_speed, 1e-3, 1000.0,
+       "v-bar: an observation d ticks after another is a candidate successor within d * v-bar"},
+      {"max_gap", static_cast<double>(m.max_gap), 1.0, 50.0,
+       "d-bar: largest tick gap inside a track (d-bar - 1 consecutive misses)", true},
+      {"stop_probability", m.stop_probability, 1e-3, 0.999,
+       "gamma: the extension proposal stops after each step with this probability"},
+      {"greedy_gate_chi2", d.greedy_gate_chi2, 0.1, 1000.0,
+       "gate (squared Mahalanobis distance) of the greedy start that joins the newest observations to tracks"},
+      {"confirm_observations", static_cast<double>(d.confirm_observations), 2.0, 1000.0,
+       "observations a track needs (in all, before the window included) before it is reported", true},
+  };
+  spec.create = [](const EngineContext& context) -> std::unique_ptr<Engine> {
+    return std::make_unique<McmcdaEngine>(context);
+  };
+  return spec;
+}
+
+McmcdaParams McmcdaParams::fromScenario(const common::Scenario& scenario) {
+  McmcdaParams p;
+  auto& m = p.model;
+  p.iterations = std::llround(param(scenario, "iterations", static_cast<double>(p.iterations)));
+  m.detection_probability = param(scenario, "detection_probability", m.detection_probability);
+  m.termination_probability = param(scenario, "termination_probability", m.termination_probability);
+  m.birth_density = param(scenario, "birth_density", m.birth_density);
+  m.false_alarm_density = param(scenario, "false_alarm_density", m.false_alarm_density);
+  m.measurement_sigma = param(scenario, "measurement_sigma", m.measurement_sigma);
+  m.initial_velocity_sigma = param(scenario, "initial_velocity_sigma", m.initial_velocity_sigma);
+  m.max_speed = param(scenario, "max_speed", m.max_speed);
+  m.max_gap = static_cast<std::int32_t>(std::lround(param(scenario, "max_gap", m.max_gap)));
+  m.stop_probability = param(scenario, "stop_probability", m.stop_probability);
+  m.process_noise_sigma = scenario.dynamics.process_noise_sigma;
+  m.delta = scenario.dynamics.delta;
+  p.greedy_gate_chi2 = param(scenario, "greedy_gate_chi2", p.greedy_gate_chi2);
+  p.confirm_observations =
+      static_cast<std::int32_t>(std::lround(param(scenario, "confirm_observations", p.confirm_observations)));
+  return p;
+}
+
+std::int32_t McmcdaEngine::LiveTrack::lastTick() const {
+  return observations.empty() ? anchor->tick : observations.back().tick;
+}
+
+const TrackState& McmcdaEngine::LiveTrack::lastState() const {
+  return states.empty() ? anchor->prior : states.back();
+}
+
+McmcdaEngine::McmcdaEngine(const EngineContext& context)
+    : supernode_(context.supernode),
+      seed_(context.scenario.run.seed),
+      params_(McmcdaParams::fromScenario(context.scenario)),
+      model_(params_.model, {}, 0) {}
+
+common::TrackId McmcdaEngine::mintId() {
+  return ((std::uint64_t{supernode_} + 1) << kSupernodeShift) | next_serial_++;
+}
+
+bool McmcdaEngine::isLive(const LiveTrack& track) const {
+  return newest_tick_ - track.lastTick() <= params_.model.max_gap - 1;
+}
+
+void McmcdaEngine::adopt(const common::TrackHandoff& handoff) {
+  const TrackState state = stateFromHandoff(handoff);
+  if (!finite(state)) {
+    ++rejected_handoffs_;
+    return;
+  }
+  LiveTrack track;
+  track.id = handoff.track;
+  ProblemObservation anchor;
+  anchor.tick = handoff.last_tick;
+  anchor.x = state.x;
+  anchor.y = state.y;
+  anchor.anchor = true;
+  anchor.prior = state;
+  track.anchor = anchor;
+  track.past_observations = handoff.hits;
+  const auto it = std::lower_bound(tracks_.begin(), tracks_.end(), track.id,
+                                   [](const LiveTrack& t, common::TrackId id) { return t.id < id; });
+  if (it != tracks_.end() && it->id == track.id)
+    *it = std::move(track);  // a track coming back supersedes what we had
+  else
+    tracks_.insert(it, std::move(track));
+}
+
+void McmcdaEngine::step(const ObservationWindow& window) {
+  const std::int32_t newest = window.newestTick();
+  if (newest < 1) return;
+  const std::int32_t oldest = window.oldestTick();
+  const std::int32_t dbar = params_.model.max_gap;
+  newest_tick_ = newest;
+
+  // 1. Observations that left the window are committed: the track's filtered state at the last of
+  //    them becomes its anchor. A track that can no longer be continued inside the window ends.
+  for (auto& track : tracks_) {
+    std::size_t gone = 0;
+    while (gone < track.observations.size() && track.observations[gone].tick < oldest) ++gone;
+    if (gone == 0) continue;
+    const ObservationKey& last_gone = track.observations[gone - 1];
+    ProblemObservation anchor;
+    anchor.tick = last_gone.tick;
+    anchor.x = last_gone.x;  // links are judged from the observation, as before
+    anchor.y = last_gone.y;
+    anchor.anchor = true;
+    anchor.prior = track.states[gone - 1];
+    track.anchor = anchor;
+    track.past_observations += static_cast<std::int32_t>(gone);
+    track.observations.erase(track.observations.begin(), track.observations.begin() + static_cast<std::ptrdiff_t>(gone));
+    track.states.erase(track.states.begin(), track.states.begin() + static_cast<std::ptrdiff_t>(gone));
+  }
+  std::erase_if(tracks_, [&](const LiveTrack& t) { return t.observations.empty() && t.anchor->tick + dbar < oldest; });
+  std::erase_if(released_, [&](const ObservationKey& k) { return k.tick < oldest; });
+
+  // 2. The problem: one anchor per track that has one, then the window's observations (those of
+  //    tracks handed to a neighbour excluded: the neighbour's track accounts for them).
+  struct Entry {
+    ProblemObservation observation;
+    ObservationKey key;
+    std::int32_t anchor_of = -1;  // index into tracks_
+  };
+  std::vector<Entry> entries;
+  for (std::size_t k = 0; k < tracks_.size(); ++k)
+    if (tracks_[k].anchor) entries.push_back({*tracks_[k].anchor, {}, static_cast<std::int32_t>(k)});
+  for (std::int32_t t = oldest; t <= newest; ++t)
+    for (const auto& o : window.slot(t)) {
+      const ObservationKey key{o.tick_generated, o.sensor, o.x, o.y};
+      if (std::binary_search(released_.begin(), released_.end(), key)) continue;
+      entries.push_back({ProblemObservation{o.tick_generated, o.x, o.y, false, {}}, key, -1});
+    }
+  std::stable_sort(entries.begin(), entries.end(),
+                   [](const Entry& a, const Entry& b) { return a.observation.tick < b.observation.tick; });
+  std::vector<ProblemObservation> observations;
+  observations.reserve(entries.size());
+  for (const auto& e : entries) observations.push_back(e.observation);
+  const Problem problem(params_.model, std::move(observations), newest);
+
+  // Observation key -> problem index (first unused match, so duplicate reports stay distinct).
+  std::vector<std::pair<ObservationKey, std::int32_t>> index_of;
+  std::vector<std::int32_t> anchor_index(tracks_.size(), -1);
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    if (entries[i].anchor_of >= 0)
+      anchor_index[static_cast<std::size_t>(entries[i].anchor_of)] = static_cast<std::int32_t>(i);
+    else
+      index_of.emplace_back(entries[i].key, static_cast<std::int32_t>(i));
+  }
+  std::sort(index_of.begin(), index_of.end());
+  std::vector<bool> claimed(entries.size(), false);
+  const auto lookup = [&](const ObservationKey& key) -> std::int32_t {
+    auto it = std::lower_bound(index_of.begin(), index_of.end(), std::make_pair(key, std::int32_t{-1}));
+    for (; it != index_of.end() && it->first == key; ++it)
+      if (!claimed[static_cast<std::size_t>(it->second)]) return it->second;
+    return -1;
+  };
+
+  // 3. Initial state: the previous ω̂ restricted to the window (cut at any link that no longer
+  //    holds), then the newest tick's observations joined greedily to tracks that ended one tick
+  //    before, nearest (in Mahalanobis distance) first.
+  std::vector<std::vector<std::int32_t>> lists(tracks_.size());
+  std::vector<std::int32_t> owner(entries.size(), -1);  // previous track of each problem index
+  for (std::size_t k = 0; k < tracks_.size(); ++k) {
+    auto& list = lists[k];
+    if (anchor_index[k] >= 0) list.push_back(anchor_index[k]);
+    for (const auto& key : tracks_[k].observations) {
+      const std::int32_t i = lookup(key);
+      if (i < 0) continue;
+      claimed[static_cast<std::size_t>(i)] = true;
+      owner[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(k);
+      if (!list.empty() && !problem.linked(list.back(), i)) continue;  // left for the chain to place
+      list.push_back(i);
+    }
+  }
+  std::vector<bool> used(entries.size(), false);
+  for (const auto& list : lists)
+    if (list.size() >= 2)
+      for (const auto i : list) used[static_cast<std::size_t>(i)] = true;
+  struct Candidate {
+    double d2;
+    std::int32_t track;
+    std::int32_t observation;
+  };
+  std::vector<Candidate> candidates;
+  const double r2 = params_.model.measurement_sigma * params_.model.measurement_sigma;
+  for (std::size_t k = 0; k < lists.size(); ++k) {
+    const auto& list = lists[k];
+    if (list.empty() || problem.tick(list.back()) != newest - 1) continue;
+    if (list.size() == 1 && !problem.isAnchor(list.front())) continue;
+    TrackState last;
+    if (list.size() >= 2)
+      problem.trackScore(list, &last);
+    else
+      last = problem.observation(list.front()).prior;
+    const TrackState predicted = problem.predict(last, 1);
+    const double S = predicted.cov.pp + r2;
+    for (std::int32_t i = 0; i < problem.size(); ++i) {
+      if (problem.tick(i) != newest || used[static_cast<std::size_t>(i)] || !problem.linked(list.back(), i)) continue;
+      const double dx = problem.observation(i).x - predicted.x;
+      const double dy = problem.observation(i).y - predicted.y;
+      const double d2 = (dx * dx + dy * dy) / S;
+      if (d2 <= params_.greedy_gate_chi2) candidates.push_back({d2, static_cast<std::int32_t>(k), i});
+    }
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
+    return std::tie(a.d2, a.track, a.observation) < std::tie(b.d2, b.track, b.observation);
+  });
+  std::vector<bool> extended(lists.size(), false);
+  for (const auto& c : candidates) {
+    if (extended[static_cast<std::size_t>(c.track)] || used[static_cast<std::size_t>(c.observation)]) continue;
+    extended[static_cast<std::size_t>(c.track)] = true;
+    used[static_cast<std::size_t>(c.observation)] = true;
+    lists[static_cast<std::size_t>(c.track)].push_back(c.observation);
+  }
+  Partition start;
+  for (const auto& list : lists)
+    if (list.size() >= 2) start.push_back(list);
+
+  // 4. Algorithm 1: nmc iterations from there, keeping the best partition.
+  Sampler sampler(problem);
+  sampler.setState(start);
+  common::Stream rng(seed_, common::Purpose::kTracker, supernode_, newest);
+  sampler.run(params_.iterations, rng);
+  const Partition best = sampler.bestState();
+  last_step_ = StepStats{problem.size(), static_cast<std::int32_t>(best.size()), sampler.bestLogPosterior(),
+                         sampler.stats()};
+
+  // 5. Identities. A track that starts at an anchor is that anchor's track. Any other keeps the id
+  //    of the previous track it shares most observations with (each id once); the rest are new.
+  std::vector<common::TrackId> ids(best.size(), 0);
+  std::vector<std::int32_t> successor_of(tracks_.size(), -1);  // previous track -> new track
+  for (std::size_t n = 0; n < best.size(); ++n) {
+    const std::int32_t first = best[n].front();
+    const std::int32_t k = entries[static_cast<std::size_t>(first)].anchor_of;
+    if (k >= 0) {
+      ids[n] = tracks_[static_cast<std::size_t>(k)].id;
+      successor_of[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(n);
+    }
+  }
+  struct Overlap {
+    std::int32_t shared;
+    std::int32_t track;  // new
+    std::int32_t previous;
+  };
+  std::vector<Overlap> overlaps;
+  for (std::size_t n = 0; n < best.size(); ++n) {
+    if (ids[n] != 0) continue;
+    std::map<std::int32_t, std::int32_t> shared;
+    for (const auto i : best[n])
+      if (owner[static_cast<std::size_t>(i)] >= 0) ++shared[owner[static_cast<std::size_t>(i)]];
+    for (const auto& [previous, count] : shared) overlaps.push_back({count, static_cast<std::int32_t>(n), previous});
+  }
+  std::sort(overlaps.begin(), overlaps.end(), [&](const Overlap& a, const Overlap& b) {
+    if (a.shared != b.shared) return a.shared > b.shared;
+    const auto ida = tracks_[static_cast<std::size_t>(a.previous)].id;
+    const auto idb = tracks_[static_cast<std::size_t>(b.previous)].id;
+    return std::tie(ida, a.track) < std::tie(idb, b.track);
+  });
+  for (const auto& o : overlaps) {
+    if (ids[static_cast<std::size_t>(o.track)] != 0 || successor_of[static_cast<std::size_t>(o.previous)] >= 0) continue;
+    ids[static_cast<std::size_t>(o.track)] = tracks_[static_cast<std::size_t>(o.previous)].id;
+    successor_of[static_cast<std::size_t>(o.previous)] = o.track;
+  }
+
+  // 6. The new track set: ω̂'s tracks, plus previous anchored tracks nobody continued that a
+  //    later (or late) observation can still continue.
+  std::vector<LiveTrack> next;
+  std::vector<TrackState> states;
+  for (std::size_t n = 0; n < best.size(); ++n) {
+    LiveTrack track;
+    std::int32_t previous = -1;
+    for (std::size_t k = 0; k < successor_of.size(); ++k)
+      if (successor_of[k] == static_cast<std::int32_t>(n)) previous = static_cast<std::int32_t>(k);
+    track.id = ids[n] != 0 ? ids[n] : mintId();
+    problem.filterTrack(best[n], states);
+    std::size_t from = 0;
+    if (problem.isAnchor(best[n].front())) {
+      track.anchor = problem.observation(best[n].front());
+      from = 1;
+    }
+    if (previous >= 0) track.past_observations = tracks_[static_cast<std::size_t>(previous)].past_observations;
+    for (std::size_t m = from; m < best[n].size(); ++m) {
+      track.observations.push_back(entries[static_cast<std::size_t>(best[n][m])].key);
+      track.states.push_back(states[m]);
+    }
+    next.push_back(std::move(track));
+  }
+  const std::int32_t next_oldest = std::max(1, newest + 1 - window.windowSize() + 1);
+  for (std::size_t k = 0; k < tracks_.size(); ++k) {
+    auto& track = tracks_[k];
+    if (successor_of[k] >= 0 || !track.anchor || track.anchor->tick + dbar < next_oldest) continue;
+    track.observations.clear();  // whatever it had in the window now belongs elsewhere or is clutter
+    track.states.clear();
+    next.push_back(std::move(track));
+  }
+  std::sort(next.begin(), next.end(), [](const LiveTrack& a, const LiveTrack& b) { return a.id < b.id; });
+  tracks_ = std::move(next);
+}
+
+std::vector<common::TrackEstimate> McmcdaEngine::confirmedTracks() const {
+  std::vector<common::TrackEstimate> out;
+  for (const auto& track : tracks_) {
+    if (!isLive(track) || track.totalObservations() < params_.confirm_observations) continue;
+    const TrackState& last = track.lastState();
+    out.push_back(estimate(track.id, model_.predict(last, newest_tick_ - last.tick)));
+  }
+  return out;
+}
+
+std::vector<common::TrackEstimate> McmcdaEngine::tracksAt(std::int32_t tick) const {
+  std::vector<common::TrackEstimate> out;
+  for (const auto& track : tracks_) {
+    if (track.totalObservations() < params_.confirm_observations || track.observations.empty()) continue;
+    const std::int32_t first = track.anchor ? track.anchor->tick : track.observations.front().tick;
+    if (tick < first || tick > track.observations.back().tick) continue;
+    const TrackState* at = track.anchor ? &track.anchor->prior : nullptr;
+    for (std::size_t m = 0; m < track.observations.size() && track.observations[m].tick <= tick; ++m)
+      at = &track.states[m];
+    out.push_back(estimate(track.id, model_.predict(*at, tick - at->tick)));
+  }
+  return out;
+}
+
+std::vector<TrackPrediction> McmcdaEngine::predictions() const {
+  std::vector<TrackPrediction> out;
+  for (const auto& track : tracks_) {
+    if (!isLive(track)) continue;
+    const TrackState& last = track.lastState();
+    const TrackState next = model_.predict(last, newest_tick_ + 1 - last.tick);
+    out.push_back({track.id, {next.x, next.y}});
+  }
+  return out;
+}
+
+common::TrackHandoff McmcdaEngine::release(common::TrackId id, std::uint32_t to_supernode) {
+  const auto it = std::lower_bound(tracks_.begin(), tracks_.end(), id,
+                                   [](const LiveTrack& t, common::TrackId value) { return t.id < value; });
+  if (it == tracks_.end() || it->id != id)
+    throw std::invalid_argument("mcmcda: release of unknown track " + std::to_string(id));
+  const TrackState s = model_.predict(it->lastState(), newest_tick_ - it->lastState().tick);
+  common::TrackHandoff h;
+  h.track = id;
+  h.to_supernode = to_supernode;
+  h.last_tick = newest_tick_;
+  h.state = {s.x, s.y, s.vx, s.vy};
+  h.covariance = {s.cov.pp, 0, s.cov.pv, 0,  //
+                  0, s.cov.pp, 0, s.cov.pv,  //
+                  s.cov.pv, 0, s.cov.vv, 0,  //
+                  0, s.cov.pv, 0, s.cov.vv};
+  h.hits = it->totalObservations();
+  h.misses = newest_tick_ - it->lastTick();
+  h.confirmed = it->totalObservations() >= params_.confirm_observations;
+  for (const auto& key : it->observations) released_.insert(std::upper_bound(released_.begin(), released_.end(), key), key);
+  tracks_.erase(it);
+  return h;
+}
+
+}  // namespace wsn::supernode::mcmcda

@@ -1,0 +1,100 @@
+// The sliding-window MCMCDA supernode engine ("mcmcda", Oh et al. §VI): each tick it rebuilds the
+// association problem of the window, starts the chain from the previous best partition plus
+// handed-over tracks and a greedy guess for the newest tick, runs nmc iterations and keeps ω̂.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "supernode/engine.hpp"
+#include "supernode/mcmcda/problem.hpp"
+#include "supernode/mcmcda/sampler.hpp"
+
+namespace wsn::supernode::mcmcda {
+
+/// The engine's registration: name "mcmcda", parameters with defaults and ranges, factory.
+EngineSpec engineSpec();
+
+/// Resolved parameters (see engineSpec() for meaning, defaults and ranges).
+struct McmcdaParams {
+  ModelParams model;
+  std::int64_t iterations = 1000;        ///< nmc per tick
+  double greedy_gate_chi2 = 9.21;        ///< gate of the greedy start for the newest tick
+  std::int32_t confirm_observations = 3;  ///< observations (all time) before a track is reported
+
+  /// Reads scenario.tracker.params (resolved) and scenario.dynamics.
+  static McmcdaParams fromScenario(const common::Scenario& scenario);
+};
+
+/// Online MCMCDA. Association is revised inside the window only: when an observation leaves the
+/// window, its track's filtered state there becomes the track's *anchor* (Problem's prior element),
+/// so the chain continues the track under its id without re-deciding the past. Output is the
+/// filtered (not smoothed) state of each confirmed track, predicted to the newest tick, for every
+/// track whose last observation is at most d-bar - 1 ticks old (it may still continue); the same
+/// estimate for an earlier tick of the window is available through tracksAt().
+class McmcdaEngine final : public Engine {
+ public:
+  explicit McmcdaEngine(const EngineContext& context);
+
+  void adopt(const common::TrackHandoff& handoff) override;
+  void step(const ObservationWindow& window) override;
+  std::vector<common::TrackEstimate> confirmedTracks() const override;
+  std::vector<TrackPrediction> predictions() const override;
+  common::TrackHandoff release(common::TrackId track, std::uint32_t to_supernode) override;
+
+  /// Confirmed tracks of ω̂ that span `tick` (first element <= tick <= last observation), with the
+  /// filtered state at their last element at or before `tick`, predicted to `tick`. tick = newest
+  /// - L is the fixed-lag estimate with lag L (its association has had L more ticks of evidence).
+  std::vector<common::TrackEstimate> tracksAt(std::int32_t tick) const;
+
+  /// Statistics of the last step, for benchmarks and logs.
+  struct StepStats {
+    std::int32_t observations = 0;  ///< problem size, anchors included
+    std::int32_t tracks = 0;        ///< tracks in ω̂
+    double log_posterior = 0.0;     ///< of ω̂
+    MoveStats moves;                ///< of the last chain
+  };
+  const StepStats& lastStep() const { return last_step_; }
+  /// Handoffs ignored because their state or covariance was not finite.
+  std::uint64_t rejectedHandoffs() const { return rejected_handoffs_; }
+
+  /// An observation's identity across windows (a late arrival shifts slot indices, not this).
+  struct ObservationKey {
+    std::int32_t tick = 0;
+    common::SensorId sensor = 0;
+    double x = 0.0;
+    double y = 0.0;
+    auto operator<=>(const ObservationKey&) const = default;
+  };
+
+ private:
+  struct LiveTrack {
+    common::TrackId id = 0;
+    std::optional<ProblemObservation> anchor;  ///< the track's past, summarised
+    std::vector<ObservationKey> observations;  ///< in the window, tick order
+    std::vector<TrackState> states;            ///< filtered state at each of them
+    std::int32_t past_observations = 0;        ///< before the window (and at the sender, if handed over)
+
+    std::int32_t lastTick() const;
+    const TrackState& lastState() const;
+    std::int32_t totalObservations() const { return past_observations + static_cast<std::int32_t>(observations.size()); }
+  };
+
+  /// Tracks whose last element is recent enough to continue (at most d-bar - 1 ticks old).
+  bool isLive(const LiveTrack& track) const;
+  common::TrackId mintId();
+
+  std::uint32_t supernode_;
+  std::uint64_t seed_;
+  McmcdaParams params_;
+  Problem model_;  ///< no observations: the prediction model only
+  std::int32_t newest_tick_ = 0;
+  std::vector<LiveTrack> tracks_;  ///< sorted by id
+  std::vector<ObservationKey> released_;  ///< observations of tracks handed to a neighbour
+  std::uint64_t next_serial_ = 1;
+  std::uint64_t rejected_handoffs_ = 0;
+  StepStats last_step_;
+};
+
+}  // namespace wsn::supernode::mcmcda

@@ -1,0 +1,203 @@
+// Known answers of the online MCMCDA engine (Oh §VI) driven through SupernodeTracker: crossing
+// targets with and without clutter and misses, a late observation filling a gap, identities across
+// windows and a handed-over track continued under its id.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <set>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "common/rng.hpp"
+#include "supernode/mcmcda/mcmcda_engine.hpp"
+#include "supernode/supernode_tracker.hpp"
+#include "tests/supernode/test_support.hpp"
+
+namespace wsn::supernode::mcmcda {
+namespace {
+
+using common::Observation;
+using test::observation;
+
+common::Scenario mcmcdaScenario(std::int32_t window_size = 10) {
+  common::Scenario s;
+  s.source_path = "test.yaml";
+  s.supernodes = {{50.0, 50.0}};
+  s.tracker.engine = "mcmcda";
+  s.tracker.window_size = window_size;
+  s.tracker.params["measurement_sigma"] = {0.2, 0};
+  s.tracker.params["false_alarm_density"] = {1e-3, 0};
+  resolveEngineParams(s);
+  return s;
+}
+
+struct Target {
+  double x0, y0, vx, vy;
+  double x(std::int32_t t) const { return x0 + vx * (t - 1); }
+  double y(std::int32_t t) const { return y0 + vy * (t - 1); }
+};
+
+/// Noise of std. deviation sigma, deterministic per (target, tick).
+double jitter(std::uint64_t key, std::int32_t tick, double sigma) {
+  common::Stream s(99, common::Purpose::kSensorNoise, key, tick);
+  return sigma * s.normal();
+}
+
+/// Runs ticks 1..T through one supernode; `observations_at(t)` gives what is delivered at t.
+template <class Deliver>
+std::vector<SupernodeTracker::TickOutput> run(const common::Scenario& scenario, std::int32_t ticks, Deliver deliver) {
+  SupernodeTracker tracker(scenario, 0);
+  std::vector<SupernodeTracker::TickOutput> outputs;
+  for (std::int32_t t = 1; t <= ticks; ++t) outputs.push_back(tracker.step(t, deliver(t), {}));
+  return outputs;
+}
+
+/// For each target, the ids of the tracks nearest to it (within `radius`) from tick `from` on,
+/// except within 2 ticks of `crossing`, where targets sit on top of each other and "nearest" means
+/// nothing.
+std::map<int, std::set<common::TrackId>> idsPerTarget(const std::vector<SupernodeTracker::TickOutput>& outputs,
+                                                      const std::vector<Target>& targets, std::int32_t from,
+                                                      double radius, std::int32_t crossing = -100) {
+  std::map<int, std::set<common::TrackId>> ids;
+  for (const auto& out : outputs) {
+    if (out.tick < from || std::abs(out.tick - crossing) <= 2) continue;
+    for (std::size_t k = 0; k < targets.size(); ++k) {
+      const common::TrackEstimate* nearest = nullptr;
+      double best = radius;
+      for (const auto& track : out.tracks) {
+        const double d = std::hypot(track.x - targets[k].x(out.tick), track.y - targets[k].y(out.tick));
+        if (d < best) {
+          best = d;
+          nearest = &track;
+        }
+      }
+      if (nearest != nullptr) ids[static_cast<int>(k)].insert(nearest->track);
+    }
+  }
+  return ids;
+}
+
+}  // namespace
+
+TEST_CASE("mcmcda follows two crossing targets without clutter and keeps their identities", "[mcmcda]") {
+  const std::vector<Target> targets = {{40, 40, 1.0, 0.5}, {40, 50, 1.0, -0.5}};  // cross at t = 11
+  const auto outputs = run(mcmcdaScenario(), 25, [&](std::int32_t t) {
+    std::vector<Observation> obs;
+    for (std::size_t k = 0; k < targets.size(); ++k)
+      obs.push_back(observation(t, t, targets[k].x(t) + jitter(k, t, 0.1), targets[k].y(t) + jitter(k + 7, t, 0.1),
+                                static_cast<int>(k)));
+    return obs;
+  });
+  for (const auto& out : outputs)
+    if (out.tick >= 3) {
+      INFO("tick " << out.tick);
+      CHECK(out.tracks.size() == 2);
+    }
+  const auto ids = idsPerTarget(outputs, targets, 3, 1.0, 11);
+  CHECK(ids.at(0).size() == 1);
+  CHECK(ids.at(1).size() == 1);
+  CHECK(*ids.at(0).begin() != *ids.at(1).begin());
+}
+
+TEST_CASE("mcmcda follows crossing targets through clutter and missed detections", "[mcmcda]") {
+  const std::vector<Target> targets = {{40, 40, 1.0, 0.5}, {40, 50, 1.0, -0.5}};
+  const auto outputs = run(mcmcdaScenario(), 30, [&](std::int32_t t) {
+    std::vector<Observation> obs;
+    for (std::size_t k = 0; k < targets.size(); ++k) {
+      // Target 0 is missed every 4th tick, target 1 every 5th (never both at the crossing).
+      if ((k == 0 && t % 4 == 0) || (k == 1 && t % 5 == 0)) continue;
+      obs.push_back(observation(t, t, targets[k].x(t) + jitter(k, t, 0.1), targets[k].y(t) + jitter(k + 7, t, 0.1),
+                                static_cast<int>(k)));
+    }
+    // Two false alarms a tick, uniform over a 30 x 30 box around the action.
+    common::Stream clutter(5, common::Purpose::kSensorNoise, 1000, t);
+    for (int c = 0; c < 2; ++c) obs.push_back(observation(t, t, clutter.uniform(30, 60), clutter.uniform(30, 60)));
+    return obs;
+  });
+  std::int32_t right_count = 0;
+  for (const auto& out : outputs)
+    if (out.tick >= 5 && out.tracks.size() == 2) ++right_count;
+  CHECK(right_count >= 24);  // of 26 ticks
+  const auto ids = idsPerTarget(outputs, targets, 5, 1.0, 11);
+  CHECK(ids.at(0).size() == 1);
+  CHECK(ids.at(1).size() == 1);
+}
+
+TEST_CASE("mcmcda uses a late observation to fill the gap it belongs to", "[mcmcda]") {
+  const Target target{20, 20, 1.0, 1.0};
+  // The report of tick 6 arrives at tick 8 (in its own slot); ticks 5 and 7 are missed, so
+  // without it the gap 4 -> 8 would exceed d-bar = 3 and the track would break.
+  const auto deliver = [&](std::int32_t t) {
+    std::vector<Observation> obs;
+    if (t != 5 && t != 6 && t != 7) obs.push_back(observation(t, t, target.x(t), target.y(t)));
+    if (t == 8) obs.push_back(observation(6, 8, target.x(6), target.y(6)));
+    return obs;
+  };
+  const auto outputs = run(mcmcdaScenario(), 12, deliver);
+  std::set<common::TrackId> ids;
+  for (const auto& out : outputs)
+    for (const auto& track : out.tracks) ids.insert(track.track);
+  CHECK(ids.size() == 1);
+  // From tick 8 on the track is reported at the target's position.
+  for (const auto& out : outputs)
+    if (out.tick >= 8) {
+      REQUIRE(out.tracks.size() == 1);
+      CHECK(out.tracks[0].x == Approx(target.x(out.tick)).margin(0.3));
+    }
+}
+
+TEST_CASE("mcmcda keeps a track's id after its first observations leave the window", "[mcmcda]") {
+  const Target target{10, 10, 0.8, 0.3};
+  const auto outputs = run(mcmcdaScenario(5), 30, [&](std::int32_t t) {
+    return std::vector<Observation>{observation(t, t, target.x(t) + jitter(1, t, 0.1), target.y(t) + jitter(2, t, 0.1))};
+  });
+  std::set<common::TrackId> ids;
+  for (const auto& out : outputs)
+    for (const auto& track : out.tracks) ids.insert(track.track);
+  CHECK(ids.size() == 1);
+  CHECK(outputs.back().tracks.size() == 1);
+  CHECK(outputs.back().tracks[0].vx == Approx(0.8).margin(0.25));
+}
+
+TEST_CASE("mcmcda continues a handed-over track under its id", "[mcmcda]") {
+  const auto scenario = mcmcdaScenario();
+  SupernodeTracker tracker(scenario, 0);
+  const Target target{30, 30, 1.0, 0.0};
+  common::TrackHandoff handoff;
+  handoff.track = (std::uint64_t{3} << 48) | 17;  // minted by supernode 2
+  handoff.to_supernode = 0;
+  handoff.last_tick = 4;
+  handoff.state = {target.x(4), target.y(4), 1.0, 0.0};
+  handoff.covariance = {0.04, 0, 0.01, 0, 0, 0.04, 0, 0.01, 0.01, 0, 0.02, 0, 0, 0.01, 0, 0.02};
+  handoff.hits = 4;
+  handoff.confirmed = true;
+  for (std::int32_t t = 1; t <= 4; ++t) tracker.step(t, {}, {});
+  const std::vector<common::TrackHandoff> incoming = {handoff};
+  std::vector<SupernodeTracker::TickOutput> outputs;
+  for (std::int32_t t = 5; t <= 15; ++t) {
+    const std::vector<Observation> obs = {observation(t, t, target.x(t), target.y(t))};
+    outputs.push_back(tracker.step(t, obs, t == 5 ? std::span(incoming) : std::span<const common::TrackHandoff>()));
+  }
+  for (const auto& out : outputs) {
+    INFO("tick " << out.tick);
+    REQUIRE(out.tracks.size() == 1);
+    CHECK(out.tracks[0].track == handoff.track);
+  }
+}
+
+TEST_CASE("mcmcda is deterministic and its per-tick output does not depend on object history", "[mcmcda]") {
+  const std::vector<Target> targets = {{40, 40, 1.0, 0.5}, {40, 50, 1.0, -0.5}};
+  const auto deliver = [&](std::int32_t t) {
+    std::vector<Observation> obs;
+    for (std::size_t k = 0; k < targets.size(); ++k)
+      obs.push_back(observation(t, t, targets[k].x(t) + jitter(k, t, 0.3), targets[k].y(t) + jitter(k + 7, t, 0.3)));
+    common::Stream clutter(5, common::Purpose::kSensorNoise, 1000, t);
+    for (int c = 0; c < 3; ++c) obs.push_back(observation(t, t, clutter.uniform(30, 60), clutter.uniform(30, 60)));
+    return obs;
+  };
+  CHECK(run(mcmcdaScenario(), 25, deliver) == run(mcmcdaScenario(), 25, deliver));
+}
+
+}  // namespace wsn::supernode::mcmcda
