@@ -1,9 +1,11 @@
 // The scenario: every parameter of a run, named as in the papers, with the paper's values as
-// defaults. Loaded from YAML by loadScenario() with strict validation; written back fully
-// resolved (every default filled in) by resolvedScenarioYaml().
+// defaults. Loaded from YAML by loadScenario() with strict validation, optionally with
+// command-line overrides (`--set KEY=VALUE`); written back fully resolved (every default filled
+// in) by resolvedScenarioYaml().
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -138,5 +140,45 @@ Scenario parseScenario(const std::string& yaml_text, const std::string& name_for
 
 /// YAML with every field present (defaults filled in), which loads back to an equal scenario.
 std::string resolvedScenarioYaml(const Scenario& scenario);
+
+// ---------------------------------------------------------------------------------------------
+// Command-line overrides (wsntrack run/validate --set KEY=VALUE, tools/sweep.py).
+
+/// An override that could not be applied, or that made the scenario invalid: what() reads
+/// "--set KEY=VALUE: what was expected" (the loader's message without a line number, which would
+/// point into no file).
+class OverrideError : public ScenarioError {
+ public:
+  using ScenarioError::ScenarioError;
+};
+
+/// One `--set KEY=VALUE`. KEY is a dotted path into the scenario's YAML, list items as name[i]
+/// (`network.pte`, `tracker.params.gate_chi2`, `supernodes[1].x`); VALUE is read as one YAML
+/// scalar (`0.4` is a number, `gnn` and `"0.4"` are strings, an empty VALUE is null).
+struct ScenarioOverride {
+  std::string key;
+  std::string value;
+  std::string text() const { return "--set " + key + "=" + value; }  ///< as the user wrote it
+};
+
+/// Splits "KEY=VALUE" at the first '='; throws OverrideError when there is none or KEY is empty.
+ScenarioOverride parseOverride(const std::string& key_equals_value);
+
+/// Checks that belong to another module (the engine registry) and run on every loaded scenario;
+/// they may fill in defaults and throw ScenarioError "source_path:line: ...".
+using ScenarioCheck = std::function<void(Scenario&)>;
+
+/// Parses `yaml_text`, sets every override in order in its YAML tree and validates the result
+/// with the loader's checks and `check`, exactly as if the file had been edited: values the
+/// loader derives from others (sensor_model.beta, the default supernode) follow the overrides.
+/// A missing mapping on the way is created (the loader then rejects an unknown name); lists are
+/// never extended. Throws ScenarioError "name:line: ..." for a problem of the text itself (it
+/// reads the same without the overrides) and OverrideError naming the responsible --set otherwise.
+Scenario applyOverrides(const std::string& yaml_text, const std::string& name_for_errors,
+                        const std::vector<ScenarioOverride>& overrides, const ScenarioCheck& check = {});
+
+/// loadScenario() with overrides and further checks: applyOverrides() on the file's text.
+Scenario loadScenario(const std::string& path, const std::vector<ScenarioOverride>& overrides,
+                      const ScenarioCheck& check = {});
 
 }  // namespace wsn::common

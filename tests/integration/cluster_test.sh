@@ -123,6 +123,48 @@ case "$case_name" in
       [ "$rc" -eq 2 ] || { cat err.txt >&2; fail "'$bad' gave exit $rc, expected 2"; }
       grep -q -- "${bad%% *}" err.txt || { cat err.txt >&2; fail "message for '$bad' does not name the option"; }
     done
+    # A bad --set names the option as written, with the loader's message and no internal line number.
+    for bad in "foo|expected KEY=VALUE" "network.pte=abc|'network.pte' must be a number, got 'abc'" \
+               "network.nope=1|unknown key 'nope' in 'network'; expected one of: communication_range, pde, pte" \
+               "tracker.engine=nope|unknown tracker engine 'nope'"; do
+      set_arg="${bad%%|*}"; message="${bad#*|}"
+      "$wsntrack" run "$scenario" --quiet --out "$PWD/bad" --set run.ticks=5 --set "$set_arg" >/dev/null 2>err.txt; rc=$?
+      [ "$rc" -eq 2 ] || { cat err.txt >&2; fail "--set $set_arg gave exit $rc, expected 2"; }
+      grep -qF -- "wsntrack run: --set $set_arg: $message" err.txt \
+        || { cat err.txt >&2; fail "message for --set $set_arg lacks '--set $set_arg: $message'"; }
+    done
+    [ -e bad ] && fail "a rejected run created its run directory"
+    "$wsntrack" validate "$scenario" --set network.pte=abc >/dev/null 2>err.txt && fail "validate accepted --set network.pte=abc"
+    grep -qF -- "oh_quadrants.yaml: --set network.pte=abc: 'network.pte' must be a number" err.txt \
+      || { cat err.txt >&2; fail "validate message for a bad --set"; }
+    "$wsntrack" validate "$scenario" --set network.pte=0.4 >out.txt 2>err.txt \
+      || { cat err.txt >&2; fail "validate rejected --set network.pte=0.4"; }
+    grep -q "oh_quadrants.yaml with 1 --set: ok" out.txt || { cat out.txt >&2; fail "validate --set did not say ok"; }
+    no_leftovers ;;
+  sweep)
+    # tools/sweep.py: 2 grid points x 2 seeds of short gnn runs give a table row per grid point,
+    # a CSV row per run, and run directories that hold the overridden values.
+    "$src/tools/sweep.py" --scenario "$scenario" --seeds 1-2 --engines gnn --set run.ticks=10 \
+      --set-grid network.pte=0,0.4 --out "$PWD/sw" --wsntrack "$wsntrack" >table.md 2>sweep.err \
+      || { cat sweep.err >&2; fail "the sweep failed"; }
+    grep -q "^## Sweep of .*: seeds 1-2 (2 per cell)" table.md || { cat table.md >&2; fail "no heading with the seeds"; }
+    grep -q "^| pte | gnn eps_K | gnn eps_X | gnn OSPA |$" table.md || { cat table.md >&2; fail "table header"; }
+    [ "$(grep -cE '^\| (0|0\.4) \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \|$' table.md)" -eq 2 ] \
+      || { cat table.md >&2; fail "expected 2 table rows of means over both seeds"; }
+    cmp -s table.md sw/table.md || fail "stdout and sw/table.md differ"
+    [ "$(wc -l <sw/results.csv)" -eq 5 ] || { cat sw/results.csv >&2; fail "expected a header and 4 rows in results.csv"; }
+    head -1 sw/results.csv | grep -q "^engine,network.pte,seed,status,eps_k,eps_x,ospa," || fail "results.csv header"
+    [ "$(grep -c '^gnn,0\(\.4\)\?,[12],ok,[0-9]' sw/results.csv)" -eq 4 ] || { cat sw/results.csv >&2; fail "a run not ok"; }
+    [ "$(grep -c '^\[[1-4]/4\] gnn pte=' sweep.err)" -eq 4 ] || { cat sweep.err >&2; fail "no progress lines"; }
+    grep -q "^  ticks: 10$" sw/runs/gnn_pte-0.4_seed-2/scenario.yaml && grep -q "^  pte: 0.4$" sw/runs/gnn_pte-0.4_seed-2/scenario.yaml \
+      || fail "the run directory's scenario.yaml lacks the --set values"
+    # A run that fails is reported and the sweep goes on; the exit status says so.
+    printf '#!/bin/sh\ncase " $* " in *" run "*"--seed 2 "*) exit 3;; esac\nexec "%s" "$@"\n' "$wsntrack" >failing.sh
+    chmod +x failing.sh
+    "$src/tools/sweep.py" --scenario "$scenario" --seeds 1-2 --set run.ticks=5 --out "$PWD/sf" --wsntrack "$PWD/failing.sh" \
+      >table2.md 2>sweep2.err && fail "a sweep with a failed run exited 0"
+    grep -q "FAILED (exit 3).*sf/logs/gnn_seed-2.log" sweep2.err || { cat sweep2.err >&2; fail "the failed run is not reported"; }
+    grep -q "^| [0-9.]* (1/2) |" table2.md || { cat table2.md >&2; fail "the table does not count the failed run out"; }
     no_leftovers ;;
   launcher_killed)
     # The launcher killed with -9: every role process it started follows it (parent-death signal).
