@@ -15,12 +15,12 @@ struct ModelParams {
   double termination_probability = 0.02;  ///< pz: a target disappears at a tick
   double birth_density = 1e-5;            ///< lambda_b: new targets per unit area per tick
   double false_alarm_density = 6e-4;      ///< lambda_f: false reports per unit area per tick
-  double measurement_sigma = 0.5;         ///< r: R = r^2 I for a fused observation
+  double measurement_sigma = 0.2;         ///< r: R = r^2 I for a fused observation
   double process_noise_sigma = 0.15;      ///< q of eq. (8)
   double delta = 1.0;                     ///< sampling interval of eq. (8)
   double initial_velocity_sigma = 1.5;    ///< prior std. deviation of a new track's velocity per axis
   double max_speed = 3.0;                 ///< v-bar: distance per tick a target can cover
-  std::int32_t max_gap = 3;               ///< d-bar: largest tick gap between consecutive observations
+  std::int32_t max_gap = 5;               ///< d-bar: largest tick gap between consecutive observations
   double stop_probability = 0.1;          ///< gamma: the extension proposal stops after a step
 };
 
