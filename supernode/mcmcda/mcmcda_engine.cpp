@@ -78,6 +78,7 @@ EngineSpec engineSpec() {
        "gate (squared Mahalanobis distance) of the greedy start that joins the newest observations to tracks"},
       {"confirm_observations", static_cast<double>(d.confirm_observations), 2.0, 1000.0,
        "observations a track needs (in all, before the window included) before it is reported", true},
+
   };
   spec.create = [](const EngineContext& context) -> std::unique_ptr<Engine> {
     return std::make_unique<McmcdaEngine>(context);
@@ -117,6 +118,7 @@ const TrackState& McmcdaEngine::LiveTrack::lastState() const {
 McmcdaEngine::McmcdaEngine(const EngineContext& context)
     : supernode_(context.supernode),
       seed_(context.scenario.run.seed),
+      region_(context.scenario.region),
       params_(McmcdaParams::fromScenario(context.scenario)),
       model_(params_.model, {}, 0) {}
 
@@ -290,6 +292,7 @@ void McmcdaEngine::step(const ObservationWindow& window) {
   const Partition best = sampler.bestState();
   last_step_ = StepStats{problem.size(), static_cast<std::int32_t>(best.size()), sampler.bestLogPosterior(),
                          sampler.stats()};
+  learnDelivery(window, problem, best);
 
   // 5. Identities. A track that starts at an anchor is that anchor's track. Any other keeps the id
   //    of the previous track it shares most observations with (each id once); the rest are new.
@@ -363,12 +366,63 @@ void McmcdaEngine::step(const ObservationWindow& window) {
   tracks_ = std::move(next);
 }
 
+void McmcdaEngine::learnDelivery(const ObservationWindow& window, const Problem& problem, const Partition& best) {
+  // Learn from the oldest slot once it is final (the window is full: anything later is stale),
+  // and from each tick once.
+  const std::int32_t settled = window.newestTick() - window.windowSize() + 1;
+  if (settled < 1 || settled <= settled_tick_) return;
+  settled_tick_ = settled;
+  if (delay_counts_.empty()) delay_counts_.assign(static_cast<std::size_t>(window.windowSize()), 0.0);
+  for (const auto& o : window.slot(settled)) {
+    const auto delay = static_cast<std::size_t>(std::max(0, o.tick_delivered - o.tick_generated));
+    delay_counts_[std::min(delay, delay_counts_.size() - 1)] += 1.0;
+    delay_total_ += 1.0;
+  }
+  for (const auto& track : best) {
+    if (problem.tick(track.front()) > settled || problem.tick(track.back()) < settled) continue;
+    alive_ticks_ += 1.0;
+    for (const auto i : track)
+      if (problem.tick(i) == settled && !problem.isAnchor(i)) hits_ += 1.0;
+  }
+}
+
+double McmcdaEngine::deliveredBy(std::int32_t age) const {
+  // P(delay <= age) from the settled slots, with one pseudo-observation on time so that it starts
+  // at "no delays" rather than undefined.
+  double on_time = 1.0;
+  for (std::size_t d = 0; d < delay_counts_.size() && d <= static_cast<std::size_t>(age); ++d) on_time += delay_counts_[d];
+  return on_time / (delay_total_ + 1.0);
+}
+
+bool McmcdaEngine::probablyAlive(const LiveTrack& track) const {
+  // A target last seen m ticks ago is still there with probability alive / (alive + ended):
+  // it survived each of those ticks (1 - pz) and its report for the tick of age a was not seen,
+  // which has probability 1 - pd F(a) with F the delay distribution (a report of age a is in the
+  // window only if its delay was at most a); against having ended after some of them. pd is
+  // learnt like F, starting from the parameter with the weight of two ticks.
+  const double pz = params_.model.termination_probability;
+  const double pd = (hits_ + 2.0 * params_.model.detection_probability) / (alive_ticks_ + 2.0);
+  const std::int32_t unseen = newest_tick_ - track.lastTick();
+  double alive = 1.0;
+  double ended = 0.0;
+  for (std::int32_t i = 1; i <= unseen; ++i) {
+    ended += alive * pz;
+    alive *= (1.0 - pz) * (1.0 - pd * deliveredBy(unseen - i));
+  }
+  return alive >= ended;
+}
+
 std::vector<common::TrackEstimate> McmcdaEngine::confirmedTracks() const {
   std::vector<common::TrackEstimate> out;
   for (const auto& track : tracks_) {
-    if (!isLive(track) || track.totalObservations() < params_.confirm_observations) continue;
+    if (!isLive(track) || track.totalObservations() < params_.confirm_observations || !probablyAlive(track))
+      continue;
     const TrackState& last = track.lastState();
-    out.push_back(estimate(track.id, model_.predict(last, newest_tick_ - last.tick)));
+    const TrackState now = model_.predict(last, newest_tick_ - last.tick);
+    // No sensor sees a target outside the region: a track that coasted out of it followed a
+    // target that left.
+    if (!region_.contains({now.x, now.y})) continue;
+    out.push_back(estimate(track.id, now));
   }
   return out;
 }

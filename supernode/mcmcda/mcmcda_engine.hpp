@@ -31,8 +31,9 @@ struct McmcdaParams {
 /// window, its track's filtered state there becomes the track's *anchor* (Problem's prior element),
 /// so the chain continues the track under its id without re-deciding the past. Output is the
 /// filtered (not smoothed) state of each confirmed track, predicted to the newest tick, for every
-/// track whose last observation is at most d-bar - 1 ticks old (it may still continue); the same
-/// estimate for an earlier tick of the window is available through tracksAt().
+/// track that may still continue (last observation at most d-bar - 1 ticks old) and whose target
+/// is more likely there than gone (probablyAlive); the estimate for an earlier tick of the window
+/// is available through tracksAt().
 class McmcdaEngine final : public Engine {
  public:
   explicit McmcdaEngine(const EngineContext& context);
@@ -83,16 +84,31 @@ class McmcdaEngine final : public Engine {
 
   /// Tracks whose last element is recent enough to continue (at most d-bar - 1 ticks old).
   bool isLive(const LiveTrack& track) const;
+  /// The track's target is more likely still there than gone, given how long it has been unseen,
+  /// the detection probability and the delays learnt so far.
+  bool probablyAlive(const LiveTrack& track) const;
+  /// P(a report's delay <= age), learnt from settled slots.
+  double deliveredBy(std::int32_t age) const;
+  /// Updates the delay histogram and detection counts from the slot that just became final.
+  void learnDelivery(const ObservationWindow& window, const Problem& problem, const Partition& best);
   common::TrackId mintId();
 
   std::uint32_t supernode_;
   std::uint64_t seed_;
+  common::Rect region_;  ///< the surveillance region
   McmcdaParams params_;
   Problem model_;  ///< no observations: the prediction model only
   std::int32_t newest_tick_ = 0;
   std::vector<LiveTrack> tracks_;  ///< sorted by id
   std::vector<ObservationKey> released_;  ///< observations of tracks handed to a neighbour
   std::uint64_t next_serial_ = 1;
+  // What the engine learns about delivery: delays of the reports in settled slots, and how often
+  // a track of ω̂ that spans a settled tick has a report there.
+  std::int32_t settled_tick_ = 0;
+  std::vector<double> delay_counts_;
+  double delay_total_ = 0.0;
+  double alive_ticks_ = 0.0;
+  double hits_ = 0.0;
   std::uint64_t rejected_handoffs_ = 0;
   StepStats last_step_;
 };
