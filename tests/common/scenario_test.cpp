@@ -467,7 +467,7 @@ TEST_CASE("scenarios/oh_quadrants.yaml is Oh §VII-E", "[scenario][shipped]") {
   CHECK(s.network.pde == 0.3);
   CHECK(s.network.communication_range == 11.6);  // docs/NETWORK.md calibration
   CHECK(s.run.ticks == 100);
-  CHECK(s.tracker.engine == "gnn");
+  CHECK(s.tracker.engine == "mcmcda");
   CHECK(s.tracker.window_size == 10);
   requireRoundTrip(s);
 }

@@ -163,7 +163,7 @@ case "$case_name" in
     chmod +x failing.sh
     "$src/tools/sweep.py" --scenario "$scenario" --seeds 1-2 --set run.ticks=5 --out "$PWD/sf" --wsntrack "$PWD/failing.sh" \
       >table2.md 2>sweep2.err && fail "a sweep with a failed run exited 0"
-    grep -q "FAILED (exit 3).*sf/logs/gnn_seed-2.log" sweep2.err || { cat sweep2.err >&2; fail "the failed run is not reported"; }
+    grep -q "FAILED (exit 3).*sf/logs/mcmcda_seed-2.log" sweep2.err || { cat sweep2.err >&2; fail "the failed run is not reported"; }
     grep -q "^| [0-9.]* (1/2) |" table2.md || { cat table2.md >&2; fail "the table does not count the failed run out"; }
     no_leftovers ;;
   launcher_killed)
