@@ -100,36 +100,6 @@ Problem::Problem(const ModelParams& params, std::vector<ProblemObservation> obse
     for (const std::int32_t j : successors(i)) pred_[static_cast<std::size_t>(fill[static_cast<std::size_t>(j)]++)] = i;
 }
 
-bool Problem::linked(std::int32_t i, std::int32_t j) const {
-  const auto& a = observations_[static_cast<std::size_t>(i)];
-  const auto& b = observations_[static_cast<std::size_t>(j)];
-  const std::int32_t gap = b.tick - a.tick;
-  if (b.anchor || gap < 1 || gap > params_.max_gap) return false;
-  const double reach = params_.max_speed * gap;
-  const double dx = b.x - a.x;
-  const double dy = b.y - a.y;
-  return dx * dx + dy * dy <= reach * reach;
-}
-
-std::span<const std::int32_t> Problem::successors(std::int32_t i, std::int32_t gap) const {
-  const std::size_t k = static_cast<std::size_t>(i * params_.max_gap + gap);
-  const auto begin = static_cast<std::size_t>(succ_start_[k - 1]);
-  const auto end = static_cast<std::size_t>(succ_start_[k]);
-  return std::span<const std::int32_t>(succ_).subspan(begin, end - begin);
-}
-
-std::span<const std::int32_t> Problem::successors(std::int32_t i) const {
-  const auto begin = static_cast<std::size_t>(succ_start_[static_cast<std::size_t>(i * params_.max_gap)]);
-  const auto end = static_cast<std::size_t>(succ_start_[static_cast<std::size_t>((i + 1) * params_.max_gap)]);
-  return std::span<const std::int32_t>(succ_).subspan(begin, end - begin);
-}
-
-std::span<const std::int32_t> Problem::predecessors(std::int32_t j) const {
-  const auto begin = static_cast<std::size_t>(pred_start_[static_cast<std::size_t>(j)]);
-  const auto end = static_cast<std::size_t>(pred_start_[static_cast<std::size_t>(j) + 1]);
-  return std::span<const std::int32_t>(pred_).subspan(begin, end - begin);
-}
-
 TrackState Problem::initialState(std::int32_t i) const {
   const auto& o = observation(i);
   TrackState s;

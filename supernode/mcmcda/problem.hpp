@@ -69,13 +69,31 @@ class Problem {
 
   /// True when j may directly follow i in a track: 1 <= t_j - t_i <= d-bar, |y_j - y_i| <=
   /// v-bar (t_j - t_i), and j is not an anchor.
-  bool linked(std::int32_t i, std::int32_t j) const;
+  /// (Inline, with the lists below: the sampler's inner loops live on them.)
+  bool linked(std::int32_t i, std::int32_t j) const {
+    const auto& a = observations_[static_cast<std::size_t>(i)];
+    const auto& b = observations_[static_cast<std::size_t>(j)];
+    const std::int32_t gap = b.tick - a.tick;
+    if (b.anchor || gap < 1 || gap > params_.max_gap) return false;
+    const double reach = params_.max_speed * gap;
+    const double dx = b.x - a.x;
+    const double dy = b.y - a.y;
+    return dx * dx + dy * dy <= reach * reach;
+  }
   /// Candidate successors of i at gap d (1 <= d <= d-bar), in index order.
-  std::span<const std::int32_t> successors(std::int32_t i, std::int32_t gap) const;
+  std::span<const std::int32_t> successors(std::int32_t i, std::int32_t gap) const {
+    const std::size_t k = static_cast<std::size_t>(i * params_.max_gap + gap);
+    return range(succ_, succ_start_[k - 1], succ_start_[k]);
+  }
   /// All candidate successors of i, gap by gap.
-  std::span<const std::int32_t> successors(std::int32_t i) const;
+  std::span<const std::int32_t> successors(std::int32_t i) const {
+    return range(succ_, succ_start_[static_cast<std::size_t>(i * params_.max_gap)],
+                 succ_start_[static_cast<std::size_t>((i + 1) * params_.max_gap)]);
+  }
   /// Candidate predecessors of j (every i with linked(i, j)).
-  std::span<const std::int32_t> predecessors(std::int32_t j) const;
+  std::span<const std::int32_t> predecessors(std::int32_t j) const {
+    return range(pred_, pred_start_[static_cast<std::size_t>(j)], pred_start_[static_cast<std::size_t>(j) + 1]);
+  }
 
   /// log pi contribution of a track relative to leaving its observations unassigned: eq. (3)'s
   /// prior terms and Kalman likelihood for the track minus the terms of its observations as false
@@ -100,6 +118,9 @@ class Problem {
     AxisCovariance q;  // exact eq. (8) process noise accumulated over the gap
   };
   const GapModel& gapModel(std::int32_t gap) const { return gaps_[static_cast<std::size_t>(gap)]; }
+  static std::span<const std::int32_t> range(const std::vector<std::int32_t>& v, std::int32_t begin, std::int32_t end) {
+    return {v.data() + begin, static_cast<std::size_t>(end - begin)};
+  }
 
   ModelParams params_;
   std::vector<ProblemObservation> observations_;

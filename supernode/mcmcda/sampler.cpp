@@ -18,8 +18,6 @@ double logSumExp(double a, double b) {
   return hi + std::log1p(std::exp(std::min(a, b) - hi));
 }
 
-double logCount(std::int64_t n) { return std::log(static_cast<double>(n)); }
-
 }  // namespace
 
 std::string_view moveName(Move move) {
@@ -81,6 +79,12 @@ Sampler::Sampler(const Problem& problem) : problem_(problem) {
   std::size_t links = 0;
   for (std::int32_t i = 0; i < problem.size(); ++i) links += problem.successors(i).size();
   counts_.assign(static_cast<std::size_t>(problem.params().max_gap) + 1, 0);
+  // Every count a proposal divides by (observations, tracks, merge pairs, switch cuts) is below
+  // this size, so logCount never calls log() in the loop.
+  log_count_.resize(std::max({n, links, longest * longest}) + 2);
+  for (std::size_t k = 1; k < log_count_.size(); ++k) log_count_[k] = std::log(static_cast<double>(k));
+  log_stop_ = std::log(problem.params().stop_probability);
+  log_go_on_ = std::log1p(-problem.params().stop_probability);
   scratch_list_.reserve(n);
   scratch_pairs_.reserve(links);
   for (auto* buffer : {&tail_, &target_a_, &target_b_, &backup_a_, &backup_b_}) buffer->reserve(longest);
@@ -190,8 +194,10 @@ double Sampler::logMoveProbability(Move move, std::int32_t tracks) const {
   // Oh et al. (TAC 2009): birth only when K = 0; with K = 1 the six moves that need one track,
   // uniformly; with K >= 2 all eight, uniformly.
   if (tracks == 0) return move == Move::kBirth ? 0.0 : kNegInf;
-  if (tracks == 1) return (move == Move::kMerge || move == Move::kSwitch) ? kNegInf : -std::log(6.0);
-  return -std::log(8.0);
+  static const double kLogSixth = -std::log(6.0);
+  static const double kLogEighth = -std::log(8.0);
+  if (tracks == 1) return (move == Move::kMerge || move == Move::kSwitch) ? kNegInf : kLogSixth;
+  return kLogEighth;
 }
 
 bool Sampler::accept(double log_ratio, common::Stream& rng) {
@@ -228,10 +234,10 @@ double Sampler::sampleExtension(std::int32_t from, bool forced, const Free& free
     }
     if (may_stop) {
       if (rng.uniform() < gamma) {
-        log_q += std::log(gamma);
+        log_q += log_stop_;
         break;
       }
-      log_q += std::log1p(-gamma);
+      log_q += log_go_on_;
     }
     auto which_gap = static_cast<std::int32_t>(rng.below(static_cast<std::uint64_t>(gaps)));
     std::int32_t gap = 1;
@@ -256,7 +262,6 @@ template <class Free>
 double Sampler::logExtension(std::int32_t from, std::span<const std::int32_t> tail, bool forced,
                              const Free& free) const {
   if (forced && tail.empty()) return kNegInf;
-  const double gamma = problem_.params().stop_probability;
   double log_q = 0.0;
   std::int32_t current = from;
   for (std::size_t k = 0; k < tail.size(); ++k) {
@@ -264,11 +269,11 @@ double Sampler::logExtension(std::int32_t from, std::span<const std::int32_t> ta
     if (!free(next) || !problem_.linked(current, next)) return kNegInf;
     const std::int32_t gaps = freeGaps(current, free);
     const std::int32_t gap = problem_.tick(next) - problem_.tick(current);
-    if (!(forced && k == 0)) log_q += std::log1p(-gamma);
+    if (!(forced && k == 0)) log_q += log_go_on_;
     log_q -= logCount(gaps) + logCount(counts_[static_cast<std::size_t>(gap)]);
     current = next;
   }
-  if (freeGaps(current, free) > 0) log_q += std::log(gamma);  // else the stop was certain
+  if (freeGaps(current, free) > 0) log_q += log_stop_;  // else the stop was certain
   return log_q;
 }
 

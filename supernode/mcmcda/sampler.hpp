@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <string_view>
@@ -112,6 +113,10 @@ class Sampler {
   /// Valid (p, q) cut points of a switch between tracks a and b; the k-th one into *pick when k >= 0.
   std::int32_t switchPoints(std::int32_t a, std::int32_t b, std::int32_t k, std::array<std::int32_t, 2>* pick) const;
   double logMoveProbability(Move move, std::int32_t tracks) const;
+  double logCount(std::int64_t n) const {
+    return static_cast<std::size_t>(n) < log_count_.size() ? log_count_[static_cast<std::size_t>(n)]
+                                                           : std::log(static_cast<double>(n));
+  }
   bool accept(double log_ratio, common::Stream& rng);
 
   std::int32_t addTrack(std::span<const std::int32_t> obs, double score);
@@ -128,6 +133,9 @@ class Sampler {
   std::vector<std::int32_t> best_track_of_;
   double best_log_posterior_ = 0.0;
   MoveStats stats_;
+  std::vector<double> log_count_;  // log(k), k < size
+  double log_stop_ = 0.0;           // log gamma
+  double log_go_on_ = 0.0;          // log(1 - gamma)
   // Scratch, sized once in the constructor so that no iteration allocates.
   mutable std::vector<std::int32_t> counts_;
   mutable std::vector<std::int32_t> scratch_list_;
