@@ -70,6 +70,12 @@ const std::vector<EngineSpec>& engineRegistry();
 /// value out of range.
 void resolveEngineParams(common::Scenario& scenario);
 
+/// scenario.tracker.params[name] (resolved params hold every parameter), else `fallback`.
+inline double engineParam(const common::Scenario& scenario, const std::string& name, double fallback) {
+  const auto it = scenario.tracker.params.find(name);
+  return it == scenario.tracker.params.end() ? fallback : it->second.value;
+}
+
 /// Builds the engine named in the (resolved) scenario.
 std::unique_ptr<Engine> makeEngine(const EngineContext& context);
 

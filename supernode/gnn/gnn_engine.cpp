@@ -21,11 +21,6 @@ constexpr std::uint64_t kTickBits = 24;
 constexpr std::uint64_t kSensorBits = 24;
 constexpr std::uint64_t kSupernodeShift = kTickBits + kSensorBits;
 
-double paramValue(const common::Scenario& scenario, const std::string& name, double fallback) {
-  const auto it = scenario.tracker.params.find(name);
-  return it == scenario.tracker.params.end() ? fallback : it->second.value;
-}
-
 bool byId(const GnnEngine::Track& a, const GnnEngine::Track& b) { return a.id < b.id; }
 
 }  // namespace
@@ -59,13 +54,13 @@ EngineSpec engineSpec() {
 
 GnnParams GnnParams::fromScenario(const common::Scenario& scenario) {
   GnnParams p;
-  p.measurement_sigma = paramValue(scenario, "measurement_sigma", p.measurement_sigma);
-  p.gate_chi2 = paramValue(scenario, "gate_chi2", p.gate_chi2);
-  p.confirm_hits = static_cast<std::int32_t>(std::lround(paramValue(scenario, "confirm_hits", p.confirm_hits)));
+  p.measurement_sigma = engineParam(scenario, "measurement_sigma", p.measurement_sigma);
+  p.gate_chi2 = engineParam(scenario, "gate_chi2", p.gate_chi2);
+  p.confirm_hits = static_cast<std::int32_t>(std::lround(engineParam(scenario, "confirm_hits", p.confirm_hits)));
   p.confirm_window =
-      static_cast<std::int32_t>(std::lround(paramValue(scenario, "confirm_window", p.confirm_window)));
-  p.max_misses = static_cast<std::int32_t>(std::lround(paramValue(scenario, "max_misses", p.max_misses)));
-  p.initial_velocity_sigma = paramValue(scenario, "initial_velocity_sigma", p.initial_velocity_sigma);
+      static_cast<std::int32_t>(std::lround(engineParam(scenario, "confirm_window", p.confirm_window)));
+  p.max_misses = static_cast<std::int32_t>(std::lround(engineParam(scenario, "max_misses", p.max_misses)));
+  p.initial_velocity_sigma = engineParam(scenario, "initial_velocity_sigma", p.initial_velocity_sigma);
   return p;
 }
 

@@ -15,11 +15,6 @@ namespace {
 
 constexpr std::uint64_t kSupernodeShift = 48;
 
-double param(const common::Scenario& scenario, const std::string& name, double fallback) {
-  const auto it = scenario.tracker.params.find(name);
-  return it == scenario.tracker.params.end() ? fallback : it->second.value;
-}
-
 TrackState stateFromHandoff(const common::TrackHandoff& h) {
   // Both engines' filters are axis-symmetric (R = r^2 I, Q and the prior per axis alike), so the
   // x and y blocks of P agree; averaging them makes a foreign or rounded covariance symmetric too.
@@ -78,7 +73,6 @@ EngineSpec engineSpec() {
        "gate (squared Mahalanobis distance) of the greedy start that joins the newest observations to tracks"},
       {"confirm_observations", static_cast<double>(d.confirm_observations), 2.0, 1000.0,
        "observations a track needs (in all, before the window included) before it is reported", true},
-
   };
   spec.create = [](const EngineContext& context) -> std::unique_ptr<Engine> {
     return std::make_unique<McmcdaEngine>(context);
@@ -89,21 +83,21 @@ EngineSpec engineSpec() {
 McmcdaParams McmcdaParams::fromScenario(const common::Scenario& scenario) {
   McmcdaParams p;
   auto& m = p.model;
-  p.iterations = std::llround(param(scenario, "iterations", static_cast<double>(p.iterations)));
-  m.detection_probability = param(scenario, "detection_probability", m.detection_probability);
-  m.termination_probability = param(scenario, "termination_probability", m.termination_probability);
-  m.birth_density = param(scenario, "birth_density", m.birth_density);
-  m.false_alarm_density = param(scenario, "false_alarm_density", m.false_alarm_density);
-  m.measurement_sigma = param(scenario, "measurement_sigma", m.measurement_sigma);
-  m.initial_velocity_sigma = param(scenario, "initial_velocity_sigma", m.initial_velocity_sigma);
-  m.max_speed = param(scenario, "max_speed", m.max_speed);
-  m.max_gap = static_cast<std::int32_t>(std::lround(param(scenario, "max_gap", m.max_gap)));
-  m.stop_probability = param(scenario, "stop_probability", m.stop_probability);
+  p.iterations = std::llround(engineParam(scenario, "iterations", static_cast<double>(p.iterations)));
+  m.detection_probability = engineParam(scenario, "detection_probability", m.detection_probability);
+  m.termination_probability = engineParam(scenario, "termination_probability", m.termination_probability);
+  m.birth_density = engineParam(scenario, "birth_density", m.birth_density);
+  m.false_alarm_density = engineParam(scenario, "false_alarm_density", m.false_alarm_density);
+  m.measurement_sigma = engineParam(scenario, "measurement_sigma", m.measurement_sigma);
+  m.initial_velocity_sigma = engineParam(scenario, "initial_velocity_sigma", m.initial_velocity_sigma);
+  m.max_speed = engineParam(scenario, "max_speed", m.max_speed);
+  m.max_gap = static_cast<std::int32_t>(std::lround(engineParam(scenario, "max_gap", m.max_gap)));
+  m.stop_probability = engineParam(scenario, "stop_probability", m.stop_probability);
   m.process_noise_sigma = scenario.dynamics.process_noise_sigma;
   m.delta = scenario.dynamics.delta;
-  p.greedy_gate_chi2 = param(scenario, "greedy_gate_chi2", p.greedy_gate_chi2);
+  p.greedy_gate_chi2 = engineParam(scenario, "greedy_gate_chi2", p.greedy_gate_chi2);
   p.confirm_observations =
-      static_cast<std::int32_t>(std::lround(param(scenario, "confirm_observations", p.confirm_observations)));
+      static_cast<std::int32_t>(std::lround(engineParam(scenario, "confirm_observations", p.confirm_observations)));
   return p;
 }
 
