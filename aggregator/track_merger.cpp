@@ -62,12 +62,16 @@ TrackEstimate meanState(const Cluster& cluster, TrackId id) {
     merged.y += member.track.y;
     merged.vx += member.track.vx;
     merged.vy += member.track.vy;
+    for (std::size_t k = 0; k < merged.covariance.size(); ++k) merged.covariance[k] += member.track.covariance[k];
   }
   const auto n = static_cast<double>(cluster.members.size());
   merged.x /= n;
   merged.y /= n;
   merged.vx /= n;
   merged.vy /= n;
+  // The members' mean covariance: conservative for a mean of estimates of one target (their
+  // errors are correlated through shared observations, so the 1/n of independent ones would lie).
+  for (auto& value : merged.covariance) value /= n;
   return merged;
 }
 

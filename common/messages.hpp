@@ -46,13 +46,14 @@ struct Observation {
   friend bool operator==(const Observation&, const Observation&) = default;
 };
 
-/// A track's estimate at one tick.
+/// A track's estimate at one tick: the state and its covariance.
 struct TrackEstimate {
   TrackId track = 0;
   double x = 0.0;
   double y = 0.0;
   double vx = 0.0;
   double vy = 0.0;
+  std::array<double, 16> covariance{};  ///< row-major 4x4 over (x, y, vx, vy); zero when unknown
   friend bool operator==(const TrackEstimate&, const TrackEstimate&) = default;
 };
 

@@ -1,6 +1,7 @@
 #include "common/dds/codec.hpp"
 
 #include <algorithm>
+#include <iterator>
 
 namespace wsn::dds {
 namespace {
@@ -63,13 +64,17 @@ std::vector<common::Observation> decode(const dds_sequence_wsn_msg_Observation& 
 
 std::vector<wsn_msg_TrackEstimate> encode(const std::vector<common::TrackEstimate>& tracks) {
   return mapVector<wsn_msg_TrackEstimate>(tracks, [](const common::TrackEstimate& t) {
-    return wsn_msg_TrackEstimate{t.track, t.x, t.y, t.vx, t.vy};
+    wsn_msg_TrackEstimate w{t.track, t.x, t.y, t.vx, t.vy, {}};
+    std::copy(t.covariance.begin(), t.covariance.end(), w.covariance);
+    return w;
   });
 }
 
 std::vector<common::TrackEstimate> decode(const dds_sequence_wsn_msg_TrackEstimate& seq) {
   return mapSequence<common::TrackEstimate>(seq, [](const wsn_msg_TrackEstimate& t) {
-    return common::TrackEstimate{t.track, t.x, t.y, t.vx, t.vy};
+    common::TrackEstimate e{t.track, t.x, t.y, t.vx, t.vy, {}};
+    std::copy(std::begin(t.covariance), std::end(t.covariance), e.covariance.begin());
+    return e;
   });
 }
 

@@ -318,7 +318,11 @@ std::vector<common::TrackEstimate> GnnEngine::confirmedTracks() const {
   for (const auto& track : current_) {
     if (!track.confirmed) continue;
     const auto& x = track.state.x;
-    out.push_back({track.id, x(kX), x(kY), x(kVx), x(kVy)});
+    common::TrackEstimate estimate{track.id, x(kX), x(kY), x(kVx), x(kVy), {}};
+    for (int r = 0; r < common::kStateDim; ++r)
+      for (int c = 0; c < common::kStateDim; ++c)
+        estimate.covariance[static_cast<std::size_t>(r * common::kStateDim + c)] = track.state.P(r, c);
+    out.push_back(estimate);
   }
   return out;
 }

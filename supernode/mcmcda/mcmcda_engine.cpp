@@ -1,6 +1,7 @@
 #include "supernode/mcmcda/mcmcda_engine.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -37,7 +38,17 @@ bool finite(const TrackState& s) {
          s.cov.vv >= 0.0;
 }
 
-common::TrackEstimate estimate(common::TrackId id, const TrackState& s) { return {id, s.x, s.y, s.vx, s.vy}; }
+/// The per-axis covariance as the 4 x 4 of (x, y, vx, vy): the axes are independent.
+std::array<double, 16> fullCovariance(const AxisCovariance& c) {
+  return {c.pp, 0, c.pv, 0,  //
+          0, c.pp, 0, c.pv,  //
+          c.pv, 0, c.vv, 0,  //
+          0, c.pv, 0, c.vv};
+}
+
+common::TrackEstimate estimate(common::TrackId id, const TrackState& s) {
+  return {id, s.x, s.y, s.vx, s.vy, fullCovariance(s.cov)};
+}
 
 }  // namespace
 
@@ -101,12 +112,12 @@ McmcdaParams McmcdaParams::fromScenario(const common::Scenario& scenario) {
   return p;
 }
 
-std::int32_t McmcdaEngine::LiveTrack::lastTick() const {
-  return observations.empty() ? anchor->tick : observations.back().tick;
+std::int32_t McmcdaEngine::LiveTrack::lastSeenTick() const {
+  return observations.empty() ? anchor.value().tick - anchor_misses : observations.back().tick;
 }
 
 const TrackState& McmcdaEngine::LiveTrack::lastState() const {
-  return states.empty() ? anchor->prior : states.back();
+  return states.empty() ? anchor.value().prior : states.back();
 }
 
 McmcdaEngine::McmcdaEngine(const EngineContext& context)
@@ -121,7 +132,11 @@ common::TrackId McmcdaEngine::mintId() {
 }
 
 bool McmcdaEngine::isLive(const LiveTrack& track) const {
-  return newest_tick_ - track.lastTick() <= params_.model.max_gap - 1;
+  return newest_tick_ - track.lastSeenTick() <= params_.model.max_gap - 1;
+}
+
+bool McmcdaEngine::canContinue(const LiveTrack& track, std::int32_t oldest) const {
+  return track.lastSeenTick() + params_.model.max_gap >= oldest;
 }
 
 void McmcdaEngine::adopt(const common::TrackHandoff& handoff) {
@@ -139,6 +154,9 @@ void McmcdaEngine::adopt(const common::TrackHandoff& handoff) {
   anchor.anchor = true;
   anchor.prior = state;
   track.anchor = anchor;
+  // The sender's state is a prediction to last_tick; its target was last seen `misses` ticks
+  // before, and the coasting budget counts from there.
+  track.anchor_misses = std::max(0, handoff.misses);
   track.past_observations = handoff.hits;
   const auto it = std::lower_bound(tracks_.begin(), tracks_.end(), track.id,
                                    [](const LiveTrack& t, common::TrackId id) { return t.id < id; });
@@ -151,12 +169,27 @@ void McmcdaEngine::adopt(const common::TrackHandoff& handoff) {
 void McmcdaEngine::step(const ObservationWindow& window) {
   const std::int32_t newest = window.newestTick();
   if (newest < 1) return;
-  const std::int32_t oldest = window.oldestTick();
-  const std::int32_t dbar = params_.model.max_gap;
   newest_tick_ = newest;
+  commitLeavingObservations(window.oldestTick());
+  const WindowProblem wp = buildProblem(window);
+  std::vector<std::int32_t> owner;
+  const Partition start = startState(wp, owner);
 
-  // 1. Observations that left the window are committed: the track's filtered state at the last of
-  //    them becomes its anchor. A track that can no longer be continued inside the window ends.
+  // Algorithm 1: nmc iterations from there, keeping the best partition.
+  Sampler sampler(wp.problem);
+  sampler.setState(start);
+  common::Stream rng(seed_, common::Purpose::kTracker, supernode_, newest);
+  sampler.run(params_.iterations, rng);
+  const Partition best = sampler.bestState();
+  last_step_ = StepStats{wp.problem.size(), static_cast<std::int32_t>(best.size()), sampler.bestLogPosterior(),
+                         sampler.stats()};
+  learnDelivery(window, wp.problem, best);
+  adoptBest(window, wp, best, owner);
+}
+
+void McmcdaEngine::commitLeavingObservations(std::int32_t oldest) {
+  // Observations that leave the window are committed: the track's filtered state at the last of
+  // them becomes its anchor, so the chain continues the track without re-deciding its past.
   for (auto& track : tracks_) {
     std::size_t gone = 0;
     while (gone < track.observations.size() && track.observations[gone].tick < oldest) ++gone;
@@ -169,24 +202,27 @@ void McmcdaEngine::step(const ObservationWindow& window) {
     anchor.anchor = true;
     anchor.prior = track.states[gone - 1];
     track.anchor = anchor;
+    track.anchor_misses = 0;
     track.past_observations += static_cast<std::int32_t>(gone);
     track.observations.erase(track.observations.begin(), track.observations.begin() + static_cast<std::ptrdiff_t>(gone));
     track.states.erase(track.states.begin(), track.states.begin() + static_cast<std::ptrdiff_t>(gone));
   }
-  std::erase_if(tracks_, [&](const LiveTrack& t) { return t.observations.empty() && t.anchor->tick + dbar < oldest; });
+  std::erase_if(tracks_, [&](const LiveTrack& t) { return t.observations.empty() && !canContinue(t, oldest); });
   std::erase_if(released_, [&](const ObservationKey& k) { return k.tick < oldest; });
+}
 
-  // 2. The problem: one anchor per track that has one, then the window's observations (those of
-  //    tracks handed to a neighbour excluded: the neighbour's track accounts for them).
+McmcdaEngine::WindowProblem McmcdaEngine::buildProblem(const ObservationWindow& window) const {
+  // One anchor per track that has one, then the window's observations — except those of tracks
+  // handed to a neighbour: the neighbour's track accounts for them.
   struct Entry {
     ProblemObservation observation;
     ObservationKey key;
-    std::int32_t anchor_of = -1;  // index into tracks_
+    std::int32_t anchor_of = -1;
   };
   std::vector<Entry> entries;
   for (std::size_t k = 0; k < tracks_.size(); ++k)
     if (tracks_[k].anchor) entries.push_back({*tracks_[k].anchor, {}, static_cast<std::int32_t>(k)});
-  for (std::int32_t t = oldest; t <= newest; ++t)
+  for (std::int32_t t = window.oldestTick(); t <= window.newestTick(); ++t)
     for (const auto& o : window.slot(t)) {
       const ObservationKey key{o.tick_generated, o.sensor, o.x, o.y};
       if (std::binary_search(released_.begin(), released_.end(), key)) continue;
@@ -196,20 +232,28 @@ void McmcdaEngine::step(const ObservationWindow& window) {
                    [](const Entry& a, const Entry& b) { return a.observation.tick < b.observation.tick; });
   std::vector<ProblemObservation> observations;
   observations.reserve(entries.size());
-  for (const auto& e : entries) observations.push_back(e.observation);
-  const Problem problem(params_.model, std::move(observations), newest);
-
-  // Observation key -> problem index (first unused match, so duplicate reports stay distinct).
-  std::vector<std::pair<ObservationKey, std::int32_t>> index_of;
-  std::vector<std::int32_t> anchor_index(tracks_.size(), -1);
+  WindowProblem wp{Problem(params_.model, {}, 0), {}, {}, std::vector<std::int32_t>(tracks_.size(), -1)};
   for (std::size_t i = 0; i < entries.size(); ++i) {
+    observations.push_back(entries[i].observation);
+    wp.keys.push_back(entries[i].key);
+    wp.anchor_of.push_back(entries[i].anchor_of);
     if (entries[i].anchor_of >= 0)
-      anchor_index[static_cast<std::size_t>(entries[i].anchor_of)] = static_cast<std::int32_t>(i);
-    else
-      index_of.emplace_back(entries[i].key, static_cast<std::int32_t>(i));
+      wp.anchor_index[static_cast<std::size_t>(entries[i].anchor_of)] = static_cast<std::int32_t>(i);
   }
+  wp.problem = Problem(params_.model, std::move(observations), window.newestTick());
+  return wp;
+}
+
+Partition McmcdaEngine::startState(const WindowProblem& wp, std::vector<std::int32_t>& owner) const {
+  const Problem& problem = wp.problem;
+  const auto n = static_cast<std::size_t>(problem.size());
+
+  // Observation key -> problem index (first unclaimed match, so duplicate reports stay distinct).
+  std::vector<std::pair<ObservationKey, std::int32_t>> index_of;
+  for (std::size_t i = 0; i < n; ++i)
+    if (wp.anchor_of[i] < 0) index_of.emplace_back(wp.keys[i], static_cast<std::int32_t>(i));
   std::sort(index_of.begin(), index_of.end());
-  std::vector<bool> claimed(entries.size(), false);
+  std::vector<bool> claimed(n, false);
   const auto lookup = [&](const ObservationKey& key) -> std::int32_t {
     auto it = std::lower_bound(index_of.begin(), index_of.end(), std::make_pair(key, std::int32_t{-1}));
     for (; it != index_of.end() && it->first == key; ++it)
@@ -217,24 +261,26 @@ void McmcdaEngine::step(const ObservationWindow& window) {
     return -1;
   };
 
-  // 3. Initial state: the previous ω̂ restricted to the window (cut at any link that no longer
-  //    holds), then the newest tick's observations joined greedily to tracks that ended one tick
-  //    before, nearest (in Mahalanobis distance) first.
+  // The previous ω̂ restricted to the window, cut where a link no longer holds (the chain places
+  // what is left out). owner[i] is the previous track of problem element i, or -1.
   std::vector<std::vector<std::int32_t>> lists(tracks_.size());
-  std::vector<std::int32_t> owner(entries.size(), -1);  // previous track of each problem index
+  owner.assign(n, -1);
   for (std::size_t k = 0; k < tracks_.size(); ++k) {
     auto& list = lists[k];
-    if (anchor_index[k] >= 0) list.push_back(anchor_index[k]);
+    if (wp.anchor_index[k] >= 0) list.push_back(wp.anchor_index[k]);
     for (const auto& key : tracks_[k].observations) {
       const std::int32_t i = lookup(key);
-      if (i < 0) continue;
+      if (i < 0) continue;  // only when an identical report arrived twice
       claimed[static_cast<std::size_t>(i)] = true;
       owner[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(k);
-      if (!list.empty() && !problem.linked(list.back(), i)) continue;  // left for the chain to place
+      if (!list.empty() && !problem.linked(list.back(), i)) continue;
       list.push_back(i);
     }
   }
-  std::vector<bool> used(entries.size(), false);
+
+  // The newest tick's observations joined greedily to tracks that ended one tick before, nearest
+  // (in Mahalanobis distance) first, within the gate.
+  std::vector<bool> used(n, false);
   for (const auto& list : lists)
     if (list.size() >= 2)
       for (const auto i : list) used[static_cast<std::size_t>(i)] = true;
@@ -247,7 +293,7 @@ void McmcdaEngine::step(const ObservationWindow& window) {
   const double r2 = params_.model.measurement_sigma * params_.model.measurement_sigma;
   for (std::size_t k = 0; k < lists.size(); ++k) {
     const auto& list = lists[k];
-    if (list.empty() || problem.tick(list.back()) != newest - 1) continue;
+    if (list.empty() || problem.tick(list.back()) != newest_tick_ - 1) continue;
     if (list.size() == 1 && !problem.isAnchor(list.front())) continue;
     TrackState last;
     if (list.size() >= 2)
@@ -257,7 +303,8 @@ void McmcdaEngine::step(const ObservationWindow& window) {
     const TrackState predicted = problem.predict(last, 1);
     const double S = predicted.cov.pp + r2;
     for (std::int32_t i = 0; i < problem.size(); ++i) {
-      if (problem.tick(i) != newest || used[static_cast<std::size_t>(i)] || !problem.linked(list.back(), i)) continue;
+      if (problem.tick(i) != newest_tick_ || used[static_cast<std::size_t>(i)] || !problem.linked(list.back(), i))
+        continue;
       const double dx = problem.observation(i).x - predicted.x;
       const double dy = problem.observation(i).y - predicted.y;
       const double d2 = (dx * dx + dy * dy) / S;
@@ -275,30 +322,26 @@ void McmcdaEngine::step(const ObservationWindow& window) {
     lists[static_cast<std::size_t>(c.track)].push_back(c.observation);
   }
   Partition start;
-  for (const auto& list : lists)
-    if (list.size() >= 2) start.push_back(list);
+  for (auto& list : lists)
+    if (list.size() >= 2) start.push_back(std::move(list));
+  return start;
+}
 
-  // 4. Algorithm 1: nmc iterations from there, keeping the best partition.
-  Sampler sampler(problem);
-  sampler.setState(start);
-  common::Stream rng(seed_, common::Purpose::kTracker, supernode_, newest);
-  sampler.run(params_.iterations, rng);
-  const Partition best = sampler.bestState();
-  last_step_ = StepStats{problem.size(), static_cast<std::int32_t>(best.size()), sampler.bestLogPosterior(),
-                         sampler.stats()};
-  learnDelivery(window, problem, best);
-
-  // 5. Identities. A track that starts at an anchor is that anchor's track. Any other keeps the id
-  //    of the previous track it shares most observations with (each id once); the rest are new.
-  std::vector<common::TrackId> ids(best.size(), 0);
+void McmcdaEngine::adoptBest(const ObservationWindow& window, const WindowProblem& wp, const Partition& best,
+                             const std::vector<std::int32_t>& owner) {
+  const Problem& problem = wp.problem;
+  // Identities. A track that starts at an anchor is that anchor's track. Any other keeps the id of
+  // the previous track it shares most observations with (each id once, ties to the smaller id);
+  // the rest are new.
+  std::vector<std::int32_t> previous_of(best.size(), -1);     // new track -> previous track
   std::vector<std::int32_t> successor_of(tracks_.size(), -1);  // previous track -> new track
+  const auto link = [&](std::size_t n, std::int32_t k) {
+    previous_of[n] = k;
+    successor_of[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(n);
+  };
   for (std::size_t n = 0; n < best.size(); ++n) {
-    const std::int32_t first = best[n].front();
-    const std::int32_t k = entries[static_cast<std::size_t>(first)].anchor_of;
-    if (k >= 0) {
-      ids[n] = tracks_[static_cast<std::size_t>(k)].id;
-      successor_of[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(n);
-    }
+    const std::int32_t k = wp.anchor_of[static_cast<std::size_t>(best[n].front())];
+    if (k >= 0) link(n, k);
   }
   struct Overlap {
     std::int32_t shared;
@@ -307,7 +350,7 @@ void McmcdaEngine::step(const ObservationWindow& window) {
   };
   std::vector<Overlap> overlaps;
   for (std::size_t n = 0; n < best.size(); ++n) {
-    if (ids[n] != 0) continue;
+    if (previous_of[n] >= 0) continue;
     std::map<std::int32_t, std::int32_t> shared;
     for (const auto i : best[n])
       if (owner[static_cast<std::size_t>(i)] >= 0) ++shared[owner[static_cast<std::size_t>(i)]];
@@ -319,42 +362,43 @@ void McmcdaEngine::step(const ObservationWindow& window) {
     const auto idb = tracks_[static_cast<std::size_t>(b.previous)].id;
     return std::tie(ida, a.track) < std::tie(idb, b.track);
   });
-  for (const auto& o : overlaps) {
-    if (ids[static_cast<std::size_t>(o.track)] != 0 || successor_of[static_cast<std::size_t>(o.previous)] >= 0) continue;
-    ids[static_cast<std::size_t>(o.track)] = tracks_[static_cast<std::size_t>(o.previous)].id;
-    successor_of[static_cast<std::size_t>(o.previous)] = o.track;
-  }
+  for (const auto& o : overlaps)
+    if (previous_of[static_cast<std::size_t>(o.track)] < 0 && successor_of[static_cast<std::size_t>(o.previous)] < 0)
+      link(static_cast<std::size_t>(o.track), o.previous);
 
-  // 6. The new track set: ω̂'s tracks, plus previous anchored tracks nobody continued that a
-  //    later (or late) observation can still continue.
+  // The new track set: ω̂'s tracks, plus the previous anchored tracks nobody continued that a later
+  // (or late) observation can still continue.
   std::vector<LiveTrack> next;
   std::vector<TrackState> states;
   for (std::size_t n = 0; n < best.size(); ++n) {
     LiveTrack track;
-    std::int32_t previous = -1;
-    for (std::size_t k = 0; k < successor_of.size(); ++k)
-      if (successor_of[k] == static_cast<std::int32_t>(n)) previous = static_cast<std::int32_t>(k);
-    track.id = ids[n] != 0 ? ids[n] : mintId();
+    const std::int32_t previous = previous_of[n];
+    if (previous >= 0) {
+      const LiveTrack& before = tracks_[static_cast<std::size_t>(previous)];
+      track.id = before.id;
+      track.past_observations = before.past_observations;
+    } else {
+      track.id = mintId();
+    }
     problem.filterTrack(best[n], states);
     std::size_t from = 0;
     if (problem.isAnchor(best[n].front())) {
       track.anchor = problem.observation(best[n].front());
       from = 1;
     }
-    if (previous >= 0) track.past_observations = tracks_[static_cast<std::size_t>(previous)].past_observations;
     for (std::size_t m = from; m < best[n].size(); ++m) {
-      track.observations.push_back(entries[static_cast<std::size_t>(best[n][m])].key);
+      track.observations.push_back(wp.keys[static_cast<std::size_t>(best[n][m])]);
       track.states.push_back(states[m]);
     }
     next.push_back(std::move(track));
   }
-  const std::int32_t next_oldest = std::max(1, newest + 1 - window.windowSize() + 1);
+  const std::int32_t next_oldest = std::max(1, newest_tick_ + 1 - window.windowSize() + 1);
   for (std::size_t k = 0; k < tracks_.size(); ++k) {
     auto& track = tracks_[k];
-    if (successor_of[k] >= 0 || !track.anchor || track.anchor->tick + dbar < next_oldest) continue;
+    if (successor_of[k] >= 0 || !track.anchor) continue;
     track.observations.clear();  // whatever it had in the window now belongs elsewhere or is clutter
     track.states.clear();
-    next.push_back(std::move(track));
+    if (canContinue(track, next_oldest)) next.push_back(std::move(track));
   }
   std::sort(next.begin(), next.end(), [](const LiveTrack& a, const LiveTrack& b) { return a.id < b.id; });
   tracks_ = std::move(next);
@@ -396,7 +440,7 @@ bool McmcdaEngine::probablyAlive(const LiveTrack& track) const {
   // learnt like F, starting from the parameter with the weight of two ticks.
   const double pz = params_.model.termination_probability;
   const double pd = (hits_ + 2.0 * params_.model.detection_probability) / (alive_ticks_ + 2.0);
-  const std::int32_t unseen = newest_tick_ - track.lastTick();
+  const std::int32_t unseen = newest_tick_ - track.lastSeenTick();
   double alive = 1.0;
   double ended = 0.0;
   for (std::int32_t i = 1; i <= unseen; ++i) {
@@ -438,7 +482,7 @@ std::vector<common::TrackEstimate> McmcdaEngine::tracksAt(std::int32_t tick) con
 std::vector<TrackPrediction> McmcdaEngine::predictions() const {
   std::vector<TrackPrediction> out;
   for (const auto& track : tracks_) {
-    if (!isLive(track)) continue;
+    if (!isLive(track) || !probablyAlive(track)) continue;  // a track judged gone is not handed over
     const TrackState& last = track.lastState();
     const TrackState next = model_.predict(last, newest_tick_ + 1 - last.tick);
     out.push_back({track.id, {next.x, next.y}});
@@ -457,12 +501,9 @@ common::TrackHandoff McmcdaEngine::release(common::TrackId id, std::uint32_t to_
   h.to_supernode = to_supernode;
   h.last_tick = newest_tick_;
   h.state = {s.x, s.y, s.vx, s.vy};
-  h.covariance = {s.cov.pp, 0, s.cov.pv, 0,  //
-                  0, s.cov.pp, 0, s.cov.pv,  //
-                  s.cov.pv, 0, s.cov.vv, 0,  //
-                  0, s.cov.pv, 0, s.cov.vv};
+  h.covariance = fullCovariance(s.cov);
   h.hits = it->totalObservations();
-  h.misses = newest_tick_ - it->lastTick();
+  h.misses = newest_tick_ - it->lastSeenTick();
   h.confirmed = it->totalObservations() >= params_.confirm_observations;
   for (const auto& key : it->observations) released_.insert(std::upper_bound(released_.begin(), released_.end(), key), key);
   tracks_.erase(it);

@@ -70,20 +70,45 @@ class McmcdaEngine final : public Engine {
   };
 
  private:
+  /// A track as the engine keeps it between ticks. Invariant: a track without observations in the
+  /// window has an anchor.
   struct LiveTrack {
     common::TrackId id = 0;
     std::optional<ProblemObservation> anchor;  ///< the track's past, summarised
+    std::int32_t anchor_misses = 0;            ///< ticks the target was unseen before a handed-over anchor
     std::vector<ObservationKey> observations;  ///< in the window, tick order
     std::vector<TrackState> states;            ///< filtered state at each of them
     std::int32_t past_observations = 0;        ///< before the window (and at the sender, if handed over)
 
-    std::int32_t lastTick() const;
+    /// Tick at which the target was last observed.
+    std::int32_t lastSeenTick() const;
     const TrackState& lastState() const;
     std::int32_t totalObservations() const { return past_observations + static_cast<std::int32_t>(observations.size()); }
   };
 
-  /// Tracks whose last element is recent enough to continue (at most d-bar - 1 ticks old).
+  /// One tick's association problem and what maps its elements back to tracks and reports.
+  struct WindowProblem {
+    Problem problem;
+    std::vector<ObservationKey> keys;       ///< per element (meaningless for anchors)
+    std::vector<std::int32_t> anchor_of;    ///< per element: index into tracks_ of its anchor's track, or -1
+    std::vector<std::int32_t> anchor_index; ///< per track in tracks_: its anchor's element, or -1
+  };
+
+  /// Step 1: observations older than the window become anchors; tracks that cannot go on end.
+  void commitLeavingObservations(std::int32_t oldest);
+  /// Step 2: anchors and the window's reports as a Problem.
+  WindowProblem buildProblem(const ObservationWindow& window) const;
+  /// Step 3: the previous ω̂ restricted to the window plus the greedy join of the newest tick;
+  /// `owner` receives each element's previous track (or -1).
+  Partition startState(const WindowProblem& wp, std::vector<std::int32_t>& owner) const;
+  /// Step 5: ids for ω̂'s tracks and the new track set.
+  void adoptBest(const ObservationWindow& window, const WindowProblem& wp, const Partition& best,
+                 const std::vector<std::int32_t>& owner);
+
+  /// Tracks whose target was seen recently enough to continue (at most d-bar - 1 ticks ago).
   bool isLive(const LiveTrack& track) const;
+  /// A track without observations in a window starting at `oldest` could still get one there.
+  bool canContinue(const LiveTrack& track, std::int32_t oldest) const;
   /// The track's target is more likely still there than gone, given how long it has been unseen,
   /// the detection probability and the delays learnt so far.
   bool probablyAlive(const LiveTrack& track) const;

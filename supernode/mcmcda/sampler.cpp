@@ -82,6 +82,7 @@ Sampler::Sampler(const Problem& problem) : problem_(problem) {
   // Every count a proposal divides by (observations, tracks, merge pairs, switch cuts) is below
   // this size, so logCount never calls log() in the loop.
   log_count_.resize(std::max({n, links, longest * longest}) + 2);
+  log_count_[0] = kNegInf;  // no count a proposal divides by is 0; make a slip loud
   for (std::size_t k = 1; k < log_count_.size(); ++k) log_count_[k] = std::log(static_cast<double>(k));
   log_stop_ = std::log(problem.params().stop_probability);
   log_go_on_ = std::log1p(-problem.params().stop_probability);
@@ -149,12 +150,10 @@ std::int32_t Sampler::addTrack(std::span<const std::int32_t> obs, double score) 
 
 void Sampler::removeTrack(std::int32_t slot) {
   auto& track = tracks_[static_cast<std::size_t>(slot)];
-  // Only observations still marked as this track's: a switch may already have handed some over.
-  for (const std::int32_t i : track.obs)
-    if (track_of_[static_cast<std::size_t>(i)] == slot) {
-      track_of_[static_cast<std::size_t>(i)] = -1;
-      position_[static_cast<std::size_t>(i)] = -1;
-    }
+  for (const std::int32_t i : track.obs) {
+    track_of_[static_cast<std::size_t>(i)] = -1;
+    position_[static_cast<std::size_t>(i)] = -1;
+  }
   log_posterior_ -= track.score;
   const std::int32_t last = track_count_ - 1;
   if (slot != last) {
@@ -167,6 +166,8 @@ void Sampler::removeTrack(std::int32_t slot) {
 
 void Sampler::setTrack(std::int32_t slot, std::span<const std::int32_t> obs, double score) {
   auto& track = tracks_[static_cast<std::size_t>(slot)];
+  // Only observations still marked as this track's: in a switch, the first setTrack has already
+  // handed the other track's tail over.
   for (const std::int32_t i : track.obs)
     if (track_of_[static_cast<std::size_t>(i)] == slot) {
       track_of_[static_cast<std::size_t>(i)] = -1;
@@ -494,10 +495,8 @@ void Sampler::update(common::Stream& rng) {
   if (std::isnan(sampleExtension(obs[static_cast<std::size_t>(keep - 1)], true, free, rng, tail_))) return;
   target_a_.assign(obs.begin(), obs.begin() + keep);
   target_a_.insert(target_a_.end(), tail_.begin(), tail_.end());
-  if (std::equal(target_a_.begin(), target_a_.end(), obs.begin(), obs.end())) {
-    ++stats_.accepted[static_cast<std::size_t>(Move::kUpdate)];  // omega' = omega: nothing to do
-    return;
-  }
+  // omega' = omega: accepted trivially, and not counted, so that "accepted" means "changed".
+  if (std::equal(target_a_.begin(), target_a_.end(), obs.begin(), obs.end())) return;
   proposeSingleTrack(Move::kUpdate, slot, target_a_, logSingleTrackProposal(slot, target_a_), rng);
 }
 
@@ -572,12 +571,12 @@ void Sampler::trackSwitch(common::Stream& rng) {
   target_b_.insert(target_b_.end(), backup_a_.begin() + p, backup_a_.end());
   const double score_a = problem_.trackScore(target_a_);
   const double score_b = problem_.trackScore(target_b_);
-  // The unordered pair has probability 2 / (K (K - 1)); the reverse switch uses the same pair.
-  const double log_pair = logMoveProbability(Move::kSwitch, K) - std::log(0.5 * K * (K - 1));
-  const double log_forward = log_pair - logCount(points);
+  // The pair is drawn in either order with the same result ((a, b, p, q) and (b, a, q, p)), and the
+  // reverse switch uses the same pair at the same K: the pair's probability cancels in the ratio.
+  const double log_forward = -logCount(points);
   setTrack(a, target_a_, score_a);
   setTrack(b, target_b_, score_b);
-  const double log_reverse = log_pair - logCount(switchPoints(a, b, -1, nullptr));
+  const double log_reverse = -logCount(switchPoints(a, b, -1, nullptr));
   if (accept(score_a + score_b - old_a - old_b + log_reverse - log_forward, rng)) {
     ++stats_.accepted[static_cast<std::size_t>(Move::kSwitch)];
   } else {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <numbers>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -142,16 +143,49 @@ double totalVariation(const std::vector<double>& p, const std::vector<double>& q
 /// partition k's frequency *including* the chain's autocorrelation, and E|N(0, se^2)| =
 /// se sqrt(2 / pi). The bound is four times the expected noise: a correct chain stays under it
 /// with overwhelming probability, while a kernel that is wrong by a few percent of mass does not.
-double noiseBound(const ChainResult& r) {
+/// Standard error of each partition's frequency by batch means (autocorrelation included).
+std::vector<double> standardErrors(const ChainResult& r) {
   const auto batches = static_cast<double>(r.batch.size());
-  double expected = 0.0;
+  std::vector<double> se(r.frequency.size(), 0.0);
   for (std::size_t k = 0; k < r.frequency.size(); ++k) {
     double var = 0.0;
     for (const auto& b : r.batch) var += (b[k] - r.frequency[k]) * (b[k] - r.frequency[k]);
-    var /= batches - 1.0;
-    expected += std::sqrt(var / batches) * std::sqrt(2.0 / M_PI);
+    se[k] = std::sqrt(var / (batches - 1.0) / batches);
   }
+  return se;
+}
+
+double noiseBound(const std::vector<double>& se) {
+  double expected = 0.0;
+  for (const double s : se) expected += s * std::sqrt(2.0 / std::numbers::pi);
   return 4.0 * 0.5 * expected;
+}
+
+/// TV sums absolute errors and so forgives a bias that is small next to the noise of the many
+/// rare partitions. The chi-square statistic sum (f_k - p_k)^2 / se_k^2 over the partitions with
+/// p_k > 1e-3 weighs each error by its own noise instead; for a correct chain it is about
+/// chi^2 with m degrees of freedom.
+struct ChiSquare {
+  double statistic = 0.0;
+  std::int32_t states = 0;
+  /// Wilson-Hilferty's 99.9 % quantile of chi^2(m), times 1.25 because se is estimated from 50
+  /// batches rather than known.
+  double bound() const {
+    const double m = states;
+    const double z = 3.09;
+    return 1.25 * m * std::pow(1.0 - 2.0 / (9.0 * m) + z * std::sqrt(2.0 / (9.0 * m)), 3.0);
+  }
+};
+
+ChiSquare chiSquare(const std::vector<double>& frequency, const std::vector<double>& exact,
+                    const std::vector<double>& se) {
+  ChiSquare c;
+  for (std::size_t k = 0; k < exact.size(); ++k) {
+    if (exact[k] <= 1e-3 || se[k] <= 0.0) continue;
+    c.statistic += (frequency[k] - exact[k]) * (frequency[k] - exact[k]) / (se[k] * se[k]);
+    ++c.states;
+  }
+  return c;
 }
 
 void checkExactness(const Problem& problem, std::uint64_t seed) {
@@ -162,15 +196,20 @@ void checkExactness(const Problem& problem, std::uint64_t seed) {
   REQUIRE(r.outside == 0);
 
   const double tv = totalVariation(r.frequency, exact.probability);
-  const double bound = noiseBound(r);
+  const auto se = standardErrors(r);
+  const double bound = noiseBound(se);
   INFO("TV = " << tv << ", bound = " << bound);
   CHECK(tv < bound);
-  CHECK(bound < 0.02);  // the run is long enough for the test to have teeth
+  CHECK(bound < 0.05);  // the run is long enough for the test to have teeth
+  const ChiSquare chi2 = chiSquare(r.frequency, exact.probability, se);
+  INFO("chi2 = " << chi2.statistic << " over " << chi2.states << " partitions, bound = " << chi2.bound());
+  CHECK(chi2.states >= 20);
+  CHECK(chi2.statistic < chi2.bound());
 
-  // Negative control: the same samples against the posterior of a different model (pd 0.8 -> 0.6)
-  // are far outside the bound, so the comparison can tell a wrong stationary distribution.
+  // Negative control: the same samples against the posterior of a different model (pd times 0.75)
+  // are far outside both bounds, so the comparison can tell a wrong stationary distribution.
   ModelParams other = problem.params();
-  other.detection_probability = 0.6;
+  other.detection_probability *= 0.75;
   std::vector<ProblemObservation> obs;
   for (std::int32_t i = 0; i < problem.size(); ++i) obs.push_back(problem.observation(i));
   const Problem perturbed(other, obs, problem.lastTick());
@@ -181,8 +220,9 @@ void checkExactness(const Problem& problem, std::uint64_t seed) {
   const double tv_wrong = totalVariation(r.frequency, aligned);
   INFO("TV against the perturbed posterior = " << tv_wrong);
   CHECK(tv_wrong > 3.0 * bound);
+  CHECK(chiSquare(r.frequency, aligned, se).statistic > 10.0 * chi2.bound());
 
-  // Every move was proposed and accepted.
+  // Every move was accepted (for update: a proposal that changed the state).
   for (int m = 0; m < kMoveCount; ++m) {
     INFO("move " << moveName(static_cast<Move>(m)));
     CHECK(r.stats.accepted[static_cast<std::size_t>(m)] > 100);
@@ -217,6 +257,27 @@ TEST_CASE("mcmcda chain is exact with an anchored track in the problem", "[mcmcd
   obs.erase(obs.begin() + 5);  // the clutter point: keeps Omega about as large as without the anchor
   const Problem problem(ambiguousParams(), obs, 4);
   checkExactness(problem, 11);
+}
+
+TEST_CASE("mcmcda chain is exact on six ticks with two anchors and long tracks", "[mcmcda]") {
+  // Longer tracks exercise split and merge at many cut points and update at many keep lengths;
+  // two anchors at tick 0 compete for the same continuations; d-bar = 3 allows gaps.
+  ModelParams p = ambiguousParams();
+  p.detection_probability = 0.7;
+  p.max_gap = 3;
+  std::vector<ProblemObservation> obs;
+  for (const double y : {0.0, 3.0}) {
+    ProblemObservation anchor{0, -1.0, y, true, {}};
+    anchor.prior = TrackState{0, -1.0, y, 1.0, 0.0, {0.3, 0.05, 0.2}};
+    obs.push_back(anchor);
+  }
+  const double a[7][2] = {{0, 0}, {1.0, 0.2}, {2.1, 0.1}, {3.0, 0.4}, {3.9, 0.3}, {5.1, 0.0}, {6.0, 0.2}};
+  const double b[7][2] = {{0, 3}, {1.1, 2.6}, {0, 0}, {3.0, 2.0}, {4.0, 1.5}, {0, 0}, {6.1, 1.0}};
+  for (std::int32_t t = 1; t <= 6; ++t) {
+    obs.push_back({t, a[t][0], a[t][1], false, {}});
+    if (t != 2 && t != 5) obs.push_back({t, b[t][0], b[t][1], false, {}});  // the second target missed twice
+  }
+  checkExactness(Problem(p, obs, 6), 13);
 }
 
 TEST_CASE("mcmcda enumeration and validation agree on what Omega is", "[mcmcda]") {

@@ -21,7 +21,7 @@ namespace {
 using common::Observation;
 using test::observation;
 
-common::Scenario mcmcdaScenario(std::int32_t window_size = 10) {
+common::Scenario mcmcdaScenario(std::int32_t window_size = 10, double max_gap = 5) {
   common::Scenario s;
   s.source_path = "test.yaml";
   s.supernodes = {{50.0, 50.0}};
@@ -29,6 +29,7 @@ common::Scenario mcmcdaScenario(std::int32_t window_size = 10) {
   s.tracker.window_size = window_size;
   s.tracker.params["measurement_sigma"] = {0.2, 0};
   s.tracker.params["false_alarm_density"] = {1e-3, 0};
+  s.tracker.params["max_gap"] = {max_gap, 0};
   resolveEngineParams(s);
   return s;
 }
@@ -127,25 +128,31 @@ TEST_CASE("mcmcda follows crossing targets through clutter and missed detections
 
 TEST_CASE("mcmcda uses a late observation to fill the gap it belongs to", "[mcmcda]") {
   const Target target{20, 20, 1.0, 1.0};
-  // The report of tick 6 arrives at tick 8 (in its own slot); ticks 5 and 7 are missed, so
-  // without it the gap 4 -> 8 would exceed d-bar = 3 and the track would break.
-  const auto deliver = [&](std::int32_t t) {
-    std::vector<Observation> obs;
-    if (t != 5 && t != 6 && t != 7) obs.push_back(observation(t, t, target.x(t), target.y(t)));
-    if (t == 8) obs.push_back(observation(6, 8, target.x(6), target.y(6)));
-    return obs;
+  // With d-bar = 3, ticks 5 and 7 missed and the report of tick 6 arriving at tick 8 (into its own
+  // slot), the track holds only through the late report: without it the gap 4 -> 8 exceeds d-bar.
+  const auto deliver = [&](bool with_late) {
+    return [&target, with_late](std::int32_t t) {
+      std::vector<Observation> obs;
+      if (t != 5 && t != 6 && t != 7) obs.push_back(observation(t, t, target.x(t), target.y(t)));
+      if (t == 8 && with_late) obs.push_back(observation(6, 8, target.x(6), target.y(6)));
+      return obs;
+    };
   };
-  const auto outputs = run(mcmcdaScenario(), 12, deliver);
-  std::set<common::TrackId> ids;
-  for (const auto& out : outputs)
-    for (const auto& track : out.tracks) ids.insert(track.track);
-  CHECK(ids.size() == 1);
-  // From tick 8 on the track is reported at the target's position.
-  for (const auto& out : outputs)
+  const auto idsOf = [](const std::vector<SupernodeTracker::TickOutput>& outputs) {
+    std::set<common::TrackId> ids;
+    for (const auto& out : outputs)
+      for (const auto& track : out.tracks) ids.insert(track.track);
+    return ids;
+  };
+  const auto with_late = run(mcmcdaScenario(10, 3), 12, deliver(true));
+  CHECK(idsOf(with_late).size() == 1);
+  for (const auto& out : with_late)
     if (out.tick >= 8) {
       REQUIRE(out.tracks.size() == 1);
       CHECK(out.tracks[0].x == Approx(target.x(out.tick)).margin(0.3));
     }
+  // The control: without the late report the track breaks in two.
+  CHECK(idsOf(run(mcmcdaScenario(10, 3), 12, deliver(false))).size() == 2);
 }
 
 TEST_CASE("mcmcda keeps a track's id after its first observations leave the window", "[mcmcda]") {
@@ -187,7 +194,32 @@ TEST_CASE("mcmcda continues a handed-over track under its id", "[mcmcda]") {
   }
 }
 
-TEST_CASE("mcmcda is deterministic and its per-tick output does not depend on object history", "[mcmcda]") {
+TEST_CASE("mcmcda counts a handed-over track's misses from when its target was last seen", "[mcmcda]") {
+  // Handed over at tick 4 after 3 ticks unseen and never observed again: the target was last seen
+  // at tick 1, so with d-bar = 5 the track can be continued up to tick 6 at most. It must not be
+  // reported or handed on as if it had been seen at tick 4.
+  SupernodeTracker tracker(mcmcdaScenario(), 0);
+  common::TrackHandoff handoff;
+  handoff.track = (std::uint64_t{3} << 48) | 5;
+  handoff.to_supernode = 0;
+  handoff.last_tick = 4;
+  handoff.state = {40.0, 40.0, 1.0, 0.0};
+  handoff.covariance = {0.3, 0, 0.1, 0, 0, 0.3, 0, 0.1, 0.1, 0, 0.1, 0, 0, 0.1, 0, 0.1};
+  handoff.hits = 6;
+  handoff.misses = 3;
+  handoff.confirmed = true;
+  for (std::int32_t t = 1; t <= 4; ++t) tracker.step(t, {}, {});
+  const std::vector<common::TrackHandoff> incoming = {handoff};
+  for (std::int32_t t = 5; t <= 12; ++t) {
+    const auto out = tracker.step(t, {}, t == 5 ? std::span(incoming) : std::span<const common::TrackHandoff>());
+    INFO("tick " << out.tick);
+    if (out.tick >= 6) CHECK(out.tracks.empty());  // unseen for 5 ticks: past d-bar - 1
+  }
+  const auto& engine = static_cast<const McmcdaEngine&>(tracker.engine());
+  CHECK(engine.predictions().empty());
+}
+
+TEST_CASE("mcmcda gives the same outputs on two runs of the same input", "[mcmcda]") {
   const std::vector<Target> targets = {{40, 40, 1.0, 0.5}, {40, 50, 1.0, -0.5}};
   const auto deliver = [&](std::int32_t t) {
     std::vector<Observation> obs;
