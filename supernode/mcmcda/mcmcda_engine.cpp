@@ -124,6 +124,7 @@ McmcdaEngine::McmcdaEngine(const EngineContext& context)
     : supernode_(context.supernode),
       seed_(context.scenario.run.seed),
       region_(context.scenario.region),
+      window_size_(context.scenario.tracker.window_size),
       params_(McmcdaParams::fromScenario(context.scenario)),
       model_(params_.model, {}, 0) {}
 
@@ -132,7 +133,9 @@ common::TrackId McmcdaEngine::mintId() {
 }
 
 bool McmcdaEngine::isLive(const LiveTrack& track) const {
-  return newest_tick_ - track.lastSeenTick() <= params_.model.max_gap - 1;
+  // A report generated up to d-bar ticks after the last one can still continue the track, and it
+  // may arrive late, as long as its slot is in the window.
+  return track.lastSeenTick() + params_.model.max_gap >= newest_tick_ - window_size_ + 1;
 }
 
 bool McmcdaEngine::canContinue(const LiveTrack& track, std::int32_t oldest) const {
@@ -482,7 +485,9 @@ std::vector<common::TrackEstimate> McmcdaEngine::tracksAt(std::int32_t tick) con
 std::vector<TrackPrediction> McmcdaEngine::predictions() const {
   std::vector<TrackPrediction> out;
   for (const auto& track : tracks_) {
-    if (!isLive(track) || !probablyAlive(track)) continue;  // a track judged gone is not handed over
+    // Handed on even when judged gone for now: the misses travel with it, so the receiver judges
+    // it the same way, and late reports may still revive it there.
+    if (!isLive(track)) continue;
     const TrackState& last = track.lastState();
     const TrackState next = model_.predict(last, newest_tick_ + 1 - last.tick);
     out.push_back({track.id, {next.x, next.y}});

@@ -121,6 +121,7 @@ class McmcdaEngine final : public Engine {
   std::uint32_t supernode_;
   std::uint64_t seed_;
   common::Rect region_;  ///< the surveillance region
+  std::int32_t window_size_;
   McmcdaParams params_;
   Problem model_;  ///< no observations: the prediction model only
   std::int32_t newest_tick_ = 0;
