@@ -91,7 +91,11 @@ TEST_CASE("mcmcda sampler is deterministic given the seed", "[mcmcda]") {
   CHECK(chain(5) == chain(5));
 }
 
-TEST_CASE("mcmcda track score matches eq. 3 by hand for a two-observation track", "[mcmcda]") {
+namespace {
+
+/// Round numbers for the hand-computed scores: pd 0.8, pz 0.1, lambda_b 0.01, lambda_f 0.02,
+/// r = 0.5, no process noise, velocity prior sigma 1, d-bar 3.
+ModelParams handParams() {
   ModelParams p;
   p.detection_probability = 0.8;
   p.termination_probability = 0.1;
@@ -100,7 +104,14 @@ TEST_CASE("mcmcda track score matches eq. 3 by hand for a two-observation track"
   p.measurement_sigma = 0.5;
   p.process_noise_sigma = 0.0;
   p.initial_velocity_sigma = 1.0;
-  p.max_gap = 2;
+  p.max_gap = 3;
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("mcmcda track score matches eq. 3 by hand for a two-observation track", "[mcmcda]") {
+  const ModelParams p = handParams();
   const Problem problem(p, {{1, 0.0, 0.0, false, {}}, {2, 1.0, 0.0, false, {}}}, 3);
   // Prior at y1: position variance r^2 = 0.25, velocity variance 1. One tick later the predicted
   // position variance is 0.25 + 1 = 1.25, so S = 1.25 + 0.25 = 1.5 per axis, nu = (1, 0).
@@ -113,14 +124,7 @@ TEST_CASE("mcmcda track score matches eq. 3 by hand for a two-observation track"
 }
 
 TEST_CASE("mcmcda track score of an anchored track matches eq. 3 by hand", "[mcmcda]") {
-  ModelParams p;
-  p.detection_probability = 0.8;
-  p.termination_probability = 0.1;
-  p.birth_density = 0.01;
-  p.false_alarm_density = 0.02;
-  p.measurement_sigma = 0.5;
-  p.process_noise_sigma = 0.0;
-  p.max_gap = 3;
+  const ModelParams p = handParams();
   ProblemObservation anchor{0, 0.0, 0.0, true, {}};
   anchor.prior = TrackState{0, 0.0, 0.0, 1.0, 0.0, {0.25, 0.0, 0.01}};
   // The anchor at tick 0, a miss at tick 1, an observation at tick 2; the window ends at T = 4.
