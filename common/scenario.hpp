@@ -88,7 +88,7 @@ struct EngineParam {
 
 /// Supernode tracker: which engine and its parameters (validated by the engine registry).
 struct TrackerConfig {
-  std::string engine = "gnn";
+  std::string engine = "mcmcda";
   int engine_line = 0;
   /// Sliding window of ws ticks of delivered observations (Oh §VI, ws = 10).
   std::int32_t window_size = 10;

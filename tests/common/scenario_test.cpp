@@ -148,7 +148,7 @@ TEST_CASE("an empty file or {} gives the paper's defaults", "[scenario]") {
     CHECK(s.network.communication_range == NetworkConfig{}.communication_range);
     CHECK(s.network.pte == 0.3);
     CHECK(s.network.pde == 0.3);
-    CHECK(s.tracker.engine == "gnn");
+    CHECK(s.tracker.engine == "mcmcda");
     CHECK(s.tracker.engine_line == 0);
     CHECK(s.tracker.window_size == 10);  // Oh §VII: ws = 10
     CHECK(s.tracker.params.empty());     // the engine registry fills them in

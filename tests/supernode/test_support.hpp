@@ -16,6 +16,7 @@ inline common::Scenario gnnScenario(std::int32_t window_size = 10) {
   common::Scenario s;
   s.source_path = "test.yaml";
   s.supernodes = {{50.0, 50.0}};
+  s.tracker.engine = "gnn";
   s.tracker.window_size = window_size;
   resolveEngineParams(s);
   return s;

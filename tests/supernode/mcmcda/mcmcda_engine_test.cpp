@@ -2,6 +2,7 @@
 // targets with and without clutter and misses, a late observation filling a gap, identities across
 // windows and a handed-over track continued under its id.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -192,6 +193,33 @@ TEST_CASE("mcmcda continues a handed-over track under its id", "[mcmcda]") {
     REQUIRE(out.tracks.size() == 1);
     CHECK(out.tracks[0].track == handoff.track);
   }
+}
+
+TEST_CASE("mcmcda hands a crossing target to the next supernode, which continues it under its id", "[mcmcda]") {
+  auto scenario = mcmcdaScenario();
+  scenario.supernodes = {{25.0, 50.0}, {75.0, 50.0}};
+  std::array<SupernodeTracker, 2> trackers{SupernodeTracker(scenario, 0), SupernodeTracker(scenario, 1)};
+  std::vector<common::TrackHandoff> in_flight;
+  const Target target{40.5, 50.0, 1.0, 0.2};  // crosses x = 50 between ticks 10 and 11
+  std::set<common::TrackId> ids;
+  for (std::int32_t t = 1; t <= 25; ++t) {
+    const auto o = observation(t, t, target.x(t) + jitter(1, t, 0.05), target.y(t) + jitter(2, t, 0.05));
+    std::array<std::vector<Observation>, 2> delivered;
+    delivered[nearestSupernode(scenario.supernodes, {o.x, o.y})].push_back(o);
+    std::array<std::vector<common::TrackHandoff>, 2> incoming;
+    for (const auto& h : in_flight) incoming[h.to_supernode].push_back(h);
+    in_flight.clear();
+    INFO("tick " << t);
+    std::size_t reported = 0;
+    for (std::uint32_t j = 0; j < 2; ++j) {
+      const auto out = trackers[j].step(t, delivered[j], incoming[j]);
+      in_flight.insert(in_flight.end(), out.handoffs.begin(), out.handoffs.end());
+      for (const auto& track : out.tracks) ids.insert(track.track);
+      reported += out.tracks.size();
+    }
+    if (t >= 3) CHECK(reported == 1);  // one target, one track: never both supernodes at once
+  }
+  CHECK(ids.size() == 1);
 }
 
 TEST_CASE("mcmcda counts a handed-over track's misses from when its target was last seen", "[mcmcda]") {
