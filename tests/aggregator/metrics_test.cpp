@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/aggregator/test_support.hpp"
+
 using wsn::aggregator::MetricsAccumulator;
 using wsn::aggregator::MetricsSummary;
 using wsn::aggregator::ospaDistance;
@@ -19,10 +21,10 @@ using wsn::common::TargetState;
 using wsn::common::TrackEstimate;
 using wsn::common::Vec2;
 
-namespace {
+using wsn::aggregator::test::target;
+using wsn::aggregator::test::track;
 
-TargetState target(int id, double x, double y) { return {id, x, y, 0.0, 0.0}; }
-TrackEstimate track(std::uint64_t id, double x, double y) { return {id, x, y, 0.0, 0.0}; }
+namespace {
 
 MetricsConfig config(double c = 5.0, double p = 2.0) {
   MetricsConfig m;

@@ -1,0 +1,125 @@
+#include "aggregator/clear_mot.hpp"
+
+#include <cmath>
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "common/assignment.hpp"
+#include "common/geometry.hpp"
+#include "common/output.hpp"
+
+namespace wsn::aggregator {
+namespace {
+
+double positionDistance(const common::TargetState& o, const common::TrackEstimate& h) {
+  return common::distance({o.x, o.y}, {h.x, h.y});
+}
+
+}  // namespace
+
+ClearMotAccumulator::ClearMotAccumulator(double match_threshold) : threshold_(match_threshold) {
+  if (!(threshold_ > 0.0) || !std::isfinite(threshold_))
+    throw std::invalid_argument("clear_mot: match_threshold must be finite and > 0, got " +
+                                common::fixed6(threshold_));
+}
+
+void ClearMotAccumulator::add(std::int32_t tick, const std::vector<common::TargetState>& truth,
+                              const std::vector<common::TrackEstimate>& tracks_in) {
+  if (any_tick_ && tick <= last_tick_)
+    throw std::invalid_argument("clear_mot: tick " + std::to_string(tick) + " added after tick " +
+                                std::to_string(last_tick_));
+  any_tick_ = true;
+  last_tick_ = tick;
+
+  std::vector<common::TrackEstimate> tracks;
+  tracks.reserve(tracks_in.size());
+  for (const auto& h : tracks_in) {
+    if (std::isfinite(h.x) && std::isfinite(h.y))
+      tracks.push_back(h);
+    else
+      ++sums_.tracks_ignored_nonfinite;
+  }
+
+  const std::size_t rows = truth.size();
+  const std::size_t cols = tracks.size();
+  std::vector<int> match(rows, -1);  // truth index -> track index
+  std::vector<char> track_used(cols, 0);
+
+  // Step 1: keep last tick's correspondences that are still valid.
+  for (std::size_t i = 0; i < rows; ++i) {
+    const auto prev = previous_.find(truth[i].id);
+    if (prev == previous_.end()) continue;
+    for (std::size_t j = 0; j < cols; ++j) {
+      if (track_used[j] || tracks[j].track != prev->second) continue;
+      if (positionDistance(truth[i], tracks[j]) < threshold_) {
+        match[i] = static_cast<int>(j);
+        track_used[j] = 1;
+      }
+      break;
+    }
+  }
+
+  // Step 2: optimal assignment of the rest within the threshold.
+  std::vector<std::size_t> free_rows;
+  std::vector<std::size_t> free_cols;
+  for (std::size_t i = 0; i < rows; ++i)
+    if (match[i] < 0) free_rows.push_back(i);
+  for (std::size_t j = 0; j < cols; ++j)
+    if (!track_used[j]) free_cols.push_back(j);
+  if (!free_rows.empty() && !free_cols.empty()) {
+    std::vector<double> cost(free_rows.size() * free_cols.size());
+    for (std::size_t r = 0; r < free_rows.size(); ++r) {
+      for (std::size_t c = 0; c < free_cols.size(); ++c) {
+        const double d = positionDistance(truth[free_rows[r]], tracks[free_cols[c]]);
+        cost[r * free_cols.size() + c] = d < threshold_ ? d : common::kForbidden;
+      }
+    }
+    const auto assignment = common::solveAssignment(cost, free_rows.size(), free_cols.size());
+    for (std::size_t r = 0; r < free_rows.size(); ++r) {
+      if (assignment[r] < 0) continue;
+      match[free_rows[r]] = static_cast<int>(free_cols[static_cast<std::size_t>(assignment[r])]);
+    }
+  }
+
+  // Steps 3-4: count, and remember this tick's correspondences as M_{t-1} of the next.
+  std::map<common::TargetId, common::TrackId> current;
+  std::int64_t matched = 0;
+  for (std::size_t i = 0; i < rows; ++i) {
+    TargetHistory& h = history_[truth[i].id];
+    if (match[i] < 0) {
+      ++sums_.misses;
+      if (h.has_last_track) h.in_gap = true;
+      continue;
+    }
+    const auto& track = tracks[static_cast<std::size_t>(match[i])];
+    ++matched;
+    sums_.sum_distance += positionDistance(truth[i], track);
+    if (h.has_last_track && h.last_track != track.track) ++sums_.id_switches;
+    if (h.in_gap) ++sums_.fragmentations;
+    h.has_last_track = true;
+    h.last_track = track.track;
+    h.in_gap = false;
+    current[truth[i].id] = track.track;
+  }
+  previous_ = std::move(current);
+
+  ++sums_.ticks;
+  sums_.ground_truth += static_cast<std::int64_t>(rows);
+  sums_.matches += matched;
+  sums_.false_positives += static_cast<std::int64_t>(cols) - matched;
+}
+
+ClearMotSummary ClearMotAccumulator::summary() const {
+  ClearMotSummary s = sums_;
+  s.mota_defined = s.ground_truth > 0;
+  s.mota = s.mota_defined ? 1.0 - static_cast<double>(s.misses + s.false_positives + s.id_switches) /
+                                      static_cast<double>(s.ground_truth)
+                          : 0.0;
+  s.motp_defined = s.matches > 0;
+  s.motp = s.motp_defined ? s.sum_distance / static_cast<double>(s.matches) : 0.0;
+  return s;
+}
+
+}  // namespace wsn::aggregator

@@ -1,0 +1,81 @@
+#include "aggregator/track_quality.hpp"
+
+#include <cmath>
+#include <cstddef>
+#include <stdexcept>
+
+#include "common/assignment.hpp"
+#include "common/output.hpp"
+
+namespace wsn::aggregator {
+
+TrackQualityAccumulator::TrackQualityAccumulator(double association_gate) : gate_(association_gate) {
+  if (!(gate_ > 0.0))  // +inf is allowed: no gate
+    throw std::invalid_argument("track_quality: association_gate must be > 0, got " + common::fixed6(gate_));
+}
+
+void TrackQualityAccumulator::add(const std::vector<common::TargetState>& truth,
+                                  const std::vector<common::TrackEstimate>& tracks_in) {
+  std::vector<common::TrackEstimate> tracks;
+  tracks.reserve(tracks_in.size());
+  for (const auto& h : tracks_in) {
+    if (std::isfinite(h.x) && std::isfinite(h.y) && std::isfinite(h.vx) && std::isfinite(h.vy))
+      tracks.push_back(h);
+    else
+      ++ignored_nonfinite_;
+  }
+
+  const std::size_t rows = truth.size();
+  const std::size_t cols = tracks.size();
+  std::vector<double> cost(rows * cols);
+  for (std::size_t i = 0; i < rows; ++i) {
+    for (std::size_t j = 0; j < cols; ++j) {
+      const double d = std::hypot(tracks[j].x - truth[i].x, tracks[j].y - truth[i].y);
+      cost[i * cols + j] = d <= gate_ ? d : common::kForbidden;
+    }
+  }
+  const auto assignment = common::solveAssignment(cost, rows, cols);
+
+  std::int64_t associated = 0;
+  for (std::size_t i = 0; i < rows; ++i) {
+    Sums& s = sums_[truth[i].id];
+    ++s.alive;
+    if (assignment[i] < 0) continue;
+    const auto& h = tracks[static_cast<std::size_t>(assignment[i])];
+    const double ex = h.x - truth[i].x;
+    const double ey = h.y - truth[i].y;
+    const double evx = h.vx - truth[i].vx;
+    const double evy = h.vy - truth[i].vy;
+    ++s.associated;
+    ++associated;
+    s.squared_position += ex * ex + ey * ey;
+    s.squared_velocity += evx * evx + evy * evy;
+    s.position += std::hypot(ex, ey);
+  }
+  false_track_ticks_ += static_cast<std::int64_t>(cols) - associated;
+}
+
+TrackQualitySummary TrackQualityAccumulator::summary() const {
+  TrackQualitySummary out;
+  out.false_track_ticks = false_track_ticks_;
+  out.tracks_ignored_nonfinite = ignored_nonfinite_;
+  out.targets.reserve(sums_.size());
+  for (const auto& [id, s] : sums_) {
+    TargetQuality q;
+    q.id = id;
+    q.ticks_alive = s.alive;
+    q.ticks_associated = s.associated;
+    q.tlr = static_cast<double>(s.associated) / static_cast<double>(s.alive);  // alive >= 1 by construction
+    q.errors_defined = s.associated > 0;
+    if (q.errors_defined) {
+      const double a = static_cast<double>(s.associated);
+      q.rse_position = std::sqrt(s.squared_position / a);
+      q.rse_velocity = std::sqrt(s.squared_velocity / a);
+      q.mean_position_error = s.position / a;
+    }
+    out.targets.push_back(q);
+  }
+  return out;
+}
+
+}  // namespace wsn::aggregator
