@@ -3,6 +3,7 @@
 // the aggregator's track fusion.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -67,6 +68,18 @@ struct Innovation {
   MeasurementVector nu = MeasurementVector::Zero();
   MeasurementMatrix S = MeasurementMatrix::Identity();
 };
+
+/// P as the row-major 16 numbers that messages carry (TrackEstimate, TrackHandoff).
+inline std::array<double, kStateDim * kStateDim> toRowMajor(const StateMatrix& P) {
+  std::array<double, kStateDim * kStateDim> out{};
+  Eigen::Map<Eigen::Matrix<double, kStateDim, kStateDim, Eigen::RowMajor>>(out.data()) = P;
+  return out;
+}
+
+/// The inverse of toRowMajor.
+inline StateMatrix fromRowMajor(const std::array<double, kStateDim * kStateDim>& values) {
+  return Eigen::Map<const Eigen::Matrix<double, kStateDim, kStateDim, Eigen::RowMajor>>(values.data());
+}
 
 /// Time update: x <- F x, P <- F P F^T + Q (symmetrised).
 inline GaussianState predict(const ConstantVelocityModel& model, const GaussianState& state) {

@@ -297,11 +297,8 @@ void GnnEngine::step(const ObservationWindow& window) {
 void GnnEngine::adopt(const common::TrackHandoff& handoff) {
   Track track;
   track.id = handoff.track;
-  for (int r = 0; r < common::kStateDim; ++r) {
-    track.state.x(r) = handoff.state[static_cast<std::size_t>(r)];
-    for (int c = 0; c < common::kStateDim; ++c)
-      track.state.P(r, c) = handoff.covariance[static_cast<std::size_t>(r * common::kStateDim + c)];
-  }
+  track.state.x = common::StateVector(handoff.state.data());
+  track.state.P = common::fromRowMajor(handoff.covariance);
   track.state.P = 0.5 * (track.state.P + track.state.P.transpose());
   if (!track.state.x.allFinite() || !track.state.P.allFinite()) {
     ++rejected_handoffs_;
@@ -318,11 +315,7 @@ std::vector<common::TrackEstimate> GnnEngine::confirmedTracks() const {
   for (const auto& track : current_) {
     if (!track.confirmed) continue;
     const auto& x = track.state.x;
-    common::TrackEstimate estimate{track.id, x(kX), x(kY), x(kVx), x(kVy), {}};
-    for (int r = 0; r < common::kStateDim; ++r)
-      for (int c = 0; c < common::kStateDim; ++c)
-        estimate.covariance[static_cast<std::size_t>(r * common::kStateDim + c)] = track.state.P(r, c);
-    out.push_back(estimate);
+    out.push_back({track.id, x(kX), x(kY), x(kVx), x(kVy), common::toRowMajor(track.state.P)});
   }
   return out;
 }
@@ -345,11 +338,8 @@ common::TrackHandoff GnnEngine::release(common::TrackId track_id, std::uint32_t 
   handoff.track = track_id;
   handoff.to_supernode = to_supernode;
   handoff.last_tick = current_tick_;
-  for (int r = 0; r < common::kStateDim; ++r) {
-    handoff.state[static_cast<std::size_t>(r)] = it->state.x(r);
-    for (int c = 0; c < common::kStateDim; ++c)
-      handoff.covariance[static_cast<std::size_t>(r * common::kStateDim + c)] = it->state.P(r, c);
-  }
+  for (int r = 0; r < common::kStateDim; ++r) handoff.state[static_cast<std::size_t>(r)] = it->state.x(r);
+  handoff.covariance = common::toRowMajor(it->state.P);
   handoff.hits = it->hits;
   handoff.misses = it->misses;
   handoff.confirmed = it->confirmed;

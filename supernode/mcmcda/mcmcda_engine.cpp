@@ -124,21 +124,16 @@ McmcdaEngine::McmcdaEngine(const EngineContext& context)
     : supernode_(context.supernode),
       seed_(context.scenario.run.seed),
       region_(context.scenario.region),
-      window_size_(context.scenario.tracker.window_size),
       params_(McmcdaParams::fromScenario(context.scenario)),
-      model_(params_.model, {}, 0) {}
+      motion_(params_.model) {}
 
 common::TrackId McmcdaEngine::mintId() {
   return ((std::uint64_t{supernode_} + 1) << kSupernodeShift) | next_serial_++;
 }
 
-bool McmcdaEngine::isLive(const LiveTrack& track) const {
-  // A report generated up to d-bar ticks after the last one can still continue the track, and it
-  // may arrive late, as long as its slot is in the window.
-  return track.lastSeenTick() + params_.model.max_gap >= newest_tick_ - window_size_ + 1;
-}
-
 bool McmcdaEngine::canContinue(const LiveTrack& track, std::int32_t oldest) const {
+  // A report generated up to d-bar ticks after the last one continues the track, and it may
+  // arrive late, as long as its slot is in the window.
   return track.lastSeenTick() + params_.model.max_gap >= oldest;
 }
 
@@ -173,7 +168,8 @@ void McmcdaEngine::step(const ObservationWindow& window) {
   const std::int32_t newest = window.newestTick();
   if (newest < 1) return;
   newest_tick_ = newest;
-  commitLeavingObservations(window.oldestTick());
+  oldest_tick_ = window.oldestTick();
+  commitLeavingObservations(oldest_tick_);
   const WindowProblem wp = buildProblem(window);
   std::vector<std::int32_t> owner;
   const Partition start = startState(wp, owner);
@@ -234,17 +230,18 @@ McmcdaEngine::WindowProblem McmcdaEngine::buildProblem(const ObservationWindow& 
   std::stable_sort(entries.begin(), entries.end(),
                    [](const Entry& a, const Entry& b) { return a.observation.tick < b.observation.tick; });
   std::vector<ProblemObservation> observations;
-  observations.reserve(entries.size());
-  WindowProblem wp{Problem(params_.model, {}, 0), {}, {}, std::vector<std::int32_t>(tracks_.size(), -1)};
+  std::vector<ObservationKey> keys;
+  std::vector<std::int32_t> anchor_of;
+  std::vector<std::int32_t> anchor_index(tracks_.size(), -1);
   for (std::size_t i = 0; i < entries.size(); ++i) {
     observations.push_back(entries[i].observation);
-    wp.keys.push_back(entries[i].key);
-    wp.anchor_of.push_back(entries[i].anchor_of);
+    keys.push_back(entries[i].key);
+    anchor_of.push_back(entries[i].anchor_of);
     if (entries[i].anchor_of >= 0)
-      wp.anchor_index[static_cast<std::size_t>(entries[i].anchor_of)] = static_cast<std::int32_t>(i);
+      anchor_index[static_cast<std::size_t>(entries[i].anchor_of)] = static_cast<std::int32_t>(i);
   }
-  wp.problem = Problem(params_.model, std::move(observations), window.newestTick());
-  return wp;
+  return WindowProblem{Problem(params_.model, std::move(observations), window.newestTick()), std::move(keys),
+                       std::move(anchor_of), std::move(anchor_index)};
 }
 
 Partition McmcdaEngine::startState(const WindowProblem& wp, std::vector<std::int32_t>& owner) const {
@@ -294,6 +291,8 @@ Partition McmcdaEngine::startState(const WindowProblem& wp, std::vector<std::int
   };
   std::vector<Candidate> candidates;
   const double r2 = params_.model.measurement_sigma * params_.model.measurement_sigma;
+  std::int32_t newest_begin = problem.size();  // elements are sorted by tick: the newest are last
+  while (newest_begin > 0 && problem.tick(newest_begin - 1) == newest_tick_) --newest_begin;
   for (std::size_t k = 0; k < lists.size(); ++k) {
     const auto& list = lists[k];
     if (list.empty() || problem.tick(list.back()) != newest_tick_ - 1) continue;
@@ -303,11 +302,10 @@ Partition McmcdaEngine::startState(const WindowProblem& wp, std::vector<std::int
       problem.trackScore(list, &last);
     else
       last = problem.observation(list.front()).prior;
-    const TrackState predicted = problem.predict(last, 1);
+    const TrackState predicted = problem.motion().predict(last, 1);
     const double S = predicted.cov.pp + r2;
-    for (std::int32_t i = 0; i < problem.size(); ++i) {
-      if (problem.tick(i) != newest_tick_ || used[static_cast<std::size_t>(i)] || !problem.linked(list.back(), i))
-        continue;
+    for (std::int32_t i = newest_begin; i < problem.size(); ++i) {
+      if (used[static_cast<std::size_t>(i)] || !problem.linked(list.back(), i)) continue;
       const double dx = problem.observation(i).x - predicted.x;
       const double dy = problem.observation(i).y - predicted.y;
       const double d2 = (dx * dx + dy * dy) / S;
@@ -459,7 +457,7 @@ std::vector<common::TrackEstimate> McmcdaEngine::confirmedTracks() const {
     if (!isLive(track) || track.totalObservations() < params_.confirm_observations || !probablyAlive(track))
       continue;
     const TrackState& last = track.lastState();
-    const TrackState now = model_.predict(last, newest_tick_ - last.tick);
+    const TrackState now = motion_.predict(last, newest_tick_ - last.tick);
     // No sensor sees a target outside the region: a track that coasted out of it followed a
     // target that left.
     if (!region_.contains({now.x, now.y})) continue;
@@ -477,7 +475,7 @@ std::vector<common::TrackEstimate> McmcdaEngine::tracksAt(std::int32_t tick) con
     const TrackState* at = track.anchor ? &track.anchor->prior : nullptr;
     for (std::size_t m = 0; m < track.observations.size() && track.observations[m].tick <= tick; ++m)
       at = &track.states[m];
-    out.push_back(estimate(track.id, model_.predict(*at, tick - at->tick)));
+    out.push_back(estimate(track.id, motion_.predict(*at, tick - at->tick)));
   }
   return out;
 }
@@ -489,7 +487,7 @@ std::vector<TrackPrediction> McmcdaEngine::predictions() const {
     // it the same way, and late reports may still revive it there.
     if (!isLive(track)) continue;
     const TrackState& last = track.lastState();
-    const TrackState next = model_.predict(last, newest_tick_ + 1 - last.tick);
+    const TrackState next = motion_.predict(last, newest_tick_ + 1 - last.tick);
     out.push_back({track.id, {next.x, next.y}});
   }
   return out;
@@ -500,7 +498,7 @@ common::TrackHandoff McmcdaEngine::release(common::TrackId id, std::uint32_t to_
                                    [](const LiveTrack& t, common::TrackId value) { return t.id < value; });
   if (it == tracks_.end() || it->id != id)
     throw std::invalid_argument("mcmcda: release of unknown track " + std::to_string(id));
-  const TrackState s = model_.predict(it->lastState(), newest_tick_ - it->lastState().tick);
+  const TrackState s = motion_.predict(it->lastState(), newest_tick_ - it->lastState().tick);
   common::TrackHandoff h;
   h.track = id;
   h.to_supernode = to_supernode;

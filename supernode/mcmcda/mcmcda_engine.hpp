@@ -105,10 +105,10 @@ class McmcdaEngine final : public Engine {
   void adoptBest(const ObservationWindow& window, const WindowProblem& wp, const Partition& best,
                  const std::vector<std::int32_t>& owner);
 
-  /// Tracks whose target was seen recently enough to continue (at most d-bar - 1 ticks ago).
-  bool isLive(const LiveTrack& track) const;
-  /// A track without observations in a window starting at `oldest` could still get one there.
+  /// A report in a window starting at `oldest` could still continue the track.
   bool canContinue(const LiveTrack& track, std::int32_t oldest) const;
+  /// The track may still be continued in the current window.
+  bool isLive(const LiveTrack& track) const { return canContinue(track, oldest_tick_); }
   /// The track's target is more likely still there than gone, given how long it has been unseen,
   /// the detection probability and the delays learnt so far.
   bool probablyAlive(const LiveTrack& track) const;
@@ -121,10 +121,10 @@ class McmcdaEngine final : public Engine {
   std::uint32_t supernode_;
   std::uint64_t seed_;
   common::Rect region_;  ///< the surveillance region
-  std::int32_t window_size_;
   McmcdaParams params_;
-  Problem model_;  ///< no observations: the prediction model only
+  MotionModel motion_;
   std::int32_t newest_tick_ = 0;
+  std::int32_t oldest_tick_ = 0;  ///< of the window last stepped
   std::vector<LiveTrack> tracks_;  ///< sorted by id
   std::vector<ObservationKey> released_;  ///< observations of tracks handed to a neighbour
   std::uint64_t next_serial_ = 1;

@@ -43,6 +43,31 @@ struct TrackState {
   AxisCovariance cov;
 };
 
+/// Eq. (8) on one track, axis by axis: prediction across a gap of ticks (exact: F^d and the
+/// noise d single steps accumulate, tabulated up to d-bar), the prior of a new track, and the
+/// measurement update with its log-likelihood.
+class MotionModel {
+ public:
+  explicit MotionModel(const ModelParams& params);
+
+  /// `state` predicted `gap` ticks ahead (gap <= 0: unchanged).
+  TrackState predict(const TrackState& state, std::int32_t gap) const;
+  /// The prior of a new track at an observation (x, y) at `tick`: position variance r^2,
+  /// velocity 0 with variance sigma_v^2.
+  TrackState initialState(std::int32_t tick, double x, double y) const;
+  /// Measurement update of a predicted state with z = (x, y), R = r^2 I; returns log N(nu; 0, S I).
+  double correct(TrackState& state, double x, double y) const;
+
+ private:
+  struct GapModel {
+    double dt = 0.0;
+    AxisCovariance q;  // exact eq. (8) process noise accumulated over the gap
+  };
+  ModelParams params_;
+  std::vector<GapModel> gaps_;  // index = gap in ticks, 0 .. d-bar
+  double log_two_pi_ = 0.0;
+};
+
 /// An observation of the problem. An *anchor* is not a report but the summary of a track's past
 /// (its state at `tick`, from before the window or from a neighbouring supernode): it can only be
 /// the first element of a track, and a track that starts at it is a continuation, not a birth.
@@ -90,10 +115,6 @@ class Problem {
     return range(succ_, succ_start_[static_cast<std::size_t>(i * params_.max_gap)],
                  succ_start_[static_cast<std::size_t>((i + 1) * params_.max_gap)]);
   }
-  /// Candidate predecessors of j (every i with linked(i, j)).
-  std::span<const std::int32_t> predecessors(std::int32_t j) const {
-    return range(pred_, pred_start_[static_cast<std::size_t>(j)], pred_start_[static_cast<std::size_t>(j) + 1]);
-  }
 
   /// log pi contribution of a track relative to leaving its observations unassigned: eq. (3)'s
   /// prior terms and Kalman likelihood for the track minus the terms of its observations as false
@@ -102,22 +123,15 @@ class Problem {
   /// When `final_state` is given, it receives the filtered state at the last observation.
   double trackScore(std::span<const std::int32_t> track, TrackState* final_state = nullptr) const;
 
-  /// The filtered state of `track` at each of its observations (tick order) into `states`.
+  /// The filtered state of `track` at each of its elements (tick order) into `states`.
   void filterTrack(std::span<const std::int32_t> track, std::vector<TrackState>& states) const;
 
-  /// Predicts `state` forward by `gap` ticks (eq. 8 applied gap times).
-  TrackState predict(const TrackState& state, std::int32_t gap) const;
-
-  /// The prior of a new track at its first observation: position y with variance r^2, velocity 0
-  /// with variance sigma_v^2.
-  TrackState initialState(std::int32_t i) const;
+  const MotionModel& motion() const { return motion_; }
 
  private:
-  struct GapModel {
-    double dt = 0.0;
-    AxisCovariance q;  // exact eq. (8) process noise accumulated over the gap
-  };
-  const GapModel& gapModel(std::int32_t gap) const { return gaps_[static_cast<std::size_t>(gap)]; }
+  /// Runs the filter along `track` from its first element's prior; returns the summed
+  /// log-likelihood of the later elements and, when given, the states after each element.
+  double filter(std::span<const std::int32_t> track, std::vector<TrackState>* states, TrackState* last) const;
   static std::span<const std::int32_t> range(const std::vector<std::int32_t>& v, std::int32_t begin, std::int32_t end) {
     return {v.data() + begin, static_cast<std::size_t>(end - begin)};
   }
@@ -129,9 +143,7 @@ class Problem {
   // succ_[succ_start_[i * dbar + d - 1] .. succ_start_[i * dbar + d]).
   std::vector<std::int32_t> succ_start_;
   std::vector<std::int32_t> succ_;
-  std::vector<std::int32_t> pred_start_;
-  std::vector<std::int32_t> pred_;
-  std::vector<GapModel> gaps_;  // index = gap in ticks, 0 .. max(d-bar, 1)
+  MotionModel motion_;
   // Constant log terms of eq. (3).
   double log_pd_ = 0.0;
   double log_miss_ = 0.0;
@@ -139,7 +151,6 @@ class Problem {
   double log_terminate_ = 0.0;
   double log_birth_ = 0.0;
   double log_false_alarm_ = 0.0;
-  double log_two_pi_ = 0.0;
 };
 
 }  // namespace wsn::supernode::mcmcda

@@ -101,18 +101,15 @@ void Sampler::setState(const Partition& partition) {
   best_log_posterior_ = log_posterior_;
 }
 
-Partition Sampler::state() const {
-  Partition out;
-  for (std::int32_t k = 0; k < track_count_; ++k) out.push_back(tracks_[static_cast<std::size_t>(k)].obs);
-  canonicalise(out);
-  return out;
-}
+Partition Sampler::state() const { return partitionOf(track_of_); }
 
-Partition Sampler::bestState() const {
+Partition Sampler::bestState() const { return partitionOf(best_track_of_); }
+
+Partition Sampler::partitionOf(const std::vector<std::int32_t>& track_of) const {
   Partition out;
   std::vector<std::int32_t> index_of_slot(tracks_.size(), -1);
   for (std::int32_t i = 0; i < problem_.size(); ++i) {  // indices ascend with tick: track order
-    const std::int32_t slot = best_track_of_[static_cast<std::size_t>(i)];
+    const std::int32_t slot = track_of[static_cast<std::size_t>(i)];
     if (slot < 0) continue;
     auto& index = index_of_slot[static_cast<std::size_t>(slot)];
     if (index < 0) {

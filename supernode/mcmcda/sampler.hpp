@@ -123,6 +123,8 @@ class Sampler {
   void removeTrack(std::int32_t slot);
   void setTrack(std::int32_t slot, std::span<const std::int32_t> obs, double score);
   void noteBest();
+  /// The canonical partition an assignment array (slot of each observation, -1) describes.
+  Partition partitionOf(const std::vector<std::int32_t>& track_of) const;
 
   const Problem& problem_;
   std::vector<Track> tracks_;  // [0, track_count_) are live; later slots keep their capacity

@@ -127,3 +127,13 @@ TEST_CASE("a non-finite observation or a singular innovation is refused", "[kalm
 
 }  // namespace
 }  // namespace wsn::common
+
+TEST_CASE("covariances travel row-major and come back unchanged", "[kalman]") {
+  wsn::common::StateMatrix P;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) P(r, c) = 10.0 * r + c;
+  const auto values = wsn::common::toRowMajor(P);
+  CHECK(values[1] == 1.0);   // row 0, column 1
+  CHECK(values[4] == 10.0);  // row 1, column 0
+  CHECK(wsn::common::fromRowMajor(values) == P);
+}

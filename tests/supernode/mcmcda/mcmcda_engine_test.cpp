@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <set>
 #include <vector>
@@ -247,6 +248,19 @@ TEST_CASE("mcmcda counts a handed-over track's misses from when its target was l
     if (out.tick == 14) CHECK(engine.predictions().size() == 1);  // a late report of tick 6 could come
   }
   CHECK(engine.predictions().empty());
+}
+
+TEST_CASE("mcmcda refuses a non-finite handoff and the release of an unknown track", "[mcmcda]") {
+  const auto scenario = mcmcdaScenario();
+  McmcdaEngine engine(EngineContext{scenario, 0});
+  common::TrackHandoff handoff;
+  handoff.track = (std::uint64_t{2} << 48) | 1;
+  handoff.last_tick = 1;
+  handoff.state = {10.0, std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0};
+  engine.adopt(handoff);
+  CHECK(engine.rejectedHandoffs() == 1);
+  CHECK(engine.predictions().empty());
+  CHECK_THROWS_WITH(engine.release(handoff.track, 1), Catch::Contains("unknown track"));
 }
 
 TEST_CASE("mcmcda gives the same outputs on two runs of the same input", "[mcmcda]") {

@@ -144,4 +144,24 @@ TEST_CASE("mcmcda track score of an anchored track matches eq. 3 by hand", "[mcm
   CHECK(reaching.trackScore(track) == Approx(prior - std::log(0.1) + log_likelihood).epsilon(1e-12));
 }
 
+TEST_CASE("mcmcda problem and sampler reject bad input with what is wrong", "[mcmcda]") {
+  const ModelParams p = handParams();
+  CHECK_THROWS_WITH(Problem(p, {{2, 0.0, 0.0, false, {}}, {1, 0.0, 0.0, false, {}}}, 2),
+                    Catch::Contains("sorted by tick"));
+  ModelParams bad = p;
+  bad.detection_probability = 1.0;
+  CHECK_THROWS_WITH(Problem(bad, {}, 1), Catch::Contains("detection probability"));
+  bad = p;
+  bad.max_gap = 0;
+  CHECK_THROWS_WITH(Problem(bad, {}, 1), Catch::Contains("max gap"));
+
+  const Problem problem(p, {{1, 0.0, 0.0, false, {}}, {2, 1.0, 0.0, false, {}}, {2, 9.0, 9.0, false, {}}}, 2);
+  Sampler sampler(problem);
+  CHECK_THROWS_WITH(sampler.setState({{0, 2}}), Catch::Contains("not a candidate successor"));
+  CHECK_THROWS_WITH(sampler.setState({{0}}), Catch::Contains("fewer than two"));
+  CHECK(sampler.trackCount() == 0);  // a refused state leaves the chain as it was
+  sampler.setState({{0, 1}});
+  CHECK(sampler.trackCount() == 1);
+}
+
 }  // namespace wsn::supernode::mcmcda
