@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "aggregator/metrics.hpp"
-#include "aggregator/track_merger.hpp"
+#include "aggregator/association.hpp"
 #include "common/dds/codec.hpp"
 #include "common/output.hpp"
 #include "common/truth.hpp"
@@ -33,7 +33,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
   runRole(context, [&](const Participant& participant, const RunTopics& topics, StatusPublisher& status) {
     const auto& scenario = context.scenario;
     const common::Truth truth(scenario);
-    TrackMerger merger;
+    const auto associator = makeAssociator(scenario);
     MetricsAccumulator metrics(scenario.metrics);
 
     Reader track_reader(participant, topics.track_batch, Qos::reliableKeepAll());
@@ -72,7 +72,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
         dropped_stale_by_supernode[supernode] = batch.observations_dropped_stale;
         inputs.push_back({supernode, std::move(batch.tracks)});
       }
-      auto global = merger.merge(t, inputs);
+      auto global = associator->associate(t, inputs);
       metrics.add(t, truth.at(t), global);
       for (const auto& track : global) global_csv.row(std::to_string(t) + "," + trackFields(track));
 

@@ -1,6 +1,7 @@
 #include "aggregator/track_merger.hpp"
 
 #include <algorithm>
+#include <memory>
 #include <cmath>
 #include <set>
 #include <stdexcept>
@@ -76,6 +77,23 @@ TrackEstimate meanState(const Cluster& cluster, TrackId id) {
 }
 
 }  // namespace
+
+AssociationSpec gatedMergeSpec() {
+  const TrackMergerConfig defaults;
+  return {"gated",
+          "one-scan gated merge of the supernodes' tracks of each tick (complete linkage, ids by memory)",
+          {{"gate_distance", defaults.gate_distance, 0.0, 1e6,
+            "tracks of different supernodes at most this far apart are one target (sensor separations)"},
+           {"memory_ticks", static_cast<double>(defaults.memory_ticks), 0, 1e6,
+            "ticks a supernode track's global id is remembered after it was last reported", true}},
+          [](const common::Scenario& scenario) -> std::unique_ptr<TrackAssociator> {
+            TrackMergerConfig config;
+            config.gate_distance = common::paramOr(scenario.aggregator.params, "gate_distance", config.gate_distance);
+            config.memory_ticks = static_cast<std::int32_t>(
+                common::paramOr(scenario.aggregator.params, "memory_ticks", config.memory_ticks));
+            return std::make_unique<TrackMerger>(config);
+          }};
+}
 
 TrackMerger::TrackMerger(TrackMergerConfig config) : config_(config) {
   if (!(config_.gate_distance >= 0.0) || !std::isfinite(config_.gate_distance))

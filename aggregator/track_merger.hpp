@@ -6,15 +6,13 @@
 #include <map>
 #include <vector>
 
+#include "aggregator/association.hpp"
 #include "common/messages.hpp"
 
 namespace wsn::aggregator {
 
-/// The confirmed tracks one supernode reported for one tick.
-struct SupernodeTracks {
-  std::uint32_t supernode = 0;
-  std::vector<common::TrackEstimate> tracks;
-};
+/// The registration of the gated merge: name "gated", parameters gate_distance and memory_ticks.
+AssociationSpec gatedMergeSpec();
 
 /// Settings of the track merger. Lengths are in region units, i.e. sensor separations (Oh §VII
 /// normalises the grid separation to 1).
@@ -58,15 +56,17 @@ struct TrackMergerConfig {
 ///
 /// Output sorted by global id. The result is a pure function of the sequence of merge() calls and
 /// does not depend on the order of `inputs` or of the tracks within one supernode.
-class TrackMerger {
+class TrackMerger final : public TrackAssociator {
  public:
   explicit TrackMerger(TrackMergerConfig config = {});
 
   /// Merges tick `tick`'s tracks of all supernodes into global tracks, sorted by track id.
   std::vector<common::TrackEstimate> merge(std::int32_t tick, const std::vector<SupernodeTracks>& inputs);
 
-  /// Tracks dropped over the run because a field was not finite.
-  std::uint64_t droppedNonFinite() const { return dropped_non_finite_; }
+  std::vector<common::TrackEstimate> associate(std::int32_t tick, const std::vector<SupernodeTracks>& inputs) override {
+    return merge(tick, inputs);
+  }
+  std::uint64_t droppedNonFinite() const override { return dropped_non_finite_; }
   const TrackMergerConfig& config() const { return config_; }
 
  private:

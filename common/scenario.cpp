@@ -391,7 +391,7 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
   s.source_path = file;
   const Section top = r.section(root, 1, "",
                                 {"name", "region", "sensors", "sensor_model", "localisation", "targets", "dynamics",
-                                 "supernodes", "network", "tracker", "metrics", "run"});
+                                 "supernodes", "network", "tracker", "aggregator", "metrics", "run"});
 
   if (const Entry* e = top.find("name")) {
     r.text(top, "name", s.name);
@@ -572,10 +572,31 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
     }
   }
 
+  // aggregator: like tracker, parameters are only recorded here; the association registry checks them.
+  if (const Entry* e = top.find("aggregator")) {
+    const Section sec = r.section(*e, "aggregator", {"association", "params"});
+    if (r.text(sec, "association", s.aggregator.association)) {
+      s.aggregator.association_line = Reader::lineOf(*sec.find("association"));
+      if (s.aggregator.association.empty())
+        r.fail(s.aggregator.association_line, "'aggregator.association' must name a method, got ''");
+    }
+    if (const Entry* params = sec.find("params")) {
+      const Section p = r.section(*params, "aggregator.params", {});
+      for (const auto& [name, entry] : p.entries)
+        s.aggregator.params[name] = EngineParam{r.anyNumber(entry, p.pathOf(name)), Reader::lineOf(entry.key)};
+    }
+  }
+
   if (const Entry* e = top.find("metrics")) {
-    const Section sec = r.section(*e, "metrics", {"ospa_c", "ospa_p"});
+    const Section sec =
+        r.section(*e, "metrics", {"ospa_c", "ospa_p", "gospa_c", "gospa_p", "mot_threshold", "quality_gate"});
+    const Range order{1.0, 100.0, false, false};
     r.number(sec, "ospa_c", s.metrics.ospa_c, kPositive);
-    r.number(sec, "ospa_p", s.metrics.ospa_p, Range{1.0, 100.0, false, false});
+    r.number(sec, "ospa_p", s.metrics.ospa_p, order);
+    r.number(sec, "gospa_c", s.metrics.gospa_c, kPositive);
+    r.number(sec, "gospa_p", s.metrics.gospa_p, order);
+    r.number(sec, "mot_threshold", s.metrics.mot_threshold, kPositive);
+    r.number(sec, "quality_gate", s.metrics.quality_gate, kPositive);
   }
 
   // run
@@ -937,9 +958,22 @@ std::string resolvedScenarioYaml(const Scenario& s) {
     for (const auto& [name, param] : s.tracker.params)
       out << "    " << keyText(name) << ": " << num(param.value) << "\n";
   }
+  out << "aggregator:\n"
+      << "  association: " << quoted(s.aggregator.association) << "\n";
+  if (s.aggregator.params.empty()) {
+    out << "  params: {}\n";
+  } else {
+    out << "  params:\n";
+    for (const auto& [name, param] : s.aggregator.params)
+      out << "    " << keyText(name) << ": " << num(param.value) << "\n";
+  }
   out << "metrics:\n"
       << "  ospa_c: " << num(s.metrics.ospa_c) << "\n"
-      << "  ospa_p: " << num(s.metrics.ospa_p) << "\n";
+      << "  ospa_p: " << num(s.metrics.ospa_p) << "\n"
+      << "  gospa_c: " << num(s.metrics.gospa_c) << "\n"
+      << "  gospa_p: " << num(s.metrics.gospa_p) << "\n"
+      << "  mot_threshold: " << num(s.metrics.mot_threshold) << "\n"
+      << "  quality_gate: " << num(s.metrics.quality_gate) << "\n";
   out << "run:\n"
       << "  ticks: " << s.run.ticks << "\n"
       << "  seed: " << s.run.seed << "\n"

@@ -95,10 +95,22 @@ struct TrackerConfig {
   std::map<std::string, EngineParam> params;
 };
 
-/// Metric settings (Oh eq. 9-10 need none; OSPA needs cut-off c and order p).
+/// Track-level association at the aggregator (Oh §VI): which method and its parameters
+/// (validated by the aggregator's association registry, like tracker.params).
+struct AggregatorConfig {
+  std::string association = "gated";
+  int association_line = 0;
+  std::map<std::string, EngineParam> params;
+};
+
+/// Metric settings. Lengths in region units (sensor separations).
 struct MetricsConfig {
-  double ospa_c = 5.0;
-  double ospa_p = 2.0;
+  double ospa_c = 5.0;  ///< OSPA cut-off c (Schuhmacher, Vo & Vo 2008)
+  double ospa_p = 2.0;  ///< OSPA order p
+  double gospa_c = 5.0;  ///< GOSPA cut-off c (alpha = 2)
+  double gospa_p = 2.0;  ///< GOSPA order p
+  double mot_threshold = 3.0;  ///< CLEAR-MOT match threshold T (Bernardin & Stiefelhagen 2008)
+  double quality_gate = 3.0;  ///< RSE/TLR/<dx>: a track counts for its target only within this distance
 };
 
 /// Run length, seed and process layout.
@@ -121,6 +133,7 @@ struct Scenario {
   std::vector<Vec2> supernodes;
   NetworkConfig network;
   TrackerConfig tracker;
+  AggregatorConfig aggregator;
   MetricsConfig metrics;
   RunConfig run;
 };

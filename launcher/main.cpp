@@ -12,6 +12,7 @@
 #include <regex>
 #include <sstream>
 
+#include "aggregator/association.hpp"
 #include "common/scenario.hpp"
 #include "launcher/cluster.hpp"
 #include "launcher/run_directory.hpp"
@@ -29,7 +30,7 @@ constexpr const char* kUsage =
     "Commands:\n"
     "  run SCENARIO       start every process of the cluster on this host and write a run directory\n"
     "  validate FILE...   check scenario files without running them\n"
-    "  engines            list the supernode tracking engines and their parameters\n"
+    "  engines            list the supernode tracking engines, the aggregator's association methods and their parameters\n"
     "  help               show this text\n\n"
     "'wsntrack <command> --help' explains each command's options.\n";
 
@@ -47,10 +48,16 @@ std::vector<common::ScenarioOverride> overridesOf(const po::variables_map& vm) {
   return overrides;
 }
 
-/// Loads a scenario with its overrides and resolves its engine parameters: every check a run
+/// Resolves the parameters of the supernode engine and of the aggregator's association.
+void resolveComponentParams(common::Scenario& scenario) {
+  supernode::resolveEngineParams(scenario);
+  aggregator::resolveAssociationParams(scenario);
+}
+
+/// Loads a scenario with its overrides and resolves its component parameters: every check a run
 /// would make, applied to the scenario as overridden.
 common::Scenario loadResolved(const std::string& path, const std::vector<common::ScenarioOverride>& overrides) {
-  return common::loadScenario(path, overrides, supernode::resolveEngineParams);
+  return common::loadScenario(path, overrides, resolveComponentParams);
 }
 
 std::string readFile(const std::string& path) {
@@ -148,12 +155,22 @@ int commandValidate(const std::vector<std::string>& args) {
   return failures == 0 ? 0 : 1;
 }
 
+void printParams(const std::vector<common::ParamSpec>& params) {
+  for (const auto& p : params)
+    std::cout << "  " << p.name << " (default " << p.default_value << ", range [" << p.min << ", " << p.max
+              << "]): " << p.description << "\n";
+}
+
 int commandEngines() {
+  std::cout << "Supernode tracking engines (tracker.engine, tracker.params):\n";
   for (const auto& engine : supernode::engineRegistry()) {
     std::cout << engine.name << ": " << engine.description << "\n";
-    for (const auto& p : engine.params)
-      std::cout << "  " << p.name << " (default " << p.default_value << ", range [" << p.min << ", " << p.max
-                << "]): " << p.description << "\n";
+    printParams(engine.params);
+  }
+  std::cout << "\nAggregator track association (aggregator.association, aggregator.params):\n";
+  for (const auto& method : aggregator::associationRegistry()) {
+    std::cout << method.name << ": " << method.description << "\n";
+    printParams(method.params);
   }
   return 0;
 }
@@ -251,7 +268,7 @@ int commandRun(const std::vector<std::string>& args) {
   if (vm.count("seed") || vm.count("nodes") || vm.count("ticks")) {
     try {
       scenario = common::parseScenario(common::resolvedScenarioYaml(scenario), scenario_path + " with --seed/--nodes/--ticks");
-      supernode::resolveEngineParams(scenario);
+      resolveComponentParams(scenario);
     } catch (const std::exception& error) {
       std::cerr << "wsntrack run: " << error.what() << "\n";
       return 2;

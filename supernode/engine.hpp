@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/messages.hpp"
+#include "common/param_spec.hpp"
 #include "common/scenario.hpp"
 #include "supernode/observation_window.hpp"
 
@@ -44,15 +45,7 @@ class Engine {
   virtual common::TrackHandoff release(common::TrackId track, std::uint32_t to_supernode) = 0;
 };
 
-/// A numeric engine parameter with its paper default and admissible range.
-struct ParamSpec {
-  std::string name;
-  double default_value = 0.0;
-  double min = 0.0;
-  double max = 0.0;
-  std::string description;
-  bool integer = false;  ///< the value must be a whole number (a count)
-};
+using common::ParamSpec;
 
 /// One registered engine.
 struct EngineSpec {
@@ -72,8 +65,7 @@ void resolveEngineParams(common::Scenario& scenario);
 
 /// scenario.tracker.params[name] (resolved params hold every parameter), else `fallback`.
 inline double engineParam(const common::Scenario& scenario, const std::string& name, double fallback) {
-  const auto it = scenario.tracker.params.find(name);
-  return it == scenario.tracker.params.end() ? fallback : it->second.value;
+  return common::paramOr(scenario.tracker.params, name, fallback);
 }
 
 /// Builds the engine named in the (resolved) scenario.

@@ -1,6 +1,4 @@
 #include <algorithm>
-#include <charconv>
-#include <cmath>
 #include <string>
 
 #include "supernode/engine.hpp"
@@ -9,13 +7,6 @@
 
 namespace wsn::supernode {
 namespace {
-
-/// Shortest text that reads back to the same double ("0.5", "9.21", "3").
-std::string formatNumber(double value) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
-}
 
 std::string where(const common::Scenario& scenario, int line) {
   return scenario.source_path + ":" + std::to_string(line) + ": ";
@@ -48,28 +39,8 @@ void resolveEngineParams(common::Scenario& scenario) {
                                 "'; expected one of: " + names);
   }
 
-  // std::map iterates by name, so the first error reported does not depend on file order.
-  for (const auto& [name, param] : tracker.params) {
-    const auto it = std::find_if(spec->params.begin(), spec->params.end(),
-                                 [&](const ParamSpec& p) { return p.name == name; });
-    if (it == spec->params.end()) {
-      std::string names;
-      for (const auto& p : spec->params) names += (names.empty() ? "" : ", ") + p.name;
-      throw common::ScenarioError(where(scenario, param.line) + "unknown parameter '" + name + "' for engine '" +
-                                  spec->name + "'; expected one of: " + names);
-    }
-    const double v = param.value;
-    if (!(v >= it->min && v <= it->max))  // also rejects NaN
-      throw common::ScenarioError(where(scenario, param.line) + "'tracker.params." + name + "' must be in [" +
-                                  formatNumber(it->min) + ", " + formatNumber(it->max) + "], got " +
-                                  formatNumber(v));
-    if (it->integer && v != std::floor(v))
-      throw common::ScenarioError(where(scenario, param.line) + "'tracker.params." + name +
-                                  "' must be a whole number, got " + formatNumber(v));
-  }
-
-  for (const auto& p : spec->params)
-    if (!tracker.params.contains(p.name)) tracker.params[p.name] = common::EngineParam{p.default_value, 0};
+  common::resolveParams(scenario.source_path, "tracker.params", "engine '" + spec->name + "'", spec->params,
+                        tracker.params);
 }
 
 std::unique_ptr<Engine> makeEngine(const EngineContext& context) {

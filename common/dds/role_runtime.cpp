@@ -27,6 +27,7 @@ RunTopics::RunTopics(const Participant& participant)
       handoff_batch(participant, wsn_msg_HandoffBatch_desc, topic_names::kHandoffBatch),
       track_batch(participant, wsn_msg_TrackBatch_desc, topic_names::kTrackBatch),
       global_track_batch(participant, wsn_msg_GlobalTrackBatch_desc, topic_names::kGlobalTrackBatch),
+      tick_metrics(participant, wsn_msg_TickMetrics_desc, topic_names::kTickMetrics),
       process_status(participant, wsn_msg_ProcessStatus_desc, topic_names::kProcessStatus) {}
 
 StatusPublisher::StatusPublisher(const Participant& participant, const RunTopics& topics, const RoleContext& context)

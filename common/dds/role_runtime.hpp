@@ -27,6 +27,7 @@ inline constexpr const char* kDeliveryBatch = "wsn_delivery_batch";
 inline constexpr const char* kHandoffBatch = "wsn_handoff_batch";
 inline constexpr const char* kTrackBatch = "wsn_track_batch";
 inline constexpr const char* kGlobalTrackBatch = "wsn_global_track_batch";
+inline constexpr const char* kTickMetrics = "wsn_tick_metrics";
 inline constexpr const char* kProcessStatus = "wsn_process_status";
 }  // namespace topic_names
 
@@ -67,6 +68,7 @@ struct RunTopics {
   Topic handoff_batch;
   Topic track_batch;
   Topic global_track_batch;
+  Topic tick_metrics;
   Topic process_status;
 };
 

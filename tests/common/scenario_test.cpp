@@ -94,8 +94,19 @@ void requireSameScenario(const Scenario& a, const Scenario& b) {
     REQUIRE(b.tracker.params.contains(name));
     CHECK(b.tracker.params.at(name).value == param.value);
   }
+  CHECK(a.aggregator.association == b.aggregator.association);
+  REQUIRE(a.aggregator.params.size() == b.aggregator.params.size());
+  for (const auto& [name, param] : a.aggregator.params) {
+    INFO("aggregator param " << name);
+    REQUIRE(b.aggregator.params.contains(name));
+    CHECK(b.aggregator.params.at(name).value == param.value);
+  }
   CHECK(a.metrics.ospa_c == b.metrics.ospa_c);
   CHECK(a.metrics.ospa_p == b.metrics.ospa_p);
+  CHECK(a.metrics.gospa_c == b.metrics.gospa_c);
+  CHECK(a.metrics.gospa_p == b.metrics.gospa_p);
+  CHECK(a.metrics.mot_threshold == b.metrics.mot_threshold);
+  CHECK(a.metrics.quality_gate == b.metrics.quality_gate);
   CHECK(a.run.ticks == b.run.ticks);
   CHECK(a.run.seed == b.run.seed);
   CHECK(a.run.node_processes == b.run.node_processes);
@@ -253,7 +264,7 @@ TEST_CASE("a wrong type names the dotted key, what was expected and what was fou
   CHECK(errorOf("network:\n  pte: {a: 1}\n") == "s.yaml:2: 'network.pte' must be a number, got a mapping");
   CHECK(errorOf("network: 5\n") == "s.yaml:1: 'network' must be a mapping of communication_range, pde, pte, got '5'");
   CHECK(errorOf("- 1\n- 2\n") ==
-        "s.yaml:1: a scenario must be a mapping of sections (dynamics, localisation, metrics, name, network, region, "
+        "s.yaml:1: a scenario must be a mapping of sections (aggregator, dynamics, localisation, metrics, name, network, region, "
         "run, sensor_model, sensors, supernodes, targets, tracker), got a list");
   CHECK(errorOf("sensors:\n  layout: hex\n") == "s.yaml:2: 'sensors.layout' must be one of: grid, random; got 'hex'");
   CHECK(errorOf("targets:\n  speed_class: 3\n") ==

@@ -1,0 +1,54 @@
+// Track-level association at the aggregator (Oh et al. §VI): the interface every method
+// implements ("gated" merge, "mcmcda") and the registry that maps scenario names to methods.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/messages.hpp"
+#include "common/param_spec.hpp"
+#include "common/scenario.hpp"
+
+namespace wsn::aggregator {
+
+/// The confirmed tracks one supernode reported for one tick.
+struct SupernodeTracks {
+  std::uint32_t supernode = 0;
+  std::vector<common::TrackEstimate> tracks;
+};
+
+/// Turns every supernode's tracks of a tick into the run's global tracks, ids kept stable.
+class TrackAssociator {
+ public:
+  virtual ~TrackAssociator() = default;
+  /// Global tracks of tick `tick` (called once per tick, ticks increasing), sorted by track id.
+  /// The result must not depend on the order of `inputs` or of the tracks within one supernode.
+  virtual std::vector<common::TrackEstimate> associate(std::int32_t tick, const std::vector<SupernodeTracks>& inputs) = 0;
+  /// Supernode tracks ignored over the run because a field was not finite.
+  virtual std::uint64_t droppedNonFinite() const = 0;
+};
+
+/// One registered association method.
+struct AssociationSpec {
+  std::string name;
+  std::string description;
+  std::vector<common::ParamSpec> params;
+  /// Builds the method from a scenario whose aggregator.params are resolved.
+  std::function<std::unique_ptr<TrackAssociator>(const common::Scenario&)> create;
+};
+
+/// All methods, in registration order.
+const std::vector<AssociationSpec>& associationRegistry();
+
+/// Checks scenario.aggregator.association and .params against the registry and fills in
+/// defaults; throws common::ScenarioError "file:line: ..." on an unknown method or parameter or
+/// a value out of range.
+void resolveAssociationParams(common::Scenario& scenario);
+
+/// Builds the method named in the scenario (params resolved here if they were not).
+std::unique_ptr<TrackAssociator> makeAssociator(const common::Scenario& scenario);
+
+}  // namespace wsn::aggregator
