@@ -235,7 +235,7 @@ TEST_CASE("an unknown key names the key's line, its section and the known keys",
   CHECK(errorOf("network:\n  pte: 0.3\n  ptee: 0.1\n") ==
         "s.yaml:3: unknown key 'ptee' in 'network'; expected one of: communication_range, pde, pte");
   CHECK(errorOf("name: x\nnetwrok: {}\n") ==
-        "s.yaml:2: unknown key 'netwrok' at the top level; expected one of: dynamics, localisation, metrics, name, "
+        "s.yaml:2: unknown key 'netwrok' at the top level; expected one of: aggregator, dynamics, localisation, metrics, name, "
         "network, region, run, sensor_model, sensors, supernodes, targets, tracker");
   CHECK(errorOf("targets:\n  scripted:\n    - {x: 1, y: 1, vx: 0, vy: 0, z: 3}\n") ==
         "s.yaml:3: unknown key 'z' in 'targets.scripted[0]'; expected one of: appear_tick, disappear_tick, vx, vy, "
