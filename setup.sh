@@ -17,7 +17,7 @@ case "$mode" in
 esac
 
 packages=(build-essential cmake pkg-config cyclonedds-dev cyclonedds-tools libeigen3-dev
-          libboost-program-options-dev catch2 libyaml-cpp-dev libbenchmark-dev procps)
+          libboost-program-options-dev catch2 libyaml-cpp-dev libbenchmark-dev procps python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

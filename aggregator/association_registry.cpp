@@ -1,6 +1,7 @@
 #include <algorithm>
 
 #include "aggregator/association.hpp"
+#include "aggregator/mcmcda_association.hpp"
 #include "aggregator/track_merger.hpp"
 
 namespace wsn::aggregator {
@@ -17,6 +18,7 @@ const AssociationSpec* findAssociation(const std::string& name) {
 
 const std::vector<AssociationSpec>& associationRegistry() {
   static const std::vector<AssociationSpec> registry = {
+      mcmcdaAssociationSpec(),
       gatedMergeSpec(),
       // A new method is a new file plus one line here.
   };

@@ -25,8 +25,8 @@ ClearMotAccumulator::ClearMotAccumulator(double match_threshold) : threshold_(ma
                                 common::fixed6(threshold_));
 }
 
-void ClearMotAccumulator::add(std::int32_t tick, const std::vector<common::TargetState>& truth,
-                              const std::vector<common::TrackEstimate>& tracks_in) {
+ClearMotTick ClearMotAccumulator::add(std::int32_t tick, const std::vector<common::TargetState>& truth,
+                                      const std::vector<common::TrackEstimate>& tracks_in) {
   if (any_tick_ && tick <= last_tick_)
     throw std::invalid_argument("clear_mot: tick " + std::to_string(tick) + " added after tick " +
                                 std::to_string(last_tick_));
@@ -79,36 +79,52 @@ void ClearMotAccumulator::add(std::int32_t tick, const std::vector<common::Targe
     const auto assignment = common::solveAssignment(cost, free_rows.size(), free_cols.size());
     for (std::size_t r = 0; r < free_rows.size(); ++r) {
       if (assignment[r] < 0) continue;
-      match[free_rows[r]] = static_cast<int>(free_cols[static_cast<std::size_t>(assignment[r])]);
+      const std::size_t j = free_cols[static_cast<std::size_t>(assignment[r])];
+      match[free_rows[r]] = static_cast<int>(j);
+      track_used[j] = 1;
     }
   }
 
   // Steps 3-4: count, and remember this tick's correspondences as M_{t-1} of the next.
+  ClearMotTick events;
   std::map<common::TargetId, common::TrackId> current;
   std::int64_t matched = 0;
   for (std::size_t i = 0; i < rows; ++i) {
-    TargetHistory& h = history_[truth[i].id];
+    const common::TargetId id = truth[i].id;
+    TargetHistory& h = history_[id];
     if (match[i] < 0) {
       ++sums_.misses;
+      events.misses.push_back(id);
       if (h.has_last_track) h.in_gap = true;
       continue;
     }
     const auto& track = tracks[static_cast<std::size_t>(match[i])];
+    const double d = positionDistance(truth[i], track);
     ++matched;
-    sums_.sum_distance += positionDistance(truth[i], track);
-    if (h.has_last_track && h.last_track != track.track) ++sums_.id_switches;
-    if (h.in_gap) ++sums_.fragmentations;
+    sums_.sum_distance += d;
+    events.matches.push_back({id, track.track, d});
+    if (h.has_last_track && h.last_track != track.track) {
+      ++sums_.id_switches;
+      events.id_switches.push_back(id);
+    }
+    if (h.in_gap) {
+      ++sums_.fragmentations;
+      events.fragmentations.push_back(id);
+    }
     h.has_last_track = true;
     h.last_track = track.track;
     h.in_gap = false;
     current[truth[i].id] = track.track;
   }
   previous_ = std::move(current);
+  for (std::size_t j = 0; j < cols; ++j)
+    if (!track_used[j]) events.false_positives.push_back(tracks[j]);
 
   ++sums_.ticks;
   sums_.ground_truth += static_cast<std::int64_t>(rows);
   sums_.matches += matched;
   sums_.false_positives += static_cast<std::int64_t>(cols) - matched;
+  return events;
 }
 
 ClearMotSummary ClearMotAccumulator::summary() const {

@@ -58,6 +58,23 @@ struct ClearMotSummary {
   std::int64_t tracks_ignored_nonfinite = 0;
 };
 
+/// One correspondence of a tick's CLEAR-MOT mapping.
+struct ClearMotMatch {
+  common::TargetId target = 0;
+  common::TrackId track = 0;
+  double distance = 0.0;  ///< metres
+};
+
+/// What one tick's mapping decided, for scores that attribute its events to places or times
+/// (boundary.hpp) without matching a second time.
+struct ClearMotTick {
+  std::vector<ClearMotMatch> matches;  ///< in the order of the truth given
+  std::vector<common::TargetId> misses;  ///< unmatched targets
+  std::vector<common::TrackEstimate> false_positives;  ///< unmatched finite tracks, in input order
+  std::vector<common::TargetId> id_switches;  ///< targets counted as a mismatch at this tick
+  std::vector<common::TargetId> fragmentations;  ///< targets whose match resumed after a gap here
+};
+
 /// Runs the CLEAR-MOT matching tick by tick and accumulates the counts.
 class ClearMotAccumulator {
  public:
@@ -66,8 +83,9 @@ class ClearMotAccumulator {
   explicit ClearMotAccumulator(double match_threshold);
 
   /// Scores tick `tick` (strictly greater than the previous tick added, else
-  /// std::invalid_argument). The order of either vector does not matter.
-  void add(std::int32_t tick, const std::vector<common::TargetState>& truth,
+  /// std::invalid_argument). The order of either vector does not matter. Returns the tick's
+  /// mapping and events; the counts are accumulated either way.
+  ClearMotTick add(std::int32_t tick, const std::vector<common::TargetState>& truth,
            const std::vector<common::TrackEstimate>& tracks);
 
   /// The scores of every tick added so far.

@@ -50,11 +50,9 @@ double squaredError(const TargetState& truth, const TrackEstimate& track) {
   return dx * dx + dy * dy;
 }
 
-/// JSON number with 6 decimals; a non-finite value (which valid inputs never produce) becomes
-/// null so that the file stays valid JSON.
-std::string real(double value) { return std::isfinite(value) ? common::fixed6(value) : "null"; }
-
 }  // namespace
+
+std::string jsonReal(double value) { return std::isfinite(value) ? common::fixed6(value) : "null"; }
 
 double ospaDistance(const std::vector<Vec2>& x, const std::vector<Vec2>& y, double c, double p) {
   // Schuhmacher, Vo & Vo 2008, eq. (3), with X the smaller set.
@@ -80,8 +78,8 @@ MetricsAccumulator::MetricsAccumulator(const common::MetricsConfig& config) : co
     throw std::invalid_argument("metrics: ospa_p must be finite and >= 1, got " + common::fixed6(config_.ospa_p));
 }
 
-void MetricsAccumulator::add(std::int32_t tick, const std::vector<TargetState>& truth,
-                             const std::vector<TrackEstimate>& tracks) {
+MetricsTick MetricsAccumulator::add(std::int32_t tick, const std::vector<TargetState>& truth,
+                                    const std::vector<TrackEstimate>& tracks) {
   if (ticks_.count(tick) != 0) throw std::invalid_argument("metrics: tick " + std::to_string(tick) + " added twice");
   TickRecord record;
   record.truth = truth;
@@ -100,7 +98,19 @@ void MetricsAccumulator::add(std::int32_t tick, const std::vector<TargetState>& 
   for (const auto& target : record.truth) truth_positions.push_back({target.x, target.y});
   for (const auto& track : record.tracks) track_positions.push_back({track.x, track.y});
   record.ospa = ospaDistance(truth_positions, track_positions, config_.ospa_c, config_.ospa_p);
+
+  MetricsTick out;
+  out.k_true = static_cast<std::int64_t>(record.truth.size());
+  out.k = static_cast<std::int64_t>(record.tracks.size());
+  out.ospa = record.ospa;
   ticks_.emplace(tick, std::move(record));
+  running_abs_k_error_ += std::abs(out.k - out.k_true);
+  running_k_true_ += out.k_true;
+  running_ospa_ += out.ospa;
+  if (running_k_true_ > 0)
+    out.eps_k_running = static_cast<double>(running_abs_k_error_) / static_cast<double>(running_k_true_);
+  out.ospa_mean_running = running_ospa_ / static_cast<double>(ticks_.size());
+  return out;
 }
 
 MetricsSummary MetricsAccumulator::finish() const {
@@ -182,22 +192,22 @@ std::string toJson(const MetricsSummary& s) {
   out << "    \"ticks_scored\": " << s.ticks_scored << ",\n";
   out << "    \"first_tick\": " << s.first_tick << ",\n";
   out << "    \"last_tick\": " << s.last_tick << ",\n";
-  out << "    \"eps_k\": " << real(s.eps_k) << ",\n";
+  out << "    \"eps_k\": " << jsonReal(s.eps_k) << ",\n";
   out << "    \"eps_k_defined\": " << flag(s.eps_k_defined) << ",\n";
-  out << "    \"eps_x\": " << real(s.eps_x) << ",\n";
+  out << "    \"eps_x\": " << jsonReal(s.eps_x) << ",\n";
   out << "    \"eps_x_defined\": " << flag(s.eps_x_defined) << ",\n";
-  out << "    \"mean_k\": " << real(s.mean_k) << ",\n";
-  out << "    \"mean_k_true\": " << real(s.mean_k_true) << ",\n";
+  out << "    \"mean_k\": " << jsonReal(s.mean_k) << ",\n";
+  out << "    \"mean_k_true\": " << jsonReal(s.mean_k_true) << ",\n";
   out << "    \"sum_k\": " << s.sum_k << ",\n";
   out << "    \"sum_k_true\": " << s.sum_k_true << ",\n";
   out << "    \"sum_abs_k_error\": " << s.sum_abs_k_error << ",\n";
   out << "    \"sum_matches\": " << s.sum_matches << ",\n";
-  out << "    \"sum_squared_position_error\": " << real(s.sum_squared_position_error) << ",\n";
-  out << "    \"ospa_c\": " << real(s.ospa_c) << ",\n";
-  out << "    \"ospa_p\": " << real(s.ospa_p) << ",\n";
-  out << "    \"ospa_mean\": " << real(s.ospa_mean) << ",\n";
+  out << "    \"sum_squared_position_error\": " << jsonReal(s.sum_squared_position_error) << ",\n";
+  out << "    \"ospa_c\": " << jsonReal(s.ospa_c) << ",\n";
+  out << "    \"ospa_p\": " << jsonReal(s.ospa_p) << ",\n";
+  out << "    \"ospa_mean\": " << jsonReal(s.ospa_mean) << ",\n";
   out << "    \"ospa_per_tick\": [";
-  for (std::size_t i = 0; i < s.ospa_per_tick.size(); ++i) out << (i == 0 ? "" : ", ") << real(s.ospa_per_tick[i]);
+  for (std::size_t i = 0; i < s.ospa_per_tick.size(); ++i) out << (i == 0 ? "" : ", ") << jsonReal(s.ospa_per_tick[i]);
   out << "],\n";
   out << "    \"track_ids\": " << s.track_ids << ",\n";
   out << "    \"tracks_ignored_nonfinite\": " << s.tracks_ignored_nonfinite << "\n";

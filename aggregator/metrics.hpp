@@ -85,6 +85,16 @@ struct MetricsSummary {
   std::int64_t tracks_ignored_nonfinite = 0;
 };
 
+/// What add() returns: the values of that tick and the running scores over the ticks added so
+/// far (the live view; εX needs t + 1 and is only in finish()).
+struct MetricsTick {
+  std::int64_t k_true = 0;  ///< K*_t
+  std::int64_t k = 0;  ///< K_t (finite tracks)
+  double ospa = 0.0;  ///< OSPA_t
+  double eps_k_running = 0.0;  ///< eq. (9) over the ticks added so far; 0 while Σ K*_t = 0
+  double ospa_mean_running = 0.0;  ///< mean OSPA over the ticks added so far
+};
+
 /// OSPA distance between two finite point sets (Schuhmacher, Vo & Vo 2008, eq. (3)), cut-off
 /// `c` > 0, order `p` >= 1. Both empty: 0; exactly one empty: c.
 double ospaDistance(const std::vector<common::Vec2>& x, const std::vector<common::Vec2>& y, double c, double p);
@@ -97,7 +107,7 @@ class MetricsAccumulator {
 
   /// Records tick `tick`: the truth targets alive and the global tracks reported. Any order of
   /// either vector gives the same scores. Adding a tick twice throws std::invalid_argument.
-  void add(std::int32_t tick, const std::vector<common::TargetState>& truth,
+  MetricsTick add(std::int32_t tick, const std::vector<common::TargetState>& truth,
            const std::vector<common::TrackEstimate>& tracks);
 
   /// Scores everything added so far (εX needs t + 1, so all of it is computed here).
@@ -114,7 +124,15 @@ class MetricsAccumulator {
   std::map<std::int32_t, TickRecord> ticks_;
   std::set<common::TrackId> track_ids_;
   std::int64_t ignored_nonfinite_ = 0;
+  // Running sums for MetricsTick; finish() recomputes everything from ticks_.
+  std::int64_t running_abs_k_error_ = 0;
+  std::int64_t running_k_true_ = 0;
+  double running_ospa_ = 0.0;
 };
+
+/// A real as a metrics.json number: 6 decimals, or null when not finite (valid inputs never
+/// give one, but the file must stay valid JSON).
+std::string jsonReal(double value);
 
 /// The summary as a JSON object (2-space indentation, nested one level: it is embedded as the
 /// value of "metrics" in metrics.json). Numbers: integers as such, reals with 6 decimals;

@@ -2,10 +2,9 @@
 
 #include <chrono>
 #include <map>
-#include <sstream>
 
-#include "aggregator/metrics.hpp"
 #include "aggregator/association.hpp"
+#include "aggregator/run_scorer.hpp"
 #include "common/dds/codec.hpp"
 #include "common/output.hpp"
 #include "common/truth.hpp"
@@ -34,10 +33,12 @@ void runAggregatorRole(const dds::RoleContext& context) {
     const auto& scenario = context.scenario;
     const common::Truth truth(scenario);
     const auto associator = makeAssociator(scenario);
-    MetricsAccumulator metrics(scenario.metrics);
+    RunScorer scorer(scenario.metrics, scenario.supernodes);
 
     Reader track_reader(participant, topics.track_batch, Qos::reliableKeepAll());
     Writer global_writer(participant, topics.global_track_batch, Qos::reliableKeepAll());
+    // For live views only: not in waitForDiscovery, since nobody need be listening.
+    Writer tick_metrics_writer(participant, topics.tick_metrics, Qos::reliableKeepAll());
     RoleLoop loop(participant, context);
     TickInbox<SupernodeBatch> inbox;
     const auto supernodes = static_cast<std::uint32_t>(context.shape.supernodes);
@@ -56,6 +57,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
 
     common::CsvFile supernode_csv(context.run_dir + "/tracks_supernode.csv", "tick,supernode,track,x,y,vx,vy");
     common::CsvFile global_csv(context.run_dir + "/tracks.csv", "tick,track,x,y,vx,vy");
+    common::CsvFile per_tick_csv(context.run_dir + "/metrics_per_tick.csv", kPerTickCsvHeader);
     // Each supernode reports its running total of stale drops; the run's total is the sum of
     // the last value of each.
     std::map<std::uint32_t, std::uint64_t> dropped_stale_by_supernode;
@@ -73,7 +75,8 @@ void runAggregatorRole(const dds::RoleContext& context) {
         inputs.push_back({supernode, std::move(batch.tracks)});
       }
       auto global = associator->associate(t, inputs);
-      metrics.add(t, truth.at(t), global);
+      const TickScores scores = scorer.add(t, truth.at(t), global);
+      per_tick_csv.row(perTickCsvRow(scores));
       for (const auto& track : global) global_csv.row(std::to_string(t) + "," + trackFields(track));
 
       auto encoded = encode(global);
@@ -82,6 +85,20 @@ void runAggregatorRole(const dds::RoleContext& context) {
       sample.tick = t;
       sample.tracks = sequenceView<dds_sequence_wsn_msg_TrackEstimate>(encoded);
       global_writer.write(sample);
+
+      wsn_msg_TickMetrics tick_sample{};
+      tick_sample.run_id = context.run_id;
+      tick_sample.tick = t;
+      tick_sample.truth_targets = static_cast<std::int32_t>(scores.truth_targets);
+      tick_sample.tracks = static_cast<std::int32_t>(scores.tracks);
+      tick_sample.ospa = scores.ospa;
+      tick_sample.gospa = scores.gospa.distance;
+      tick_sample.gospa_localisation = scores.gospa.localisation;
+      tick_sample.gospa_missed = scores.gospa.missed;
+      tick_sample.gospa_false = scores.gospa.false_targets;
+      tick_sample.eps_k_running = scores.eps_k_running;
+      tick_sample.ospa_mean_running = scores.ospa_mean_running;
+      tick_metrics_writer.write(tick_sample);
       status.running(t);
     }
     std::uint64_t dropped_stale_total = 0;
@@ -90,21 +107,15 @@ void runAggregatorRole(const dds::RoleContext& context) {
     // steady pipeline (start-up and discovery excluded; the launcher reports the total).
     const double wall_s = std::chrono::duration<double>(Clock::now() - first_tick_at.value_or(Clock::now())).count();
     const double ticks_per_s = wall_s > 0 ? (ticks - 1) / wall_s : 0.0;
-    const auto summary = metrics.finish();
+    const RunScores run_scores = scorer.finish();
     supernode_csv.close();
     global_csv.close();
+    per_tick_csv.close();
 
-    // Everything above "timing" is a pure function of (scenario, seed); the timing block is the
-    // only part that differs between equal runs, and it is written last on purpose.
-    std::ostringstream json;
-    json << "{\n  \"scenario\": \"" << scenario.name << "\",\n  \"seed\": " << scenario.run.seed
-         << ",\n  \"ticks\": " << ticks << ",\n  \"engine\": \"" << scenario.tracker.engine
-         << "\",\n  \"truth_targets\": " << truth.targetCount() << ",\n  \"eps_k\": " << common::fixed6(summary.eps_k)
-         << ",\n  \"eps_x\": " << common::fixed6(summary.eps_x) << ",\n  \"ospa\": " << common::fixed6(summary.ospa_mean)
-         << ",\n  \"observations_dropped_stale\": " << dropped_stale_total << ",\n  \"metrics\": " << toJson(summary)
-         << ",\n  \"timing\": {\"wall_s\": " << common::fixed6(wall_s) << ", \"ticks_per_s\": " << common::fixed6(ticks_per_s)
-         << "}\n}\n";
-    common::writeTextFile(context.run_dir + "/metrics.json", json.str());
+    // Everything but the "timing" line is a pure function of (scenario, seed).
+    const RunInfo info{scenario.name, scenario.run.seed, ticks, scenario.tracker.engine, truth.targetCount(),
+                       dropped_stale_total, scenario.aggregator.association};
+    common::writeTextFile(context.run_dir + "/metrics.json", metricsJson(info, run_scores, wall_s, ticks_per_s));
     status.done(ticks);
     global_writer.waitForAcknowledgements(std::chrono::seconds(10));
   });

@@ -75,6 +75,23 @@ TrackQualitySummary TrackQualityAccumulator::summary() const {
     }
     out.targets.push_back(q);
   }
+  std::int64_t with_errors = 0;
+  for (const auto& q : out.targets) {
+    out.mean_tlr += q.tlr;
+    if (!q.errors_defined) continue;
+    ++with_errors;
+    out.mean_rse_position += q.rse_position;
+    out.mean_rse_velocity += q.rse_velocity;
+    out.mean_position_error += q.mean_position_error;
+  }
+  if (!out.targets.empty()) out.mean_tlr /= static_cast<double>(out.targets.size());
+  out.means_defined = with_errors > 0;
+  if (out.means_defined) {
+    const auto n = static_cast<double>(with_errors);
+    out.mean_rse_position /= n;
+    out.mean_rse_velocity /= n;
+    out.mean_position_error /= n;
+  }
   return out;
 }
 

@@ -34,6 +34,11 @@
 //
 // A target never associated (A_j = 0) has RSE and ⟨dx⟩ reported as 0 with `errors_defined`
 // false, and TLR 0. Tracks with a non-finite field are ignored (tracks_ignored_nonfinite).
+//
+// Run means (a one-line summary for sweeps; the papers tabulate per target): RSE and ⟨dx⟩ are
+// averaged over the targets with errors_defined, each target weighing the same however long it
+// lived (so a short-lived badly tracked target is not drowned by long easy ones); TLR over every
+// target, since a never-tracked target is exactly what TLR should penalise.
 #pragma once
 
 #include <cstdint>
@@ -60,6 +65,11 @@ struct TargetQuality {
 /// Per-target quality of a run, targets in increasing id order.
 struct TrackQualitySummary {
   std::vector<TargetQuality> targets;
+  bool means_defined = false;  ///< false when no target was ever associated
+  double mean_rse_position = 0.0;  ///< over targets with errors_defined
+  double mean_rse_velocity = 0.0;
+  double mean_position_error = 0.0;
+  double mean_tlr = 0.0;  ///< over every target; 0 without targets
   std::int64_t false_track_ticks = 0;  ///< track-ticks left unassociated
   std::int64_t tracks_ignored_nonfinite = 0;
 };

@@ -54,6 +54,9 @@ struct TrackEstimate {
   double vx = 0.0;
   double vy = 0.0;
   std::array<double, 16> covariance{};  ///< row-major 4x4 over (x, y, vx, vy); zero when unknown
+  /// Tick of the track's latest observation (the state above is its filtered state there,
+  /// predicted forward); 0 when unknown. Lets the aggregator tell observed from coasted ticks.
+  std::int32_t last_seen_tick = 0;
   friend bool operator==(const TrackEstimate&, const TrackEstimate&) = default;
 };
 

@@ -589,7 +589,8 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
 
   if (const Entry* e = top.find("metrics")) {
     const Section sec =
-        r.section(*e, "metrics", {"ospa_c", "ospa_p", "gospa_c", "gospa_p", "mot_threshold", "quality_gate"});
+        r.section(*e, "metrics", {"ospa_c", "ospa_p", "gospa_c", "gospa_p", "mot_threshold", "quality_gate",
+                                    "boundary_band"});
     const Range order{1.0, 100.0, false, false};
     r.number(sec, "ospa_c", s.metrics.ospa_c, kPositive);
     r.number(sec, "ospa_p", s.metrics.ospa_p, order);
@@ -597,6 +598,7 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
     r.number(sec, "gospa_p", s.metrics.gospa_p, order);
     r.number(sec, "mot_threshold", s.metrics.mot_threshold, kPositive);
     r.number(sec, "quality_gate", s.metrics.quality_gate, kPositive);
+    r.number(sec, "boundary_band", s.metrics.boundary_band, kNonNegative);
   }
 
   // run
@@ -973,7 +975,8 @@ std::string resolvedScenarioYaml(const Scenario& s) {
       << "  gospa_c: " << num(s.metrics.gospa_c) << "\n"
       << "  gospa_p: " << num(s.metrics.gospa_p) << "\n"
       << "  mot_threshold: " << num(s.metrics.mot_threshold) << "\n"
-      << "  quality_gate: " << num(s.metrics.quality_gate) << "\n";
+      << "  quality_gate: " << num(s.metrics.quality_gate) << "\n"
+      << "  boundary_band: " << num(s.metrics.boundary_band) << "\n";
   out << "run:\n"
       << "  ticks: " << s.run.ticks << "\n"
       << "  seed: " << s.run.seed << "\n"

@@ -98,7 +98,7 @@ struct TrackerConfig {
 /// Track-level association at the aggregator (Oh §VI): which method and its parameters
 /// (validated by the aggregator's association registry, like tracker.params).
 struct AggregatorConfig {
-  std::string association = "gated";
+  std::string association = "mcmcda";
   int association_line = 0;
   std::map<std::string, EngineParam> params;
 };
@@ -111,6 +111,9 @@ struct MetricsConfig {
   double gospa_p = 2.0;  ///< GOSPA order p
   double mot_threshold = 3.0;  ///< CLEAR-MOT match threshold T (Bernardin & Stiefelhagen 2008)
   double quality_gate = 3.0;  ///< RSE/TLR/<dx>: a track counts for its target only within this distance
+  /// Boundary events: a target this close to the bisector of its two nearest supernodes is at a
+  /// tracking-group boundary (aggregator/boundary.hpp)
+  double boundary_band = 5.0;
 };
 
 /// Run length, seed and process layout.

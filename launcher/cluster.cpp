@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
@@ -62,6 +63,7 @@ dds::RoleContext contextFor(const RoleSlot& slot, const ClusterOptions& options,
   context.scenario = options.scenario;
   context.shape = {options.scenario.run.node_processes, static_cast<std::int32_t>(options.scenario.supernodes.size())};
   context.stall_timeout = std::chrono::milliseconds(static_cast<long>(options.stall_timeout_s * 1000));
+  context.tick_interval = std::chrono::microseconds(std::llround(options.tick_interval_s * 1e6));
   context.stop = stop;
   return context;
 }
@@ -113,7 +115,7 @@ class StatusObserver {
                                       participant_index)),
         participant_(domain_.id()),
         topics_(participant_),
-        reader_(participant_, topics_.process_status, dds::Qos::lastValueTransientLocal()),
+        reader_(participant_, topics_.process_status, dds::Qos::lastValueTransientLocal(dds::Endpoint::kViewer)),
         condition_(reader_),
         waitset_(participant_),
         run_id_(options.identity.run_id) {
@@ -159,7 +161,8 @@ pid_t spawn(const RoleSlot& slot, const ClusterOptions& options, const std::stri
                                    "--domain", std::to_string(options.identity.domain),
                                    "--participant-index", std::to_string(slot.participant_index),
                                    "--tiles", std::to_string(options.scenario.run.node_processes),
-                                   "--stall-timeout", std::to_string(options.stall_timeout_s)};
+                                   "--stall-timeout", std::to_string(options.stall_timeout_s),
+                                   "--tick-interval", std::to_string(options.tick_interval_s)};
   if (slot.role == "node" || slot.role == "supernode") {
     args.push_back("--index");
     args.push_back(std::to_string(slot.index));
@@ -327,6 +330,24 @@ int participantCount(const common::Scenario& scenario, bool in_process) {
 ClusterResult runCluster(const ClusterOptions& options) {
   std::signal(SIGINT, onInterrupt);
   std::signal(SIGTERM, onInterrupt);
+  RunDescription description;
+  description.identity = options.identity;
+  description.participants = participantCount(options.scenario, options.in_process);
+  description.first_viewer_index = description.participants;
+  description.viewer_slots = dds::kViewerSlots;
+  description.scenario = options.scenario.name;
+  description.ticks = options.scenario.run.ticks;
+  description.processes = static_cast<std::int32_t>(clusterSlots(options.scenario).size());
+  description.tick_interval_s = options.tick_interval_s;
+  description.in_process = options.in_process;
+  description.launcher_pid = ::getpid();
+  try {
+    writeRunDescription(options.run_dir, description);
+  } catch (const std::exception& error) {
+    ClusterResult result;
+    result.failure = std::string("launcher: ") + error.what();
+    return result;
+  }
   return options.in_process ? runThreads(options) : runProcesses(options);
 }
 

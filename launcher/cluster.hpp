@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/dds/cyclone_config.hpp"
 #include "common/scenario.hpp"
 #include "launcher/run_directory.hpp"
 
@@ -20,6 +21,7 @@ struct ClusterOptions {
   std::string bin_dir;  ///< where the wsntrack-<role> executables are
   std::chrono::seconds timeout{1800};
   double stall_timeout_s = 60.0;
+  double tick_interval_s = 0.0;  ///< --tick-interval: real-time pacing of the sources (0: none)
   bool show_progress = true;
 };
 
@@ -46,7 +48,11 @@ struct ClusterResult {
 ClusterResult runCluster(const ClusterOptions& options);
 
 /// Most Cyclone participants one run may have: their ports must stay inside its domain's range.
+/// The viewer slots after them may reach past it, but only into the next domain's multicast ports
+/// (offsets 0..9, unused: multicast is off), never into its unicast ones.
 inline constexpr int kMaxParticipants = 119;
+static_assert(2 * (kMaxParticipants + dds::kViewerSlots + 1) + 11 < 250 + 10,
+              "viewer slots would reach the next domain's unicast ports");
 
 /// Number of Cyclone participants of a run: every process plus the launcher's observer.
 int participantCount(const common::Scenario& scenario, bool in_process);

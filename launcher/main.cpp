@@ -16,6 +16,7 @@
 #include "common/scenario.hpp"
 #include "launcher/cluster.hpp"
 #include "launcher/run_directory.hpp"
+#include "launcher/watch.hpp"
 #include "supernode/engine.hpp"
 
 namespace po = boost::program_options;
@@ -29,6 +30,7 @@ constexpr const char* kUsage =
     "run as a real multi-process cluster over Cyclone DDS on the loopback interface.\n\n"
     "Commands:\n"
     "  run SCENARIO       start every process of the cluster on this host and write a run directory\n"
+    "  watch RUN_DIR      live view of a running cluster's tracks and metrics (from another terminal)\n"
     "  validate FILE...   check scenario files without running them\n"
     "  engines            list the supernode tracking engines, the aggregator's association methods and their parameters\n"
     "  help               show this text\n\n"
@@ -187,6 +189,8 @@ int commandRun(const std::vector<std::string>& args) {
   int ticks = 0;
   double timeout_s = 1800;
   double stall_s = 60;
+  double tick_interval_s = 0;
+  std::string plot_format = "png";
   po::options_description options("Options");
   options.add_options()("help,h", "show this help")(
       "seed", po::value(&seed_text), "random seed, 0 .. 2^64-1 (overrides run.seed of the scenario)")(
@@ -199,7 +203,12 @@ int commandRun(const std::vector<std::string>& args) {
       "timeout", po::value(&timeout_s)->default_value(1800), "stop everything after this many seconds")(
       "stall-timeout", po::value(&stall_s)->default_value(60),
       "a role gives up after this many seconds without input (a peer died)")(
-      "quiet,q", "no progress display")("scenario", po::value(&scenario_path), "scenario file");
+      "tick-interval", po::value(&tick_interval_s)->default_value(0),
+      "real-time pacing: at most one tick per this many seconds, to follow with 'wsntrack watch' "
+      "(0: as fast as possible; outputs are the same either way)")(
+      "quiet,q", "no progress display")("no-plot", "do not draw the plots (tools/plot_run.py) after the run")(
+      "plot-format", po::value(&plot_format)->default_value("png"), "format of the plots: png or svg")(
+      "scenario", po::value(&scenario_path), "scenario file");
   po::positional_options_description positional;
   positional.add("scenario", 1);
   po::variables_map vm;
@@ -208,12 +217,15 @@ int commandRun(const std::vector<std::string>& args) {
   if (vm.count("help") || scenario_path.empty()) {
     std::cout << "Usage: wsntrack run SCENARIO [--seed N] [--out DIR [--overwrite]] [--nodes N] [--ticks T]\n"
                  "                    [--set KEY=VALUE]... [--in-process] [--timeout S] [--stall-timeout S]\n"
-                 "                    [--quiet]\n\n"
+                 "                    [--tick-interval S]\n"
+                 "                    [--quiet] [--no-plot] [--plot-format png|svg]\n\n"
                  "Starts every process of the cluster on this host — sensor-node tiles, the network\n"
                  "model, one supernode per tracking group and the aggregator — over Cyclone DDS on\n"
                  "loopback, shows progress, and prints a summary. Outputs (run directory):\n"
                  "  scenario.yaml  truth.csv  observations.csv  tracks_supernode.csv  tracks.csv\n"
-                 "  network.json  metrics.json  logs/<role>-<index>.log\n\n"
+                 "  network.json  metrics.json  logs/<role>-<index>.log  sensors.csv (random layout)\n"
+                 "  plots/{tracks,cardinality,ospa}.png (or .svg): drawn after the run by plot_run.py with\n"
+                 "  /usr/bin/python3 and matplotlib unless --no-plot; without them a warning, not a failure\n\n"
                  "--set KEY=VALUE changes one value as an edit of the file would: values the loader\n"
                  "derives (sensor_model.beta) follow it, and the result passes every check of\n"
                  "'wsntrack validate'. The --set options apply in order, before --seed, --nodes and\n"
@@ -264,6 +276,11 @@ int commandRun(const std::vector<std::string>& args) {
     scenario.run.ticks = ticks;
   }
 
+  if (plot_format != "png" && plot_format != "svg") {
+    std::cerr << "wsntrack run: --plot-format must be png or svg, got '" << plot_format << "'\n";
+    return 2;
+  }
+
   // The overrides pass the same cross-field checks as the file (e.g. tiles vs. cells).
   if (vm.count("seed") || vm.count("nodes") || vm.count("ticks")) {
     try {
@@ -281,6 +298,12 @@ int commandRun(const std::vector<std::string>& args) {
   cluster.show_progress = vm.count("quiet") == 0;
   cluster.timeout = std::chrono::seconds(static_cast<long>(timeout_s));
   cluster.stall_timeout_s = stall_s;
+  if (!std::isfinite(tick_interval_s) || tick_interval_s < 0 || tick_interval_s > 3600 || tick_interval_s >= stall_s) {
+    std::cerr << "wsntrack run: --tick-interval must be in [0, 3600] seconds and below --stall-timeout, got "
+              << tick_interval_s << "\n";
+    return 2;
+  }
+  cluster.tick_interval_s = tick_interval_s;
   cluster.bin_dir = executableDirectory();
   cluster.run_dir = out_dir.empty() ? launcher::defaultRunDirectory(scenario) : out_dir;
   try {
@@ -304,6 +327,9 @@ int commandRun(const std::vector<std::string>& args) {
             << " ticks) on " << scenario.run.node_processes << " node tiles, " << scenario.supernodes.size()
             << " supernodes, engine " << scenario.tracker.engine << ", domain " << cluster.identity.domain
             << (cluster.in_process ? ", in-process" : "") << "\n";
+  // Started before the cluster so that python and matplotlib load while it runs.
+  std::optional<launcher::PlotJob> plot_job;
+  if (!vm.count("no-plot")) plot_job.emplace(cluster.bin_dir, cluster.run_dir, plot_format);
   const auto result = launcher::runCluster(cluster);
   if (!result.ok) {
     std::cerr << "wsntrack run: FAILED: " << result.failure << "\n";
@@ -313,7 +339,19 @@ int commandRun(const std::vector<std::string>& args) {
                   << (outcome.message.empty() ? "" : " (" + outcome.message + ")") << "\n";
     return 1;
   }
+  // A run that succeeded stays a success whatever becomes of its plots: they are a view of it.
+  std::optional<launcher::PlotOutcome> plots;
+  if (plot_job) {
+    plots = plot_job->finish(true);
+    if (plots->status != launcher::PlotOutcome::Status::kDrawn)
+      std::cerr << "wsntrack run: warning: no plots: " << plots->message << "\n";
+  }
   printSummary(cluster.run_dir, result, cluster.in_process);
+  if (plots) {
+    const bool drawn = plots->status == launcher::PlotOutcome::Status::kDrawn;
+    std::cout << "  plots" << std::string(21, ' ')
+              << (drawn ? plots->message + " (" + show(plots->seconds, 1) + " s)" : "none: " + plots->message) << "\n";
+  }
   return 0;
 }
 
@@ -330,6 +368,7 @@ int main(int argc, char** argv) {
     if (command == "run") return commandRun(args);
     if (command == "validate") return commandValidate(args);
     if (command == "engines") return commandEngines();
+    if (command == "watch") return launcher::commandWatch(args);
     if (command == "help" || command == "--help" || command == "-h") {
       std::cout << kUsage;
       return 0;

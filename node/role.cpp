@@ -46,6 +46,7 @@ void runNodeRole(const dds::RoleContext& context) {
     const std::int32_t in_flight = scenario.run.max_ticks_in_flight;
     const auto others = static_cast<std::size_t>(tiles_count - 1);
     for (std::int32_t t = 1; t <= ticks; ++t) {
+      progress.paceTick();  // --tick-interval: the sources set the pace, back-pressure the rest
       progress.waitForCompleted(t - in_flight);
       const auto& targets = truth.at(t);
       const auto own = field.detect(t, targets);

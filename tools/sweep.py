@@ -18,8 +18,25 @@ import time
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
-METRICS = ("eps_k", "eps_x", "ospa")  # top-level keys of metrics.json
-METRIC_TITLES = {"eps_k": "eps_K", "eps_x": "eps_X", "ospa": "OSPA"}
+# The metrics a sweep can tabulate: name -> (table title, path into metrics.json, path of the flag
+# that says whether the run defines it, or None). docs/METRICS.md defines each.
+METRIC_SOURCES = {
+    "eps_k": ("eps_K", ("eps_k",), ("metrics", "eps_k_defined")),
+    "eps_x": ("eps_X", ("eps_x",), ("metrics", "eps_x_defined")),
+    "ospa": ("OSPA", ("ospa",), None),
+    "gospa": ("GOSPA", ("gospa", "mean"), None),
+    "mota": ("MOTA", ("clear_mot", "mota"), ("clear_mot", "mota_defined")),
+    "motp": ("MOTP", ("clear_mot", "motp"), ("clear_mot", "motp_defined")),
+    "id_switches": ("ID switches", ("clear_mot", "id_switches"), None),
+    "fragmentations": ("fragmentations", ("clear_mot", "fragmentations"), None),
+    "boundary_duplicates": ("boundary dup", ("boundary", "boundary", "duplicate_track_ticks"), None),
+    "boundary_id_switches": ("boundary IDsw", ("boundary", "boundary", "id_switches"), None),
+    "boundary_fragmentations": ("boundary frag", ("boundary", "boundary", "fragmentations"), None),
+    "tlr": ("TLR", ("track_quality", "mean_tlr"), ("track_quality", "means_defined")),
+    "position_error": ("<dx>", ("track_quality", "mean_position_error"), ("track_quality", "means_defined")),
+}
+DEFAULT_METRICS = ("eps_k", "eps_x", "ospa")
+METRICS = DEFAULT_METRICS  # the tabulated ones, set from --metrics
 
 DESCRIPTION = """\
 Runs a grid of wsntrack clusters and tabulates their metrics.
@@ -27,17 +44,17 @@ Runs a grid of wsntrack clusters and tabulates their metrics.
 For every grid point (the cartesian product of the --set-grid values), every engine and every
 seed it runs
 
-  wsntrack run SCENARIO --seed S --out OUT/runs/NAME --overwrite --quiet
+  wsntrack run SCENARIO --seed S --out OUT/runs/NAME --overwrite --quiet --no-plot
                --set tracker.engine=E [--set KEY=VALUE for the fixed --set options]
                [--set KEY=V for each --set-grid key] [--in-process]
 
-reads the run's metrics.json (eps_k: Oh eq. 9, eps_x: eq. 10, ospa: mean OSPA), shows progress
-on stderr, and writes:
+reads the run's metrics.json (by default eps_k: Oh eq. 9, eps_x: eq. 10, ospa: mean OSPA; more
+with --metrics), shows progress on stderr, and writes:
 
-  OUT/results.csv   one row per run: engine, the grid keys, seed, status, eps_k, eps_x, ospa,
+  OUT/results.csv   one row per run: engine, the grid keys, seed, status, the metrics,
                     wall_s (the whole run as this tool timed it), run_dir, log
   OUT/table.md      the table printed on stdout: one row per grid point and, for each engine,
-                    the means over the seeds of eps_K, eps_X and OSPA
+                    the means over the seeds of each metric
   OUT/sweep.json    the sweep's parameters (and the command line that started it)
   OUT/runs/NAME/    each run directory (see README.md, "Run directory")
   OUT/logs/NAME.log each run's wsntrack output
@@ -56,6 +73,8 @@ EPILOG = """\
 examples:
   tools/sweep.py --scenario scenarios/oh_quadrants.yaml --seeds 1-5 --engines gnn \\
       --set-grid network.pte=0,0.2,0.4 --set-grid network.pde=0,0.3,0.6 --out runs/sweep-loss
+  tools/sweep.py --scenario scenarios/oh_quadrants.yaml --seeds 1-5 --set-grid aggregator.association=gated,mcmcda \\
+      --metrics eps_k,ospa,boundary_duplicates,boundary_id_switches,boundary_fragmentations --out runs/sweep-assoc
   tools/sweep.py --scenario scenarios/oh_single_supernode.yaml --seeds 1-3 --engines gnn \\
       --set-grid network.pte=0,0.1,0.2,0.3 --set tracker.params.gate_chi2=12 --jobs 2
 
@@ -163,15 +182,22 @@ def set_args(pairs):
     return args
 
 
+def lookup(data, path):
+    for key in path:
+        if not isinstance(data, dict):
+            return None
+        data = data.get(key)
+    return data
+
+
 def read_metrics(run):
-    """The run's eps_k, eps_x, ospa; None for a metric the run leaves undefined."""
+    """The run's tabulated metrics; None for a metric the run leaves undefined."""
     with open(run.run_dir / "metrics.json", encoding="utf-8") as f:
         data = json.load(f)
-    values = {m: data.get(m) for m in METRICS}
-    inner = data.get("metrics", {})
-    for metric in ("eps_k", "eps_x"):
-        if inner.get(f"{metric}_defined") is False:
-            values[metric] = None
+    values = {}
+    for metric in METRICS:
+        _, path, defined = METRIC_SOURCES[metric]
+        values[metric] = None if defined and lookup(data, defined) is False else lookup(data, path)
     return values
 
 
@@ -217,7 +243,7 @@ def markdown_table(args, grid, names, engines, seeds, runs, fixed):
         "or the metric is undefined for it); –: none.",
         "",
     ]
-    header = list(names) + [f"{e} {METRIC_TITLES[m]}" for e in engines for m in METRICS]
+    header = list(names) + [f"{e} {METRIC_SOURCES[m][0]}" for e in engines for m in METRICS]
     lines.append("| " + " | ".join(header) + " |")
     lines.append("|" + "|".join(["---"] * len(names) + ["---:"] * (len(header) - len(names))) + "|")
     by_cell = {}
@@ -249,7 +275,7 @@ def write_csv(path, grid, runs):
 
 def start(run, wsntrack, scenario, fixed, in_process):
     command = [str(wsntrack), "run", str(scenario), "--seed", str(run.seed), "--out", str(run.run_dir), "--overwrite",
-               "--quiet"] + set_args(engine_sets(run.engine) + fixed + run.point)
+               "--quiet", "--no-plot"] + set_args(engine_sets(run.engine) + fixed + run.point)
     if in_process:
         command.append("--in-process")
     log = open(run.log, "w", encoding="utf-8")
@@ -344,6 +370,9 @@ def parse_args(argv):
                         help="clusters run at the same time (default 1; each cluster is several processes)")
     parser.add_argument("--wsntrack", type=Path, default=REPO / "build" / "bin" / "wsntrack",
                         help="the wsntrack executable (default: build/bin/wsntrack of this repository)")
+    parser.add_argument("--metrics", default=",".join(DEFAULT_METRICS),
+                        help="comma-separated metrics to tabulate (default: %(default)s); one of: " +
+                        ", ".join(METRIC_SOURCES))
     parser.add_argument("--in-process", action="store_true",
                         help="run each cluster's roles as threads of one process (wsntrack run --in-process); "
                         "the results are the same")
@@ -352,7 +381,12 @@ def parse_args(argv):
 
 def main(argv):
     args = parse_args(argv)
+    global METRICS
     try:
+        METRICS = tuple(m.strip() for m in args.metrics.split(","))
+        unknown = [m for m in METRICS if m not in METRIC_SOURCES]
+        if unknown or not METRICS or len(set(METRICS)) != len(METRICS):
+            raise UsageError(f"--metrics: expected distinct names from {', '.join(METRIC_SOURCES)}, got '{args.metrics}'")
         seeds = parse_seeds(args.seeds)
         grid = parse_grid(args.set_grid)
         fixed = [split_key_value(t, "--set") for t in args.fixed]

@@ -64,7 +64,7 @@ std::vector<common::Observation> decode(const dds_sequence_wsn_msg_Observation& 
 
 std::vector<wsn_msg_TrackEstimate> encode(const std::vector<common::TrackEstimate>& tracks) {
   return mapVector<wsn_msg_TrackEstimate>(tracks, [](const common::TrackEstimate& t) {
-    wsn_msg_TrackEstimate w{t.track, t.x, t.y, t.vx, t.vy, {}};
+    wsn_msg_TrackEstimate w{t.track, t.x, t.y, t.vx, t.vy, {}, t.last_seen_tick};
     std::copy(t.covariance.begin(), t.covariance.end(), w.covariance);
     return w;
   });
@@ -72,7 +72,7 @@ std::vector<wsn_msg_TrackEstimate> encode(const std::vector<common::TrackEstimat
 
 std::vector<common::TrackEstimate> decode(const dds_sequence_wsn_msg_TrackEstimate& seq) {
   return mapSequence<common::TrackEstimate>(seq, [](const wsn_msg_TrackEstimate& t) {
-    common::TrackEstimate e{t.track, t.x, t.y, t.vx, t.vy, {}};
+    common::TrackEstimate e{t.track, t.x, t.y, t.vx, t.vy, {}, t.last_seen_tick};
     std::copy(std::begin(t.covariance), std::end(t.covariance), e.covariance.begin());
     return e;
   });

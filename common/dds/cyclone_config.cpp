@@ -1,5 +1,10 @@
 #include "common/dds/cyclone_config.hpp"
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <sstream>
 #include <stdexcept>
 
@@ -7,8 +12,8 @@ namespace wsn::dds {
 
 std::string cycloneConfigTemplate(std::uint64_t run_id, int participants) {
   std::ostringstream xml;
-  // MaxAutoParticipantIndex bounds the ports probed on the unicast peer: one per process,
-  // with headroom for Cyclone's off-by-one.
+  // MaxAutoParticipantIndex bounds the ports probed on the unicast peer: one per process and
+  // per viewer slot, with headroom for Cyclone's off-by-one.
   xml << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       << "<CycloneDDS xmlns=\"https://cdds.io/config\">\n"
       << "  <Domain Id=\"any\">\n"
@@ -18,7 +23,7 @@ std::string cycloneConfigTemplate(std::uint64_t run_id, int participants) {
       << "    </General>\n"
       << "    <Discovery>\n"
       << "      <ParticipantIndex>" << kParticipantIndexPlaceholder << "</ParticipantIndex>\n"
-      << "      <MaxAutoParticipantIndex>" << participants + 1 << "</MaxAutoParticipantIndex>\n"
+      << "      <MaxAutoParticipantIndex>" << participants + kViewerSlots + 1 << "</MaxAutoParticipantIndex>\n"
       << "      <Peers><Peer address=\"127.0.0.1\"/></Peers>\n"
       << "      <Tag>wsntrack-" << std::hex << run_id << std::dec << "</Tag>\n"
       << "    </Discovery>\n"
@@ -40,6 +45,27 @@ std::pair<int, int> cyclonePorts(int domain, int index) {
   // RTPS port mapping with Cyclone's defaults: PB 7400, DG 250, PG 2, d1 10, d3 11.
   const int base = 7400 + 250 * domain + 2 * index;
   return {base + 10, base + 11};
+}
+
+namespace {
+
+bool udpPortFree(int port) {
+  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+  if (fd < 0) return false;
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<std::uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  const bool free = ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0;
+  ::close(fd);
+  return free;
+}
+
+}  // namespace
+
+bool cyclonePortsFree(int domain, int index) {
+  const auto [discovery, data] = cyclonePorts(domain, index);
+  return udpPortFree(discovery) && udpPortFree(data);
 }
 
 }  // namespace wsn::dds

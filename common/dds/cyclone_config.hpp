@@ -11,6 +11,12 @@ namespace wsn::dds {
 /// Placeholder in the stored template that each process replaces by its participant index.
 inline constexpr const char* kParticipantIndexPlaceholder = "${WSN_PARTICIPANT_INDEX}";
 
+/// Participant indices kept free for live viewers (wsntrack watch, examples/): a run with
+/// `participants` processes (the launcher included, indices 0 .. participants - 1) leaves
+/// participants .. participants + kViewerSlots - 1 to them, inside MaxAutoParticipantIndex so
+/// that unicast discovery reaches them.
+inline constexpr int kViewerSlots = 4;
+
 /// The XML template for a run with `participants` processes (the launcher included).
 std::string cycloneConfigTemplate(std::uint64_t run_id, int participants);
 
@@ -19,6 +25,9 @@ std::string cycloneConfigFor(const std::string& config_template, int participant
 
 /// UDP unicast ports Cyclone uses on `domain` for participant `index` (discovery, data).
 std::pair<int, int> cyclonePorts(int domain, int index);
+
+/// Whether Cyclone's unicast ports of `index` on `domain` can be bound on 127.0.0.1 right now.
+bool cyclonePortsFree(int domain, int index);
 
 /// Largest domain id whose ports still fit below 65536.
 inline constexpr int kMaxDomainId = 230;

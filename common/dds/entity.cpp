@@ -1,22 +1,45 @@
 #include "common/dds/entity.hpp"
 
+#include <cstring>
+#include <memory>
+
 namespace wsn::dds {
+namespace {
+
+constexpr char kRoleMarker[] = "wsntrack-role";
+
+void markOwner(Qos& q, Endpoint owner) {
+  if (owner == Endpoint::kRole) dds_qset_userdata(q.get(), kRoleMarker, sizeof kRoleMarker - 1);
+}
+
+bool isRoleEndpoint(const dds_qos_t* qos) {
+  void* data = nullptr;
+  std::size_t size = 0;
+  if (qos == nullptr || !dds_qget_userdata(qos, &data, &size)) return false;
+  const bool role = size == sizeof kRoleMarker - 1 && std::memcmp(data, kRoleMarker, size) == 0;
+  dds_free(data);
+  return role;
+}
+
+}  // namespace
 
 dds_return_t check(dds_return_t rc, const std::string& what) {
   if (rc < 0) throw DdsError(what + " failed: " + dds_strretcode(rc));
   return rc;
 }
 
-Qos Qos::reliableKeepAll() {
+Qos Qos::reliableKeepAll(Endpoint owner) {
   Qos q;
+  markOwner(q, owner);
   dds_qset_reliability(q.get(), DDS_RELIABILITY_RELIABLE, DDS_SECS(30));
   dds_qset_history(q.get(), DDS_HISTORY_KEEP_ALL, 0);
   dds_qset_durability(q.get(), DDS_DURABILITY_VOLATILE);
   return q;
 }
 
-Qos Qos::lastValueTransientLocal() {
+Qos Qos::lastValueTransientLocal(Endpoint owner) {
   Qos q;
+  markOwner(q, owner);
   dds_qset_reliability(q.get(), DDS_RELIABILITY_RELIABLE, DDS_SECS(30));
   dds_qset_history(q.get(), DDS_HISTORY_KEEP_LAST, 1);
   dds_qset_durability(q.get(), DDS_DURABILITY_TRANSIENT_LOCAL);
@@ -42,6 +65,29 @@ std::int32_t Writer::matchedReaders() const {
   dds_publication_matched_status_t status;
   check(dds_get_publication_matched_status(handle(), &status), "dds_get_publication_matched_status");
   return static_cast<std::int32_t>(status.current_count);
+}
+
+std::int32_t Writer::matchedRoleReaders() const {
+  std::vector<dds_instance_handle_t> readers(16);
+  while (true) {
+    const auto n = static_cast<std::size_t>(
+        check(dds_get_matched_subscriptions(handle(), readers.data(), readers.size()), "dds_get_matched_subscriptions"));
+    if (n <= readers.size()) {
+      readers.resize(n);
+      break;
+    }
+    readers.resize(n);
+  }
+  std::int32_t roles = 0;
+  for (const auto reader : readers) {
+    // Null when the reader unmatched since the list was taken: it no longer counts.
+    const std::unique_ptr<dds_builtintopic_endpoint_t, void (*)(dds_builtintopic_endpoint_t*)> data(
+        dds_get_matched_subscription_data(handle(), reader), [](dds_builtintopic_endpoint_t* e) {
+          if (e != nullptr) dds_builtintopic_free_endpoint(e);
+        });
+    if (data && isRoleEndpoint(data->qos)) ++roles;
+  }
+  return roles;
 }
 
 void Writer::waitForAcknowledgements(std::chrono::milliseconds timeout) const {

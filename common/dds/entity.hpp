@@ -52,6 +52,11 @@ class Entity {
   dds_entity_t handle_ = 0;
 };
 
+/// Who an endpoint belongs to. The start barrier counts matched cluster roles; a viewer
+/// (wsntrack watch, examples/, any program built from the IDL) must never stand in for a role
+/// that has not matched yet, so role endpoints carry a marker in their user data and viewers not.
+enum class Endpoint { kRole, kViewer };
+
 /// A QoS object, deleted on scope exit.
 class Qos {
  public:
@@ -66,9 +71,9 @@ class Qos {
   dds_qos_t* get() const { return qos_; }
 
   /// Reliable, KEEP_ALL, volatile: the lockstep batches, where no tick may be lost.
-  static Qos reliableKeepAll();
+  static Qos reliableKeepAll(Endpoint owner = Endpoint::kRole);
   /// Reliable, KEEP_LAST 1 per instance, TRANSIENT_LOCAL: process status for late joiners.
-  static Qos lastValueTransientLocal();
+  static Qos lastValueTransientLocal(Endpoint owner = Endpoint::kRole);
 
  private:
   dds_qos_t* qos_;
@@ -106,6 +111,8 @@ class Writer : public Entity {
   }
   /// Number of readers currently matched.
   std::int32_t matchedReaders() const;
+  /// Number of matched readers that belong to cluster roles (Endpoint::kRole), viewers excluded.
+  std::int32_t matchedRoleReaders() const;
   /// Blocks until every matched reader acknowledged everything written (used once at exit).
   void waitForAcknowledgements(std::chrono::milliseconds timeout) const;
 };

@@ -38,6 +38,7 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
   int domain = 0;
   std::string run_id_hex;
   double stall_timeout_s = 60.0;
+  double tick_interval_s = 0.0;
 
   po::options_description options("Options");
   options.add_options()("help,h", "show this help and exit")(
@@ -49,7 +50,9 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
       "this process's Cyclone participant index (unique within the run)")(
       "tiles", po::value(&context.shape.tiles)->required(), "number of sensor-node processes in the cluster")(
       "stall-timeout", po::value(&stall_timeout_s)->default_value(60.0),
-      "seconds without any input after which the role gives up (a producer died)");
+      "seconds without any input after which the role gives up (a producer died)")(
+      "tick-interval", po::value(&tick_interval_s)->default_value(0.0),
+      "sources start at most one tick per this many seconds (0: as fast as possible)");
   if (indexed) options.add_options()("index", po::value(&index)->required(), "tile or supernode index of this process");
 
   try {
@@ -74,6 +77,8 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
       throw std::invalid_argument("--participant-index must be in [0, 1000]");
     if (!std::isfinite(stall_timeout_s) || stall_timeout_s <= 0 || stall_timeout_s > 604800)
       throw std::invalid_argument("--stall-timeout must be in (0, 604800] seconds");
+    if (!std::isfinite(tick_interval_s) || tick_interval_s < 0 || tick_interval_s >= stall_timeout_s)
+      throw std::invalid_argument("--tick-interval must be in [0, --stall-timeout) seconds");
   } catch (const std::exception& error) {
     std::cerr << "wsntrack-" << role << ": " << error.what() << "\n(try --help)\n";
     return 2;
@@ -87,6 +92,7 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
   std::signal(SIGINT, onStopSignal);
   context.stop = &g_stop_requested;
   context.stall_timeout = std::chrono::milliseconds(static_cast<long>(stall_timeout_s * 1000));
+  context.tick_interval = std::chrono::microseconds(std::llround(tick_interval_s * 1e6));
   context.domain = static_cast<dds_domainid_t>(domain);
 
   try {

@@ -91,6 +91,16 @@ void RoleLoop::waitUntil(const std::function<bool()>& done, const std::function<
   }
 }
 
+void RoleLoop::waitUntilTime(Clock::time_point deadline) {
+  while (true) {
+    throwIfStopped(context_);
+    const auto now = Clock::now();
+    if (now >= deadline) return;
+    const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - now);
+    for (dds_attach_t token : waitset_.wait(std::min(left, kWakeInterval))) drains_[static_cast<std::size_t>(token)]();
+  }
+}
+
 void waitForDiscovery(const Participant& participant, const std::vector<std::pair<const Writer*, int>>& writers,
                       const std::vector<std::pair<const Reader*, int>>& readers, const RoleContext& context,
                       std::chrono::milliseconds timeout) {
@@ -100,8 +110,8 @@ void waitForDiscovery(const Participant& participant, const std::vector<std::pai
   auto missing = [&]() {
     std::ostringstream out;
     for (const auto& [writer, expected] : writers)
-      if (writer->matchedReaders() < expected)
-        out << " writer " << writer->handle() << " has " << writer->matchedReaders() << "/" << expected << " readers;";
+      if (const auto matched = writer->matchedRoleReaders(); matched < expected)
+        out << " writer " << writer->handle() << " has " << matched << "/" << expected << " readers;";
     for (const auto& [reader, expected] : readers)
       if (reader->matchedWriters() < expected)
         out << " reader " << reader->handle() << " has " << reader->matchedWriters() << "/" << expected << " writers;";
@@ -161,6 +171,15 @@ PipelineProgress::PipelineProgress(const Participant& participant, const RunTopi
 void PipelineProgress::waitForCompleted(std::int32_t tick) {
   loop_.waitUntil([&] { return completed_through_ >= tick; },
                   [&] { return "the aggregator's global tracks of tick " + std::to_string(completed_through_ + 1); });
+}
+
+void PipelineProgress::paceTick() {
+  const auto interval = context_.tick_interval;
+  if (interval.count() <= 0) return;
+  const auto now = Clock::now();
+  if (paced_at_) loop_.waitUntilTime(*paced_at_ + interval);
+  // On time: the schedule, not the wake-up, is the reference, so wake-up latency does not add up.
+  paced_at_ = paced_at_ && now <= *paced_at_ + interval ? *paced_at_ + interval : Clock::now();
 }
 
 void runWithStatus(StatusPublisher& status, const std::function<void()>& body) {

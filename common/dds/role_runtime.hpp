@@ -49,6 +49,10 @@ struct RoleContext {
   ClusterShape shape;
   /// Give up when no sample arrived for this long while waiting (a producer died).
   std::chrono::milliseconds stall_timeout{60000};
+  /// `wsntrack run --tick-interval`: the sources start at most one tick per interval, so that a
+  /// run can be watched in real time; zero runs as fast as the pipeline goes. Timing only: no
+  /// output depends on it.
+  std::chrono::microseconds tick_interval{0};
   /// Set from outside (signal handler, launcher) to make the role stop at its next wake-up.
   const std::atomic<bool>* stop = nullptr;
 };
@@ -139,6 +143,9 @@ class RoleLoop {
   /// stopped from outside, or when nothing arrives for the stall timeout (describe() says
   /// what was still missing).
   void waitUntil(const std::function<bool()>& done, const std::function<std::string()>& describe);
+  /// Blocks until `deadline`, draining readers as samples arrive. Throws RoleAborted when
+  /// stopped from outside; waiting for the clock is never a stall.
+  void waitUntilTime(std::chrono::steady_clock::time_point deadline);
 
  private:
   const RoleContext& context_;
@@ -148,8 +155,9 @@ class RoleLoop {
   std::vector<std::function<void()>> drains_;
 };
 
-/// Blocks until every writer matched `expected` readers and every reader matched `expected`
-/// writers, so that nothing published afterwards can miss a consumer. Throws on timeout.
+/// Blocks until every writer matched `expected` role readers (viewers do not count: see
+/// Endpoint) and every reader matched `expected` writers, so that nothing published afterwards
+/// can miss a consumer. Throws on timeout.
 void waitForDiscovery(const Participant& participant, const std::vector<std::pair<const Writer*, int>>& writers,
                       const std::vector<std::pair<const Reader*, int>>& readers, const RoleContext& context,
                       std::chrono::milliseconds timeout);
@@ -172,6 +180,10 @@ class PipelineProgress {
   /// Highest tick t such that the global batches of all ticks <= t arrived.
   std::int32_t completedThrough() const { return completed_through_; }
   void waitForCompleted(std::int32_t tick);
+  /// A source's wall-clock pacing (RoleContext::tick_interval), called before each tick: returns
+  /// one interval after the previous tick's scheduled start, at once when the interval is zero. A
+  /// late tick restarts the schedule rather than being made up by a burst.
+  void paceTick();
   Reader& reader() { return reader_; }
   PipelineProgress(const PipelineProgress&) = delete;
   PipelineProgress& operator=(const PipelineProgress&) = delete;
@@ -183,6 +195,7 @@ class PipelineProgress {
   Reader reader_;
   std::set<std::int32_t> arrived_;
   std::int32_t completed_through_ = 0;
+  std::optional<std::chrono::steady_clock::time_point> paced_at_;
 };
 
 /// Runs `body`, publishing READY-to-FAILED status around it: any exception is reported on the

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -46,8 +47,8 @@ std::array<double, 16> fullCovariance(const AxisCovariance& c) {
           0, c.pv, 0, c.vv};
 }
 
-common::TrackEstimate estimate(common::TrackId id, const TrackState& s) {
-  return {id, s.x, s.y, s.vx, s.vy, fullCovariance(s.cov)};
+common::TrackEstimate estimate(common::TrackId id, const TrackState& s, std::int32_t last_seen_tick) {
+  return {id, s.x, s.y, s.vx, s.vy, fullCovariance(s.cov), last_seen_tick};
 }
 
 }  // namespace
@@ -278,6 +279,9 @@ Partition McmcdaEngine::startState(const WindowProblem& wp, std::vector<std::int
     }
   }
 
+  // New observations of a known group follow the track that holds their group's latest member.
+  if (group_of_) joinGroups(wp, claimed, lists);
+
   // The newest tick's observations joined greedily to tracks that ended one tick before, nearest
   // (in Mahalanobis distance) first, within the gate.
   std::vector<bool> used(n, false);
@@ -328,6 +332,44 @@ Partition McmcdaEngine::startState(const WindowProblem& wp, std::vector<std::int
   return start;
 }
 
+void McmcdaEngine::joinGroups(const WindowProblem& wp, const std::vector<bool>& claimed,
+                              std::vector<std::vector<std::int32_t>>& lists) const {
+  const Problem& problem = wp.problem;
+  // group -> the list holding its latest member so far
+  std::map<std::uint64_t, std::size_t> holder;
+  const auto note = [&](std::int32_t i, std::size_t k) {
+    if (problem.isAnchor(i)) return;
+    const std::uint64_t group = group_of_(wp.keys[static_cast<std::size_t>(i)]);
+    if (group != 0) holder[group] = k;
+  };
+  // Elements in tick order, so a group's later member finds the list its earlier one joined.
+  std::vector<std::int32_t> list_of(static_cast<std::size_t>(problem.size()), -1);
+  for (std::size_t k = 0; k < lists.size(); ++k)
+    for (const auto i : lists[k]) list_of[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(k);
+  for (std::int32_t i = 0; i < problem.size(); ++i) {
+    if (problem.isAnchor(i)) continue;
+    if (list_of[static_cast<std::size_t>(i)] >= 0) {
+      note(i, static_cast<std::size_t>(list_of[static_cast<std::size_t>(i)]));
+      continue;
+    }
+    if (claimed[static_cast<std::size_t>(i)]) continue;
+    const std::uint64_t group = group_of_(wp.keys[static_cast<std::size_t>(i)]);
+    const auto it = group == 0 ? holder.end() : holder.find(group);
+    if (it == holder.end()) {
+      // The group's first element in the window starts a list of its own; a second member makes
+      // it a track.
+      lists.push_back({i});
+      list_of[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(lists.size() - 1);
+      if (group != 0) holder[group] = lists.size() - 1;
+      continue;
+    }
+    auto& list = lists[it->second];
+    if (!problem.linked(list.back(), i)) continue;
+    list.push_back(i);
+    list_of[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(it->second);
+  }
+}
+
 void McmcdaEngine::adoptBest(const ObservationWindow& window, const WindowProblem& wp, const Partition& best,
                              const std::vector<std::int32_t>& owner) {
   const Problem& problem = wp.problem;
@@ -371,6 +413,11 @@ void McmcdaEngine::adoptBest(const ObservationWindow& window, const WindowProble
   // (or late) observation can still continue.
   std::vector<LiveTrack> next;
   std::vector<TrackState> states;
+  // Ids that stay in use whatever the new tracks are called: continued tracks and the anchored
+  // tracks kept below for a late continuation.
+  std::set<common::TrackId> in_use;
+  for (std::size_t k = 0; k < tracks_.size(); ++k)
+    if (successor_of[k] >= 0 || tracks_[k].anchor) in_use.insert(tracks_[k].id);
   for (std::size_t n = 0; n < best.size(); ++n) {
     LiveTrack track;
     const std::int32_t previous = previous_of[n];
@@ -379,7 +426,14 @@ void McmcdaEngine::adoptBest(const ObservationWindow& window, const WindowProble
       track.id = before.id;
       track.past_observations = before.past_observations;
     } else {
-      track.id = mintId();
+      common::TrackId proposed = 0;
+      if (propose_id_) {
+        std::vector<ObservationKey> keys;
+        for (const auto i : best[n]) keys.push_back(wp.keys[static_cast<std::size_t>(i)]);
+        proposed = propose_id_(keys);
+      }
+      track.id = proposed != 0 && !in_use.contains(proposed) ? proposed : mintId();
+      in_use.insert(track.id);
     }
     problem.filterTrack(best[n], states);
     std::size_t from = 0;
@@ -451,18 +505,25 @@ bool McmcdaEngine::probablyAlive(const LiveTrack& track) const {
   return alive >= ended;
 }
 
-std::vector<common::TrackEstimate> McmcdaEngine::confirmedTracks() const {
-  std::vector<common::TrackEstimate> out;
+std::vector<McmcdaEngine::LiveTrackView> McmcdaEngine::liveTracks() const {
+  std::vector<LiveTrackView> out;
   for (const auto& track : tracks_) {
-    if (!isLive(track) || track.totalObservations() < params_.confirm_observations || !probablyAlive(track))
-      continue;
+    if (!isLive(track)) continue;
     const TrackState& last = track.lastState();
     const TrackState now = motion_.predict(last, newest_tick_ - last.tick);
     // No sensor sees a target outside the region: a track that coasted out of it followed a
     // target that left.
-    if (!region_.contains({now.x, now.y})) continue;
-    out.push_back(estimate(track.id, now));
+    out.push_back({estimate(track.id, now, track.lastSeenTick()), track.observations,
+                   track.totalObservations() >= params_.confirm_observations, probablyAlive(track),
+                   region_.contains({now.x, now.y})});
   }
+  return out;
+}
+
+std::vector<common::TrackEstimate> McmcdaEngine::confirmedTracks() const {
+  std::vector<common::TrackEstimate> out;
+  for (const auto& view : liveTracks())
+    if (view.confirmed && view.probably_alive && view.in_region) out.push_back(view.now);
   return out;
 }
 
@@ -473,9 +534,12 @@ std::vector<common::TrackEstimate> McmcdaEngine::tracksAt(std::int32_t tick) con
     const std::int32_t first = track.anchor ? track.anchor->tick : track.observations.front().tick;
     if (tick < first || tick > track.observations.back().tick) continue;
     const TrackState* at = track.anchor ? &track.anchor->prior : nullptr;
-    for (std::size_t m = 0; m < track.observations.size() && track.observations[m].tick <= tick; ++m)
+    std::int32_t seen = track.anchor ? track.anchor->tick - track.anchor_misses : 0;
+    for (std::size_t m = 0; m < track.observations.size() && track.observations[m].tick <= tick; ++m) {
       at = &track.states[m];
-    out.push_back(estimate(track.id, motion_.predict(*at, tick - at->tick)));
+      seen = track.observations[m].tick;
+    }
+    out.push_back(estimate(track.id, motion_.predict(*at, tick - at->tick), seen));
   }
   return out;
 }

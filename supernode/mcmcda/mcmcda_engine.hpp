@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -49,6 +50,40 @@ class McmcdaEngine final : public Engine {
   /// - L is the fixed-lag estimate with lag L (its association has had L more ticks of evidence).
   std::vector<common::TrackEstimate> tracksAt(std::int32_t tick) const;
 
+  /// An observation's identity across windows (a late arrival shifts slot indices, not this).
+  struct ObservationKey {
+    std::int32_t tick = 0;
+    common::SensorId sensor = 0;
+    double x = 0.0;
+    double y = 0.0;
+    auto operator<=>(const ObservationKey&) const = default;
+  };
+
+  /// A live track of ω̂ (or one kept for a late continuation) with what the reporting rule of
+  /// confirmedTracks() looks at, for callers that add evidence of their own (the aggregator).
+  struct LiveTrackView {
+    common::TrackEstimate now;  ///< filtered state at the last observation, predicted to the newest tick
+    std::vector<ObservationKey> observations;  ///< in the window, tick order
+    bool confirmed = false;       ///< holds confirm_observations observations in all
+    bool probably_alive = false;  ///< see probablyAlive()
+    bool in_region = false;       ///< `now` lies in the surveillance region
+  };
+  /// Every track that may still be continued, sorted by id. confirmedTracks() is the `now` of
+  /// those that are confirmed, probably alive and in the region.
+  std::vector<LiveTrackView> liveTracks() const;
+
+  /// Chooses the id of a track that continues no previous track, from its observations in the
+  /// window; 0 (or an id in use) means "mint one". The default mints every id.
+  using IdProposer = std::function<common::TrackId(const std::vector<ObservationKey>& observations)>;
+  void setIdProposer(IdProposer proposer) { propose_id_ = std::move(proposer); }
+
+  /// Names a group of observations known to belong together (the aggregator: elements of one
+  /// supernode track); 0 means none. The start state appends a new observation to the track that
+  /// holds the latest earlier member of its group, when it can follow that track's last element
+  /// (ω_init "from the tracks themselves", Oh §VI). The default knows no groups.
+  using GroupOf = std::function<std::uint64_t(const ObservationKey& observation)>;
+  void setGroupOf(GroupOf group_of) { group_of_ = std::move(group_of); }
+
   /// Statistics of the last step, for benchmarks and logs.
   struct StepStats {
     std::int32_t observations = 0;  ///< problem size, anchors included
@@ -59,15 +94,6 @@ class McmcdaEngine final : public Engine {
   const StepStats& lastStep() const { return last_step_; }
   /// Handoffs ignored because their state or covariance was not finite.
   std::uint64_t rejectedHandoffs() const { return rejected_handoffs_; }
-
-  /// An observation's identity across windows (a late arrival shifts slot indices, not this).
-  struct ObservationKey {
-    std::int32_t tick = 0;
-    common::SensorId sensor = 0;
-    double x = 0.0;
-    double y = 0.0;
-    auto operator<=>(const ObservationKey&) const = default;
-  };
 
  private:
   /// A track as the engine keeps it between ticks. Invariant: a track without observations in the
@@ -101,6 +127,9 @@ class McmcdaEngine final : public Engine {
   /// Step 3: the previous ω̂ restricted to the window plus the greedy join of the newest tick;
   /// `owner` receives each element's previous track (or -1).
   Partition startState(const WindowProblem& wp, std::vector<std::int32_t>& owner) const;
+  /// Step 3a: new observations appended to the track of their group's latest member (group_of_).
+  void joinGroups(const WindowProblem& wp, const std::vector<bool>& claimed,
+                  std::vector<std::vector<std::int32_t>>& lists) const;
   /// Step 5: ids for ω̂'s tracks and the new track set.
   void adoptBest(const ObservationWindow& window, const WindowProblem& wp, const Partition& best,
                  const std::vector<std::int32_t>& owner);
@@ -128,6 +157,8 @@ class McmcdaEngine final : public Engine {
   std::vector<LiveTrack> tracks_;  ///< sorted by id
   std::vector<ObservationKey> released_;  ///< observations of tracks handed to a neighbour
   std::uint64_t next_serial_ = 1;
+  IdProposer propose_id_;
+  GroupOf group_of_;
   // What the engine learns about delivery: delays of the reports in settled slots, and how often
   // a track of ω̂ that spans a settled tick has a report there.
   std::int32_t settled_tick_ = 0;

@@ -12,6 +12,7 @@
 
 using wsn::aggregator::ClearMotAccumulator;
 using wsn::aggregator::ClearMotSummary;
+using wsn::aggregator::ClearMotTick;
 using wsn::common::TargetState;
 using wsn::common::TrackEstimate;
 
@@ -188,4 +189,47 @@ TEST_CASE("non-finite tracks are ignored and ticks must increase", "[clear_mot]"
   CHECK(s.false_positives == 0);
   CHECK_THROWS_AS(acc.add(1, {}, {}), std::invalid_argument);
   CHECK_THROWS_AS(ClearMotAccumulator(0.0), std::invalid_argument);
+}
+
+TEST_CASE("add reports the tick's matches, misses, false positives and events", "[clear_mot]") {
+  // T = 2. Tick 1: targets 1 at (0, 0), 2 at (10, 0), 3 at (20, 0); track 10 on 1 (d = 0.5),
+  // track 20 on 2, track 99 far off. Target 3 missed.
+  // Tick 2: target 1 taken by a new track 11 (switch), target 2 still by 20, target 3 missed.
+  // Tick 3: target 1 missed, target 3 missed. Tick 4: target 1 back on 11 (a fragmentation,
+  // no switch: 11 was its last track), target 3 still missed.
+  ClearMotAccumulator acc(2.0);
+  const ClearMotTick t1 = acc.add(1, {target(1, 0, 0), target(2, 10, 0), target(3, 20, 0)},
+                                  {track(10, 0.5, 0), track(20, 10, 0), track(99, 50, 50)});
+  REQUIRE(t1.matches.size() == 2);
+  CHECK(t1.matches[0].target == 1);
+  CHECK(t1.matches[0].track == 10);
+  CHECK(t1.matches[0].distance == Approx(0.5).margin(1e-12));
+  CHECK(t1.matches[1].target == 2);
+  CHECK(t1.matches[1].track == 20);
+  CHECK(t1.misses == std::vector<wsn::common::TargetId>{3});
+  REQUIRE(t1.false_positives.size() == 1);
+  CHECK(t1.false_positives[0].track == 99);
+  CHECK(t1.id_switches.empty());
+  CHECK(t1.fragmentations.empty());
+
+  const ClearMotTick t2 =
+      acc.add(2, {target(1, 0, 0), target(2, 10, 0), target(3, 20, 0)}, {track(11, 0, 0), track(20, 10, 0)});
+  CHECK(t2.id_switches == std::vector<wsn::common::TargetId>{1});
+  CHECK(t2.fragmentations.empty());
+  CHECK(t2.false_positives.empty());
+
+  const ClearMotTick t3 = acc.add(3, {target(1, 0, 0), target(3, 20, 0)}, {});
+  CHECK(t3.misses == std::vector<wsn::common::TargetId>{1, 3});
+  CHECK(t3.matches.empty());
+
+  const ClearMotTick t4 = acc.add(4, {target(1, 0, 0), target(3, 20, 0)}, {track(11, 0, 0)});
+  CHECK(t4.fragmentations == std::vector<wsn::common::TargetId>{1});
+  CHECK(t4.id_switches.empty());
+
+  // The events add up to the summary's counts.
+  const ClearMotSummary s = acc.summary();
+  CHECK(s.id_switches == 1);
+  CHECK(s.fragmentations == 1);
+  CHECK(s.false_positives == 1);
+  CHECK(s.misses == 1 + 1 + 2 + 1);
 }

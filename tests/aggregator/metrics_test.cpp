@@ -106,6 +106,41 @@ TEST_CASE("eps_K is Oh eq. 9: total count error over total true count", "[aggreg
   CHECK(s.track_ids == 3);
 }
 
+TEST_CASE("add returns the tick's K, K* and OSPA and the running eps_K and OSPA mean", "[aggregator][metrics][eps_k]") {
+  // The ticks of the eq. 9 case above, c = 5, p = 2.
+  //   tick 1: K* = 2, K = 1: target 2 unmatched -> OSPA = sqrt((0 + 25) / 2) = 3.535534;
+  //           running eps_K = 1 / 2, mean OSPA = 3.535534.
+  //   tick 2: K* = 2, K = 3: track 12 extra -> OSPA = sqrt(25 / 3) = 2.886751;
+  //           running eps_K = 2 / 4 = 0.5, mean OSPA = (3.535534 + 2.886751) / 2.
+  //   tick 3: K* = 1, K = 0 -> OSPA = c = 5; running eps_K = 3 / 5 = 0.6, the final value.
+  MetricsAccumulator metrics(config());
+  const auto t1 = metrics.add(1, {target(1, 0, 0), target(2, 50, 50)}, {track(10, 0, 0)});
+  CHECK(t1.k_true == 2);
+  CHECK(t1.k == 1);
+  CHECK(t1.ospa == Approx(std::sqrt(12.5)).margin(1e-12));
+  CHECK(t1.eps_k_running == Approx(0.5).margin(1e-12));
+  CHECK(t1.ospa_mean_running == Approx(std::sqrt(12.5)).margin(1e-12));
+  const auto t2 =
+      metrics.add(2, {target(1, 1, 0), target(2, 51, 50)}, {track(10, 1, 0), track(11, 51, 50), track(12, 80, 80)});
+  CHECK(t2.k == 3);
+  CHECK(t2.ospa == Approx(std::sqrt(25.0 / 3.0)).margin(1e-12));
+  CHECK(t2.eps_k_running == Approx(0.5).margin(1e-12));
+  CHECK(t2.ospa_mean_running == Approx((std::sqrt(12.5) + std::sqrt(25.0 / 3.0)) / 2.0).margin(1e-12));
+  const auto t3 = metrics.add(3, {target(1, 2, 0)}, {});
+  CHECK(t3.ospa == Approx(5.0).margin(1e-12));
+  CHECK(t3.eps_k_running == Approx(metrics.finish().eps_k).margin(1e-12));
+  CHECK(t3.ospa_mean_running == Approx(metrics.finish().ospa_mean).margin(1e-12));
+}
+
+TEST_CASE("the running eps_K is 0 while no target has existed", "[aggregator][metrics][eps_k]") {
+  MetricsAccumulator metrics(config());
+  const auto t1 = metrics.add(1, {}, {track(1, 0, 0)});
+  CHECK(t1.k_true == 0);
+  CHECK(t1.k == 1);
+  CHECK(t1.eps_k_running == 0.0);
+  CHECK(t1.ospa_mean_running == Approx(5.0).margin(1e-12));
+}
+
 TEST_CASE("eps_K without any target is reported as 0 and undefined", "[aggregator][metrics][eps_k]") {
   MetricsAccumulator metrics(config());
   metrics.add(1, {}, {track(1, 0, 0), track(2, 5, 5)});

@@ -133,3 +133,33 @@ TEST_CASE("track quality ignores non-finite tracks and rejects a non-positive ga
   CHECK_THROWS_AS(TrackQualityAccumulator(0.0), std::invalid_argument);
   CHECK_THROWS_AS(TrackQualityAccumulator(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
 }
+
+TEST_CASE("run means weigh every target once: RSE and dx over tracked targets, TLR over all", "[track_quality]") {
+  // Target 1: tracked at both ticks with position errors 3 and 4 (velocity errors 0):
+  //   RSE_pos = sqrt((9 + 16) / 2) = 3.535534, ⟨dx⟩ = 3.5, TLR 1.
+  // Target 2: tracked at tick 1 only, error 1: RSE_pos = 1, ⟨dx⟩ = 1, TLR 0.5.
+  // Target 3: never tracked (no track within the gate of 5): TLR 0, left out of the error means.
+  //   mean RSE_pos = (3.535534 + 1) / 2, mean ⟨dx⟩ = (3.5 + 1) / 2 = 2.25,
+  //   mean TLR = (1 + 0.5 + 0) / 3 = 0.5.
+  TrackQualityAccumulator acc(5.0);
+  acc.add({target(1, 0, 0), target(2, 20, 0), target(3, 40, 0)}, {track(1, 0, 3), track(2, 21, 0)});
+  acc.add({target(1, 0, 0), target(2, 20, 0), target(3, 40, 0)}, {track(1, 4, 0)});
+  const TrackQualitySummary s = acc.summary();
+  CHECK(s.means_defined);
+  CHECK(s.mean_rse_position == Approx((std::sqrt(12.5) + 1.0) / 2.0).margin(1e-12));
+  CHECK(s.mean_rse_velocity == Approx(0.0).margin(1e-12));
+  CHECK(s.mean_position_error == Approx(2.25).margin(1e-12));
+  CHECK(s.mean_tlr == Approx(0.5).margin(1e-12));
+}
+
+TEST_CASE("run means are undefined when no target was ever tracked", "[track_quality]") {
+  TrackQualityAccumulator none(kNoGate);
+  CHECK_FALSE(none.summary().means_defined);
+  CHECK(none.summary().mean_tlr == 0.0);
+  TrackQualityAccumulator untracked(kNoGate);
+  untracked.add({target(1, 0, 0)}, {});
+  const TrackQualitySummary s = untracked.summary();
+  CHECK_FALSE(s.means_defined);
+  CHECK(s.mean_rse_position == 0.0);
+  CHECK(s.mean_tlr == 0.0);
+}

@@ -107,6 +107,7 @@ void requireSameScenario(const Scenario& a, const Scenario& b) {
   CHECK(a.metrics.gospa_p == b.metrics.gospa_p);
   CHECK(a.metrics.mot_threshold == b.metrics.mot_threshold);
   CHECK(a.metrics.quality_gate == b.metrics.quality_gate);
+  CHECK(a.metrics.boundary_band == b.metrics.boundary_band);
   CHECK(a.run.ticks == b.run.ticks);
   CHECK(a.run.seed == b.run.seed);
   CHECK(a.run.node_processes == b.run.node_processes);

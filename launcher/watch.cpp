@@ -1,0 +1,549 @@
+#include "launcher/watch.hpp"
+
+#include <sys/ioctl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <boost/program_options.hpp>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include "common/dds/cyclone_config.hpp"
+#include "common/dds/entity.hpp"
+#include "common/dds/process_main.hpp"
+#include "common/dds/role_runtime.hpp"
+#include "launcher/run_directory.hpp"
+#include "wsntrack.h"
+
+namespace wsn::launcher {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using Seconds = std::chrono::duration<double>;
+
+std::atomic<bool> g_interrupted{false};
+extern "C" void onWatchInterrupt(int) { g_interrupted.store(true); }
+
+struct WatchOptions {
+  std::string run_dir;
+  double timeout_s = 60;
+  bool plain = false;
+  double max_fps = 20;
+};
+
+struct TrackRow {
+  std::uint64_t id = 0;
+  double x = 0, y = 0, vx = 0, vy = 0;
+};
+
+/// What the aggregator's TickMetrics say about one tick.
+struct Scores {
+  std::int32_t truth_targets = 0;
+  double ospa = 0, gospa = 0, eps_k_running = 0, ospa_mean_running = 0;
+};
+
+/// One tick's global tracks, waiting to be drawn.
+struct PendingTick {
+  std::vector<TrackRow> tracks;
+  Clock::time_point arrived;
+};
+
+/// Last state of one role instance on the status topic.
+struct RoleState {
+  int state = wsn_msg_STARTING;
+  std::int32_t tick = 0;
+  std::string message;
+};
+
+std::string hex(std::uint64_t value) {
+  std::ostringstream out;
+  out << std::hex << value;
+  return out.str();
+}
+
+std::string fixed(double value, int decimals) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
+  return buffer;
+}
+
+/// A track id as supernode:serial (ids are (supernode + 1) << 48 | serial, common/messages.hpp);
+/// ids below 1 << 48 are the aggregator's own, shown as g<id>.
+std::string compactTrackId(std::uint64_t id) {
+  const std::uint64_t owner = id >> 48;
+  const std::uint64_t serial = id & ((std::uint64_t{1} << 48) - 1);
+  if (owner == 0) return "g" + std::to_string(serial);
+  return std::to_string(owner - 1) + ":" + std::to_string(serial);
+}
+
+/// Whether the launcher that wrote run.json still runs: its pid is alive and still a wsntrack
+/// (a pid reused by another program does not count).
+bool launcherAlive(long long pid) {
+  if (pid <= 0) return false;
+  std::ifstream comm("/proc/" + std::to_string(pid) + "/comm");
+  std::string name;
+  return comm && std::getline(comm, name) && name == "wsntrack";
+}
+
+int terminalRows() {
+  winsize size{};
+  if (::ioctl(STDOUT_FILENO, TIOCGWINSZ, &size) == 0 && size.ws_row > 0) return size.ws_row;
+  return 24;
+}
+
+/// Hides the cursor while a terminal view is up; shows it again however the view ends.
+class CursorGuard {
+ public:
+  explicit CursorGuard(bool tty) : tty_(tty) {
+    if (tty_) std::fputs("\x1b[?25l", stdout);
+  }
+  ~CursorGuard() {
+    if (tty_) std::fputs("\x1b[?25h", stdout);
+    std::fflush(stdout);
+  }
+  CursorGuard(const CursorGuard&) = delete;
+  CursorGuard& operator=(const CursorGuard&) = delete;
+
+ private:
+  bool tty_;
+};
+
+/// Why a run directory cannot be joined (yet).
+enum class RunPresence { kLive, kNotRunning, kNotARun };
+
+class Watcher {
+ public:
+  Watcher(WatchOptions options, bool tty) : options_(std::move(options)), tty_(tty) {}
+
+  int run() {
+    const auto started = Clock::now();
+    const auto deadline = started + std::chrono::duration_cast<Clock::duration>(Seconds(options_.timeout_s));
+    if (const auto code = waitForLiveRun(deadline)) return *code;
+    return watch(deadline);
+  }
+
+ private:
+  // ---- finding the run -------------------------------------------------------------------
+
+  RunPresence presence(std::string& why) {
+    const std::string dir = options_.run_dir;
+    std::error_code error;
+    if (!fs::is_directory(dir, error)) {
+      why = dir + ": no such directory";
+      return RunPresence::kNotARun;
+    }
+    if (!fs::exists(dir + "/run.json", error)) {
+      // A launcher writes cyclonedds.xml, then run.json just before it starts the cluster.
+      if (fs::exists(dir + "/cyclonedds.xml", error) || fs::exists(dir + "/scenario.yaml", error)) {
+        why = "its run.json is not there yet (or it was written by an older wsntrack)";
+        return RunPresence::kNotRunning;
+      }
+      why = dir + ": not a wsntrack run directory (no run.json; 'wsntrack run --out DIR' writes one)";
+      return RunPresence::kNotARun;
+    }
+    try {
+      run_ = readRunDescription(dir);
+    } catch (const std::exception& e) {
+      why = e.what();
+      return RunPresence::kNotARun;
+    }
+    if (!launcherAlive(run_.launcher_pid)) {
+      why = "its last run (" + hex(run_.identity.run_id) + ") is not running: " +
+            (fs::exists(dir + "/metrics.json", error) ? "it finished (results in metrics.json)"
+                                                      : "its launcher (pid " + std::to_string(run_.launcher_pid) +
+                                                            ") exited before the run finished");
+      return RunPresence::kNotRunning;
+    }
+    if (fs::exists(dir + "/metrics.json", error)) {
+      why = "its run (" + hex(run_.identity.run_id) + ") has already finished (results in metrics.json)";
+      return RunPresence::kNotRunning;
+    }
+    return RunPresence::kLive;
+  }
+
+  /// Waits until RUN_DIR holds a live run (one may be about to start there, --overwrite); the
+  /// exit code when there is none to join.
+  std::optional<int> waitForLiveRun(Clock::time_point deadline) {
+    bool told = false;
+    std::string why;
+    while (true) {
+      const auto found = presence(why);
+      if (found == RunPresence::kLive) return std::nullopt;
+      if (found == RunPresence::kNotARun) {
+        std::cerr << "wsntrack watch: " << why << "\n";
+        return kWatchUsage;
+      }
+      if (Clock::now() >= deadline) {
+        std::cerr << "wsntrack watch: no run started in " << options_.run_dir << " within " << options_.timeout_s
+                  << " s: " << why << "\n";
+        return kWatchFailed;
+      }
+      if (!told) {
+        std::cerr << "wsntrack watch: waiting up to " << options_.timeout_s << " s for a run to start in "
+                  << options_.run_dir << " (" << why << ")\n";
+        told = true;
+      }
+      if (g_interrupted.load()) return kWatchInterrupted;
+      ::usleep(200000);
+    }
+  }
+
+  // ---- joining it --------------------------------------------------------------------------
+
+  /// A Cyclone domain on the first free viewer slot of the run. Ports are probed first so that
+  /// Cyclone does not log a failure; a slot taken in between (two viewers starting at once) is
+  /// caught by the domain creation failing, and the next slot is tried.
+  std::optional<dds::Domain> joinDomain() {
+    const std::string config = dds::readConfigTemplate(options_.run_dir);
+    for (int slot = 0; slot < run_.viewer_slots; ++slot) {
+      const int index = run_.first_viewer_index + slot;
+      if (!dds::cyclonePortsFree(run_.identity.domain, index)) continue;
+      try {
+        dds::Domain domain(static_cast<dds_domainid_t>(run_.identity.domain), dds::cycloneConfigFor(config, index));
+        participant_index_ = index;
+        return domain;
+      } catch (const dds::DdsError&) {
+      }
+    }
+    return std::nullopt;
+  }
+
+  int watch(Clock::time_point start_deadline) {
+    auto domain = joinDomain();
+    if (!domain) {
+      std::cerr << "wsntrack watch: every viewer slot of this run (participant indices " << run_.first_viewer_index
+                << ".." << run_.first_viewer_index + run_.viewer_slots - 1
+                << ") is taken: close another viewer of the run first\n";
+      return kWatchFailed;
+    }
+    dds::Participant participant(domain->id());
+    dds::RunTopics topics(participant);
+    // Reliable readers, so that no tick is skipped for a lost packet; they never hold the run
+    // back, since Cyclone acknowledges on arrival, and they are not counted by its start barrier.
+    dds::Reader status_reader(participant, topics.process_status,
+                              dds::Qos::lastValueTransientLocal(dds::Endpoint::kViewer));
+    dds::Reader track_reader(participant, topics.global_track_batch, dds::Qos::reliableKeepAll(dds::Endpoint::kViewer));
+    dds::Reader metrics_reader(participant, topics.tick_metrics, dds::Qos::reliableKeepAll(dds::Endpoint::kViewer));
+    dds::ReadCondition status_ready(status_reader), tracks_ready(track_reader), metrics_ready(metrics_reader);
+    dds::WaitSet waitset(participant);
+    waitset.attach(status_ready.handle(), 0);
+    waitset.attach(tracks_ready.handle(), 1);
+    waitset.attach(metrics_ready.handle(), 2);
+
+    const CursorGuard cursor(tty_);
+    if (!tty_)
+      std::cout << "watching " << run_.scenario << " run " << hex(run_.identity.run_id) << " (" << run_.ticks
+                << " ticks, domain " << run_.identity.domain << ", viewer participant " << participant_index_
+                << ") in " << options_.run_dir << "\n"
+                << std::flush;
+
+    const auto min_frame_gap = std::chrono::duration_cast<Clock::duration>(Seconds(1.0 / options_.max_fps));
+    const auto timeout = std::chrono::duration_cast<Clock::duration>(Seconds(options_.timeout_s));
+    // After the aggregator's DONE, its last batch may still be on its way (another topic).
+    constexpr auto kEndGrace = std::chrono::seconds(2);
+    // TickMetrics of tick t follow its batch at once; a frame waits this long for them at most.
+    constexpr auto kMetricsWait = std::chrono::milliseconds(300);
+    Clock::time_point last_progress = Clock::now();
+    Clock::time_point last_draw{};
+    Clock::time_point last_waiting_draw{};
+    Clock::time_point last_launcher_check = Clock::now();
+    std::optional<Clock::time_point> done_at;
+    std::optional<Clock::time_point> failed_at;
+    bool started = false;
+    bool held_back = false;
+    told_waiting_ = false;
+
+    while (true) {
+      if (g_interrupted.load()) {
+        finishLine("interrupted; the run goes on");
+        return kWatchInterrupted;
+      }
+      // A frame held back by the rate limit is drawn as soon as it is allowed, not a wake-up later.
+      auto wait = std::chrono::milliseconds(50);
+      if (held_back)
+        wait = std::clamp(std::chrono::ceil<std::chrono::milliseconds>(last_draw + min_frame_gap - Clock::now()),
+                          std::chrono::milliseconds(0), wait);
+      waitset.wait(wait);
+      const auto now = Clock::now();
+
+      status_reader.take<wsn_msg_ProcessStatus>([&](const wsn_msg_ProcessStatus& s) {
+        if (s.run_id != run_.identity.run_id) return;
+        started = true;
+        last_progress = now;
+        auto& role = roles_[{s.role, s.index}];
+        role = {static_cast<int>(s.state), s.tick, s.message};
+        if (s.state == wsn_msg_FAILED) {
+          failures_.push_back(std::string(s.role) + " " + std::to_string(s.index) + ": " + s.message);
+          if (!failed_at) failed_at = now;
+        }
+        if (std::string(s.role) == "aggregator" && s.state == wsn_msg_DONE && !done_at) {
+          done_at = now;
+          done_tick_ = s.tick;
+        }
+      });
+      track_reader.take<wsn_msg_GlobalTrackBatch>([&](const wsn_msg_GlobalTrackBatch& batch) {
+        if (batch.run_id != run_.identity.run_id || batch.tick <= drawn_tick_) return;
+        started = true;
+        last_progress = now;
+        auto& pending = pending_[batch.tick];
+        pending.arrived = now;
+        pending.tracks.clear();
+        for (std::uint32_t i = 0; i < batch.tracks._length; ++i) {
+          const auto& t = batch.tracks._buffer[i];
+          pending.tracks.push_back({t.track, t.x, t.y, t.vx, t.vy});
+        }
+      });
+      metrics_reader.take<wsn_msg_TickMetrics>([&](const wsn_msg_TickMetrics& m) {
+        if (m.run_id != run_.identity.run_id || m.tick <= drawn_tick_) return;
+        scores_[m.tick] = {m.truth_targets, m.ospa, m.gospa, m.eps_k_running, m.ospa_mean_running};
+      });
+
+      // The launcher stops every process after the first failure, and they report FAILED too
+      // ("stopped on request"): a moment's wait collects the cause along with them.
+      if (failed_at && now - *failed_at >= std::chrono::milliseconds(500)) {
+        if (!pending_.empty()) drawTick(pending_.rbegin()->first);
+        std::cerr << "wsntrack watch: the run FAILED at tick " << drawn_tick_ << "/" << run_.ticks << ":\n";
+        for (const auto& failure : failures_) std::cerr << "  " << failure << "\n";
+        std::cerr << "  (the launcher's output and " << options_.run_dir << "/logs/ say why)\n";
+        return kWatchFailed;
+      }
+      if (!std::cout) return kWatchFailed;  // stdout went away (a closed pipe): nobody is watching
+
+      // The newest tick that is ready to be drawn: its metrics are in, or will not come.
+      const bool metrics_published = metrics_reader.matchedWriters() > 0;
+      std::optional<std::int32_t> ready;
+      for (auto it = pending_.rbegin(); it != pending_.rend(); ++it) {
+        const bool newer_exists = it != pending_.rbegin();
+        if (scores_.count(it->first) || !metrics_published || newer_exists || done_at ||
+            now - it->second.arrived >= kMetricsWait) {
+          ready = it->first;
+          break;
+        }
+      }
+      held_back = false;
+      if (ready && (*ready == run_.ticks || now - last_draw >= min_frame_gap)) {
+        drawTick(*ready);
+        last_draw = now;
+      } else if (ready) {
+        held_back = true;
+      }
+      if (drawn_tick_ >= run_.ticks) {
+        finishLine("the run finished: tick " + std::to_string(drawn_tick_) + "/" + std::to_string(run_.ticks) + " shown");
+        return kWatchFinished;
+      }
+      if (done_at && pending_.empty() && now - *done_at >= kEndGrace) {
+        finishLine("the run finished (aggregator DONE at tick " + std::to_string(done_tick_) + "); last tick shown: " +
+                   (drawn_tick_ > 0 ? std::to_string(drawn_tick_) : std::string("none")));
+        return kWatchFinished;
+      }
+
+      if (drawn_tick_ == 0 && now - last_waiting_draw >= std::chrono::milliseconds(500)) {
+        drawWaiting(started);
+        last_waiting_draw = now;
+      }
+      if (!started && now >= start_deadline) {
+        std::cerr << "wsntrack watch: no process of run " << hex(run_.identity.run_id) << " showed up within "
+                  << options_.timeout_s << " s\n";
+        return kWatchFailed;
+      }
+      if (started && now - last_progress >= timeout) {
+        std::cerr << "wsntrack watch: no progress for " << options_.timeout_s << " s (last tick seen "
+                  << drawn_tick_ << "/" << run_.ticks << ")\n";
+        return kWatchFailed;
+      }
+      if (now - last_launcher_check >= std::chrono::milliseconds(500)) {
+        last_launcher_check = now;
+        if (!done_at && !failed_at && !launcherAlive(run_.launcher_pid)) {
+          std::cerr << "wsntrack watch: the run's launcher (pid " << run_.launcher_pid
+                    << ") exited before the run finished (last tick seen " << drawn_tick_ << "/" << run_.ticks
+                    << "); see " << options_.run_dir << "/logs/\n";
+          return kWatchFailed;
+        }
+      }
+    }
+  }
+
+  // ---- drawing -----------------------------------------------------------------------------
+
+  std::string processSummary() const {
+    int ready = 0, running = 0, done = 0;
+    for (const auto& [key, role] : roles_) {
+      if (role.state == wsn_msg_READY) ++ready;
+      if (role.state == wsn_msg_RUNNING) ++running;
+      if (role.state == wsn_msg_DONE) ++done;
+    }
+    std::ostringstream out;
+    out << roles_.size() << "/" << run_.processes << " processes up";
+    if (ready + running + done > 0) out << " (" << ready << " ready, " << running << " running, " << done << " done)";
+    return out.str();
+  }
+
+  void drawWaiting(bool started) {
+    const std::string line = std::string(started ? "waiting for the first tick: " : "waiting for the run to start: ") +
+                             processSummary();
+    if (tty_) {
+      std::cout << "\x1b[H\x1b[2J" << title() << "\n\n  " << line << "\x1b[K\n\n  Ctrl-C quits.\x1b[J" << std::flush;
+    } else if (!told_waiting_) {
+      std::cerr << "wsntrack watch: " << line << "\n";
+      told_waiting_ = true;
+    }
+  }
+
+  std::string title() const {
+    std::ostringstream out;
+    out << "wsntrack watch  " << run_.scenario << "  run " << hex(run_.identity.run_id) << "  domain "
+        << run_.identity.domain;
+    if (run_.tick_interval_s > 0) out << "  paced " << fixed(run_.tick_interval_s, 3) << " s/tick";
+    return out.str();
+  }
+
+  void drawTick(std::int32_t tick) {
+    auto tracks = std::move(pending_[tick].tracks);
+    std::sort(tracks.begin(), tracks.end(), [](const TrackRow& a, const TrackRow& b) { return a.id < b.id; });
+    Scores scores;
+    const auto found = scores_.find(tick);
+    const bool scored = found != scores_.end();
+    if (scored) scores = found->second;
+    pending_.erase(pending_.begin(), pending_.upper_bound(tick));
+    scores_.erase(scores_.begin(), scores_.upper_bound(tick));
+    drawn_tick_ = tick;
+
+    const auto metric = [&](const std::string& name, const std::string& value) { return name + "=" + value + " "; };
+    const std::string na = "n/a";
+    std::ostringstream head;
+    head << "tick " << tick << "/" << run_.ticks << "  "
+         << metric("K*", scored ? std::to_string(scores.truth_targets) : na)
+         << metric("K", std::to_string(tracks.size()))
+         << metric("OSPA", scored ? fixed(scores.ospa, 3) : na) << metric("GOSPA", scored ? fixed(scores.gospa, 3) : na)
+         << metric("epsK", scored ? fixed(scores.eps_k_running, 4) : na)
+         << metric("meanOSPA", scored ? fixed(scores.ospa_mean_running, 3) : na);
+    std::string head_line = head.str();
+    head_line.pop_back();
+
+    std::vector<std::string> rows;
+    char buffer[160];
+    std::snprintf(buffer, sizeof buffer, "  %-14s %9s %9s %8s %8s %7s", "track", "x", "y", "vx", "vy", "speed");
+    rows.emplace_back(buffer);
+    for (const auto& t : tracks) {
+      std::snprintf(buffer, sizeof buffer, "  %-14s %9.2f %9.2f %8.3f %8.3f %7.3f", compactTrackId(t.id).c_str(), t.x,
+                    t.y, t.vx, t.vy, std::hypot(t.vx, t.vy));
+      rows.emplace_back(buffer);
+    }
+
+    if (!tty_) {
+      std::cout << head_line << "\n";
+      for (const auto& row : rows) std::cout << row << "\n";
+      std::cout << "\n" << std::flush;
+      return;
+    }
+    // Home and overwrite line by line (clearing each line's rest) rather than clearing the
+    // screen first: no flicker between frames.
+    std::ostringstream screen;
+    screen << "\x1b[H" << title() << "\x1b[K\n" << processSummary() << "\x1b[K\n\x1b[K\n";
+    const int bar_width = 40;
+    const int filled = static_cast<int>(std::lround(bar_width * static_cast<double>(tick) / run_.ticks));
+    screen << "  [" << std::string(static_cast<std::size_t>(filled), '#')
+           << std::string(static_cast<std::size_t>(bar_width - filled), '.') << "]\x1b[K\n";
+    screen << "  " << head_line << "\x1b[K\n\x1b[K\n";
+    const int fixed_lines = 8;  // everything above, the "more" line and the footer
+    const auto room = static_cast<std::size_t>(std::max(2, terminalRows() - fixed_lines));
+    const std::size_t shown = std::min(rows.size(), room);
+    for (std::size_t i = 0; i < shown; ++i) screen << rows[i] << "\x1b[K\n";
+    if (shown < rows.size()) screen << "  ... " << rows.size() - shown << " more tracks\x1b[K\n";
+    screen << "\x1b[K\n  Ctrl-C quits; the run goes on.\x1b[J";
+    std::cout << screen.str() << std::flush;
+  }
+
+  /// The last word, below the last frame.
+  void finishLine(const std::string& text) {
+    if (tty_) std::cout << "\n\n";
+    std::cout << text << "\n" << std::flush;
+  }
+
+  WatchOptions options_;
+  bool tty_;
+  RunDescription run_;
+  int participant_index_ = -1;
+  std::map<std::pair<std::string, std::uint32_t>, RoleState> roles_;
+  std::map<std::int32_t, PendingTick> pending_;
+  std::map<std::int32_t, Scores> scores_;
+  std::int32_t drawn_tick_ = 0;
+  std::int32_t done_tick_ = 0;
+  std::vector<std::string> failures_;
+  bool told_waiting_ = false;
+};
+
+constexpr const char* kWatchHelp =
+    "Usage: wsntrack watch RUN_DIR [--timeout S] [--plain] [--max-fps N]\n\n"
+    "Live view of a cluster started by 'wsntrack run --out RUN_DIR' (from another terminal):\n"
+    "it joins the run's DDS domain as a viewer and, every tick, shows the run's progress (tick\n"
+    "t/T), the aggregator's per-tick metrics (K* truth targets, K tracks, OSPA, GOSPA, running\n"
+    "epsK and mean OSPA; 'n/a' when the aggregator does not publish TickMetrics) and its global\n"
+    "tracks (id as supernode:serial, x, y, vx, vy, speed). To follow a run at a human pace,\n"
+    "start it with --tick-interval, e.g. 'wsntrack run SCENARIO --out runs/demo --tick-interval\n"
+    "0.2' and then 'wsntrack watch runs/demo'.\n\n"
+    "On a terminal the view is redrawn in place (ANSI); otherwise, or with --plain, every frame is\n"
+    "printed as lines: 'tick t/T  K*=.. K=.. OSPA=.. GOSPA=.. epsK=.. meanOSPA=..', a header and\n"
+    "one row per track, then an empty line. Frames are drawn at most --max-fps times a second;\n"
+    "ticks in between are skipped, the last tick is always drawn.\n\n"
+    "RUN_DIR's run.json says how to join (run id, domain, the participant indices kept for\n"
+    "viewers: up to 4 viewers at a time). The watch waits up to --timeout seconds for a run to\n"
+    "start there and then for each sign of progress; it never slows the run down or changes it.\n\n"
+    "Exit status: 0 when the run finished (the aggregator reported DONE or the last tick was shown);\n"
+    "1 when the run failed, its launcher exited early, no run started or nothing happened within\n"
+    "--timeout; 2 for bad options or when RUN_DIR is not a run directory; 130 on Ctrl-C.\n\n";
+
+}  // namespace
+
+int commandWatch(const std::vector<std::string>& args) {
+  namespace po = boost::program_options;
+  WatchOptions options;
+  po::options_description described("Options");
+  described.add_options()("help,h", "show this help")(
+      "timeout", po::value(&options.timeout_s)->default_value(60),
+      "seconds to wait for the run to start, and then at most between two signs of progress")(
+      "plain", "line-oriented frames even on a terminal (the default when stdout is not one)")(
+      "max-fps", po::value(&options.max_fps)->default_value(20), "most frames drawn per second")(
+      "run-dir", po::value(&options.run_dir), "run directory of the run to watch");
+  po::positional_options_description positional;
+  positional.add("run-dir", 1);
+  po::variables_map vm;
+  po::store(po::command_line_parser(args).options(described).positional(positional).run(), vm);
+  po::notify(vm);
+  if (vm.count("help") || options.run_dir.empty()) {
+    (vm.count("help") ? std::cout : std::cerr) << kWatchHelp << described << "\n";
+    return vm.count("help") ? kWatchFinished : kWatchUsage;
+  }
+  if (!std::isfinite(options.timeout_s) || options.timeout_s <= 0 || options.timeout_s > 604800) {
+    std::cerr << "wsntrack watch: --timeout must be in (0, 604800] seconds, got " << options.timeout_s << "\n";
+    return kWatchUsage;
+  }
+  if (!std::isfinite(options.max_fps) || options.max_fps < 0.1 || options.max_fps > 1000) {
+    std::cerr << "wsntrack watch: --max-fps must be in [0.1, 1000], got " << options.max_fps << "\n";
+    return kWatchUsage;
+  }
+  options.plain = options.plain || vm.count("plain") != 0;
+  const bool tty = !options.plain && ::isatty(STDOUT_FILENO) != 0;
+  std::signal(SIGINT, onWatchInterrupt);
+  std::signal(SIGTERM, onWatchInterrupt);
+  // A reader of a pipe that went away must not kill the watch in the middle of a DDS call.
+  std::signal(SIGPIPE, SIG_IGN);
+  try {
+    return Watcher(options, tty).run();
+  } catch (const std::exception& error) {
+    std::cerr << "wsntrack watch: " << error.what() << "\n";
+    return kWatchFailed;
+  }
+}
+
+}  // namespace wsn::launcher

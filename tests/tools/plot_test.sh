@@ -1,0 +1,222 @@
+#!/usr/bin/env bash
+# Tests of tools/plot_run.py and of the plots 'wsntrack run' draws.
+# Usage: plot_test.sh BIN_DIR SOURCE_DIR WORK_DIR CASE
+#   script   the script alone on a tiny hand-written run directory (no DDS)
+#   run      'wsntrack run' with and without --no-plot, SVG, a random layout, no matplotlib
+# Exit 77 (skipped) when /usr/bin/python3 has no matplotlib: there is nothing to draw with.
+set -uo pipefail
+bin="$1"; src="$2"; work="$3"; case_name="$4"
+python=/usr/bin/python3
+plot="$bin/plot_run.py"
+rm -rf "$work/$case_name"; mkdir -p "$work/$case_name"; cd "$work/$case_name" || exit 1
+
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+[ -x "$python" ] && "$python" -c "import matplotlib" 2>/dev/null || { echo "SKIP: no matplotlib for $python"; exit 77; }
+[ -f "$plot" ] || fail "$plot missing: the build should copy tools/plot_run.py next to wsntrack"
+cmp -s "$plot" "$src/tools/plot_run.py" || fail "$plot differs from $src/tools/plot_run.py (stale copy)"
+
+is_png() { [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]; }
+is_svg() { head -c 2000 "$1" | grep -q "<svg"; }
+check_pngs() {
+  for name in tracks cardinality ospa; do
+    [ -s "$1/$name.png" ] || fail "$1/$name.png missing"
+    is_png "$1/$name.png" || fail "$1/$name.png does not start with the PNG signature"
+  done
+}
+
+# A python without matplotlib, simulated: a package of that name that cannot be imported.
+mkdir -p fakepy/matplotlib
+echo 'raise ImportError("simulated: no matplotlib")' >fakepy/matplotlib/__init__.py
+
+case "$case_name" in
+  script)
+    # A 20 x 10 grid, two supernodes (one boundary at x = 10), two targets, three tracks.
+    mkdir -p run
+    cat >run/scenario.yaml <<'EOF'
+# wsntrack resolved scenario (a small hand-made one)
+name: "tiny"
+region:
+  x_min: 0
+  y_min: 0
+  x_max: 20
+  y_max: 10
+sensors:
+  layout: grid
+  spacing: 1
+  count: 10000
+targets:
+  scripted:
+    - {appear_tick: 1, disappear_tick: 0, x: 1, y: 1, vx: 1, vy: 0.5}
+supernodes:
+  - {x: 5, y: 5}
+  - {x: 15, y: 5}
+tracker:
+  engine: "gnn"
+  params: {}
+metrics:
+  ospa_c: 5
+  ospa_p: 2
+run:
+  ticks: 10
+  seed: 3
+EOF
+    {
+      echo "tick,target,x,y,vx,vy"
+      for t in $(seq 1 10); do
+        echo "$t,0,$t.000000,$((1 + t / 2)).000000,1.000000,0.500000"
+        [ "$t" -ge 4 ] && echo "$t,1,$((20 - t)).500000,8.000000,-1.000000,0.000000"
+      done
+    } >run/truth.csv
+    {
+      echo "tick,track,x,y,vx,vy"
+      for t in $(seq 2 10); do
+        echo "$t,281474976710657,$t.100000,$((1 + t / 2)).200000,1.000000,0.500000"
+        [ "$t" -ge 6 ] && [ "$t" -ne 8 ] && echo "$t,562949953421313,$((20 - t)).300000,7.800000,-1.000000,0.000000"
+        [ "$t" -eq 5 ] && echo "$t,844424930131969,3.000000,9.000000,0.000000,0.000000"
+      done
+    } >run/tracks.csv
+    printf '{\n  "metrics": {\n    "first_tick": 1,\n    "eps_k": 0.25,\n    "ospa_mean": 1.5,\n    "ospa_per_tick": [5, 0.1, 0.1, 5, 5, 0.2, 0.2, 2.5, 0.3, 0.3]\n  },\n  "timing": {"wall_s": 0.1}\n}\n' \
+      >run/metrics.json
+
+    "$python" "$plot" --help >help.txt || fail "--help failed"
+    grep -q "tracks.FORMAT" help.txt && grep -q "Exit status" help.txt || fail "--help does not explain the outputs"
+
+    "$python" "$plot" run >out.txt 2>err.txt || { cat err.txt >&2; fail "plot of a good run directory failed"; }
+    check_pngs run/plots
+    "$python" "$plot" run --format svg --out "$PWD/svg" >/dev/null 2>err.txt || { cat err.txt >&2; fail "svg failed"; }
+    for name in tracks cardinality ospa; do is_svg "svg/$name.svg" || fail "svg/$name.svg is not SVG"; done
+    # SVG keeps its text as text: the OSPA source and the legend can be checked.
+    grep -q "from metrics.json" svg/ospa.svg || fail "ospa.svg does not say it read metrics.json"
+    grep -q "true target path" svg/tracks.svg || fail "tracks.svg lacks its legend"
+    grep -q "tracking-group boundary" svg/tracks.svg || fail "tracks.svg draws no tracking-group boundary"
+
+    # --wait (how wsntrack runs it): nothing before the word to go, nothing at all without it.
+    echo go | "$python" "$plot" run --wait --out "$PWD/waited" >/dev/null 2>err.txt || { cat err.txt >&2; fail "--wait"; }
+    check_pngs waited
+    "$python" "$plot" run --wait --out "$PWD/not-waited" </dev/null >/dev/null 2>err.txt \
+      || { cat err.txt >&2; fail "--wait without go: not exit 0"; }
+    [ -e not-waited ] && fail "--wait without go drew plots"
+
+    # metrics_per_tick.csv, when present, is preferred to metrics.json.
+    {
+      echo "tick,truth_targets,tracks,ospa,gospa,gospa_localisation,gospa_missed,gospa_false"
+      for t in $(seq 1 10); do echo "$t,1,1,0.5,0.5,0.5,0,0"; done
+    } >run/metrics_per_tick.csv
+    "$python" "$plot" run --format svg --out "$PWD/svg2" >/dev/null 2>err.txt || { cat err.txt >&2; fail "per-tick csv"; }
+    grep -q "from metrics_per_tick.csv" svg2/ospa.svg || fail "metrics_per_tick.csv was not used"
+
+    # A sensors.csv is drawn whatever the layout says.
+    printf 'sensor,x,y\n0,1.5,2.5\n1,17.25,3.75\n' >run/sensors.csv
+    "$python" "$plot" run --out "$PWD/withsensors" >/dev/null 2>err.txt || { cat err.txt >&2; fail "with sensors.csv"; }
+    check_pngs withsensors
+
+    # The YAML reader agrees with PyYAML on what wsntrack writes (when PyYAML is there to ask).
+    if "$python" -c "import yaml" 2>/dev/null; then
+      "$python" -B - "$bin" run/scenario.yaml <<'EOF' || fail "the YAML subset reader disagrees with PyYAML"
+import sys, yaml
+sys.path.insert(0, sys.argv[1])
+import plot_run
+text = open(sys.argv[2]).read()
+assert plot_run.parse_yaml_subset(text, sys.argv[2]) == yaml.safe_load(text), "differs"
+EOF
+    fi
+
+    # Bad input: exit 2, FILE[:LINE]: what was expected, and never a traceback.
+    expect_bad() {
+      local dir="$1" pattern="$2"
+      "$python" "$plot" "$dir" >/dev/null 2>err.txt
+      local code=$?
+      [ "$code" -eq 2 ] || { cat err.txt >&2; fail "$dir: exit $code, expected 2"; }
+      grep -Eq "$pattern" err.txt || { cat err.txt >&2; fail "$dir: message lacks /$pattern/"; }
+      grep -q "Traceback" err.txt && { cat err.txt >&2; fail "$dir: traceback"; }
+      return 0
+    }
+    bad() { rm -rf "$1"; cp -r run "$1"; rm -rf "$1/plots" "$1/metrics_per_tick.csv" "$1/sensors.csv"; }
+    bad b1; sed -i '4s/.*/4,281474976710657,abc,1.0,0,0/' b1/tracks.csv
+    expect_bad b1 "b1/tracks.csv:4: column 'x' must be a number, got 'abc'"
+    bad b2; sed -i '3s/.*/2,0,1.0/' b2/truth.csv
+    expect_bad b2 "b2/truth.csv:3: expected 6 fields \(tick,target,x,y,vx,vy\), got 3"
+    bad b3; sed -i '1s/.*/tick,id,x,y/' b3/tracks.csv
+    expect_bad b3 "b3/tracks.csv:1: expected the header 'tick,track,x,y,vx,vy', got 'tick,id,x,y'"
+    bad b4; rm b4/truth.csv
+    expect_bad b4 "b4/truth.csv: missing"
+    bad b5; sed -i 's/^  x_max: 20$/  x_max: {oops/' b5/scenario.yaml
+    expect_bad b5 "b5/scenario.yaml:6: unterminated flow mapping"
+    bad b6; sed -i 's/^  ticks: 10$/  ticks: many/' b6/scenario.yaml
+    expect_bad b6 "b6/scenario.yaml:25: 'run.ticks' must be a number, got 'many'"
+    bad b11; sed -i 's/^  - {x: 15, y: 5}$/  - {x: 15, y: north}/' b11/scenario.yaml
+    expect_bad b11 "b11/scenario.yaml:17: supernodes\[1\].y must be a number, got 'north'"
+    bad b7; echo '{"metrics": ' >b7/metrics.json
+    expect_bad b7 "b7/metrics.json:2: malformed JSON"
+    bad b8; : >b8/tracks.csv
+    expect_bad b8 "b8/tracks.csv:1: expected the header .* got an empty file"
+    bad b9; printf 'tick,truth_targets,tracks,ospa,gospa,gospa_localisation,gospa_missed,gospa_false\n1,1,1,x,0,0,0,0\n' \
+      >b9/metrics_per_tick.csv
+    expect_bad b9 "b9/metrics_per_tick.csv:2: column 'ospa' must be a number, got 'x'"
+    bad b10; sed -i '5s/.*/3,281474976710657,nan,1.0,0,0/' b10/tracks.csv
+    expect_bad b10 "b10/tracks.csv:5: column 'x' must be finite"
+    expect_bad "$PWD/nonexistent" "nonexistent: not a directory"
+    "$python" "$plot" run --format gif >/dev/null 2>err.txt; [ $? -eq 2 ] || fail "--format gif accepted"
+
+    # Without matplotlib: exit 3 and one clear line.
+    PYTHONPATH="$PWD/fakepy" "$python" "$plot" run --out "$PWD/nompl-out" >/dev/null 2>err.txt
+    code=$?
+    [ "$code" -eq 3 ] || { cat err.txt >&2; fail "without matplotlib: exit $code, expected 3"; }
+    grep -q "matplotlib is not available" err.txt || { cat err.txt >&2; fail "without matplotlib: message"; }
+    [ -e nompl-out ] && fail "without matplotlib: an output directory was created"
+    echo "ok" ;;
+
+  run)
+    wsntrack="$bin/wsntrack"
+    scenario="$src/scenarios/oh_quadrants.yaml"
+    run() {
+      local out="$1"; shift
+      timeout 300 "$wsntrack" run "$scenario" --quiet --ticks 20 --out "$PWD/$out" "$@" >"$out.stdout" 2>"$out.stderr"
+    }
+    run_ok() { run "$@" || { cat "$1.stderr" >&2; fail "run $*"; }; }
+
+    run_ok png --seed 4
+    check_pngs png/plots
+    grep -Eq "^  plots +.*png/plots/\{tracks,cardinality,ospa\}\.png \([0-9.]+ s\)$" png.stdout \
+      || { cat png.stdout >&2; fail "the summary does not report the plots"; }
+    [ -s png/logs/plot.log ] || fail "no logs/plot.log"
+    [ -e png/sensors.csv ] && fail "sensors.csv written for a grid layout"
+    if "$python" -c "import yaml" 2>/dev/null; then
+      "$python" -B - "$bin" png/scenario.yaml <<'EOF' || fail "the YAML subset reader disagrees with PyYAML"
+import sys, yaml
+sys.path.insert(0, sys.argv[1])
+import plot_run
+text = open(sys.argv[2]).read()
+assert plot_run.parse_yaml_subset(text, sys.argv[2]) == yaml.safe_load(text), "differs"
+EOF
+    fi
+
+    run_ok noplot --seed 4 --no-plot
+    [ -e noplot/plots ] && fail "--no-plot drew plots"
+    grep -q "^  plots " noplot.stdout && fail "--no-plot: the summary mentions plots"
+    cmp -s png/tracks.csv noplot/tracks.csv || fail "plotting changed the run's outputs"
+
+    run_ok svg --seed 4 --plot-format svg
+    for name in tracks cardinality ospa; do is_svg "svg/plots/$name.svg" || fail "svg/plots/$name.svg is not SVG"; done
+
+    run bad --plot-format gif && fail "--plot-format gif accepted"
+    grep -q "plot-format must be png or svg" bad.stderr || { cat bad.stderr >&2; fail "--plot-format message"; }
+    [ -e bad ] && fail "a bad --plot-format created a run directory"
+
+    # A random layout: sensors.csv holds every sensor, and the plot draws them.
+    run_ok random --seed 5 --set sensors.layout=random --set sensors.count=3000
+    [ "$(head -1 random/sensors.csv)" = "sensor,x,y" ] || fail "sensors.csv header"
+    [ "$(wc -l <random/sensors.csv)" -eq 3001 ] || fail "sensors.csv should have 3000 rows"
+    check_pngs random/plots
+
+    # No matplotlib: the run still succeeds, with one warning line and the summary saying so.
+    PYTHONPATH="$PWD/fakepy" run_ok nompl --seed 4
+    [ -e nompl/plots ] && fail "plots without matplotlib?"
+    [ "$(grep -c "warning: no plots: matplotlib is not available" nompl.stderr)" -eq 1 ] \
+      || { cat nompl.stderr >&2; fail "no single warning line without matplotlib"; }
+    grep -Eq "^  plots +none: matplotlib is not available" nompl.stdout || { cat nompl.stdout >&2; fail "summary"; }
+    echo "ok" ;;
+
+  *) fail "unknown case $case_name" ;;
+esac
