@@ -24,10 +24,6 @@ double trackLevelDefault(const common::ParamSpec& p) {
   return p.default_value;
 }
 
-bool finite(const common::TrackEstimate& t) {
-  return std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.vx) && std::isfinite(t.vy);
-}
-
 }  // namespace
 
 AssociationSpec mcmcdaAssociationSpec() {
@@ -91,7 +87,7 @@ std::vector<common::TrackEstimate> McmcdaAssociator::associate(std::int32_t tick
   std::vector<Element> elements;
   for (const auto& input : inputs)
     for (const auto& track : input.tracks) {
-      if (!finite(track)) {
+      if (!common::isFinite(track)) {
         ++dropped_non_finite_;
         continue;
       }
@@ -123,12 +119,16 @@ std::vector<common::TrackEstimate> McmcdaAssociator::associate(std::int32_t tick
   });
   engine_->step(window_);
 
-  // The supernode tracks reported at this tick, by id (a handed-over track may be reported by
-  // both supernodes for a tick: the first in canonical order stands).
+  // The supernode tracks reported at this tick, by id. A handed-over track may be reported by both
+  // supernodes for a tick: the lower supernode's estimate stands, whatever the order of inputs.
+  std::vector<const SupernodeTracks*> by_supernode;
+  for (const auto& input : inputs) by_supernode.push_back(&input);
+  std::stable_sort(by_supernode.begin(), by_supernode.end(),
+                   [](const SupernodeTracks* a, const SupernodeTracks* b) { return a->supernode < b->supernode; });
   std::map<common::TrackId, const common::TrackEstimate*> reported;
-  for (const auto& input : inputs)
-    for (const auto& track : input.tracks)
-      if (finite(track)) reported.emplace(track.track, &track);
+  for (const auto* input : by_supernode)
+    for (const auto& track : input->tracks)
+      if (common::isFinite(track)) reported.emplace(track.track, &track);
   // The global tracks to report, with the supernode tracks each holds.
   const auto views = engine_->liveTracks();
   std::vector<const supernode::mcmcda::McmcdaEngine::LiveTrackView*> chosen;

@@ -26,10 +26,6 @@ bool trackLess(const TrackEstimate& a, const TrackEstimate& b) {
   return std::tie(a.track, a.x, a.y, a.vx, a.vy) < std::tie(b.track, b.x, b.y, b.vx, b.vy);
 }
 
-bool isFinite(const TrackEstimate& t) {
-  return std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.vx) && std::isfinite(t.vy);
-}
-
 /// Position of target `id` in a tick's sorted truth, if alive.
 const TargetState* findTarget(const std::vector<TargetState>& truth, common::TargetId id) {
   const auto it = std::lower_bound(truth.begin(), truth.end(), id,
@@ -85,7 +81,7 @@ MetricsTick MetricsAccumulator::add(std::int32_t tick, const std::vector<TargetS
   record.truth = truth;
   std::sort(record.truth.begin(), record.truth.end(), truthLess);
   for (const auto& track : tracks) {
-    if (!isFinite(track)) {
+    if (!common::isFinite(track)) {
       ++ignored_nonfinite_;
       continue;
     }
@@ -187,15 +183,14 @@ MetricsSummary MetricsAccumulator::finish() const {
 
 std::string toJson(const MetricsSummary& s) {
   std::ostringstream out;
-  auto flag = [](bool value) { return value ? "true" : "false"; };
   out << "{\n";
   out << "    \"ticks_scored\": " << s.ticks_scored << ",\n";
   out << "    \"first_tick\": " << s.first_tick << ",\n";
   out << "    \"last_tick\": " << s.last_tick << ",\n";
   out << "    \"eps_k\": " << jsonReal(s.eps_k) << ",\n";
-  out << "    \"eps_k_defined\": " << flag(s.eps_k_defined) << ",\n";
+  out << "    \"eps_k_defined\": " << jsonBool(s.eps_k_defined) << ",\n";
   out << "    \"eps_x\": " << jsonReal(s.eps_x) << ",\n";
-  out << "    \"eps_x_defined\": " << flag(s.eps_x_defined) << ",\n";
+  out << "    \"eps_x_defined\": " << jsonBool(s.eps_x_defined) << ",\n";
   out << "    \"mean_k\": " << jsonReal(s.mean_k) << ",\n";
   out << "    \"mean_k_true\": " << jsonReal(s.mean_k_true) << ",\n";
   out << "    \"sum_k\": " << s.sum_k << ",\n";

@@ -133,6 +133,8 @@ class MetricsAccumulator {
 /// A real as a metrics.json number: 6 decimals, or null when not finite (valid inputs never
 /// give one, but the file must stay valid JSON).
 std::string jsonReal(double value);
+/// "true" or "false".
+inline const char* jsonBool(bool value) { return value ? "true" : "false"; }
 
 /// The summary as a JSON object (2-space indentation, nested one level: it is embedded as the
 /// value of "metrics" in metrics.json). Numbers: integers as such, reals with 6 decimals;

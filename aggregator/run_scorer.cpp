@@ -11,12 +11,6 @@
 namespace wsn::aggregator {
 namespace {
 
-bool isFinite(const common::TrackEstimate& t) {
-  return std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.vx) && std::isfinite(t.vy);
-}
-
-const char* flag(bool value) { return value ? "true" : "false"; }
-
 /// A JSON string literal; scenario names are free text.
 std::string jsonString(const std::string& text) {
   std::string out = "\"";
@@ -66,7 +60,7 @@ TickScores RunScorer::add(std::int32_t tick, const std::vector<common::TargetSta
   std::vector<common::TrackEstimate> finite;
   finite.reserve(tracks.size());
   for (const auto& track : tracks)
-    if (isFinite(track)) finite.push_back(track);
+    if (common::isFinite(track)) finite.push_back(track);
 
   const MetricsTick basic = metrics_.add(tick, truth, tracks);
   const ClearMotTick events = clear_mot_.add(tick, truth, finite);
@@ -146,9 +140,9 @@ std::string metricsJson(const RunInfo& info, const RunScores& s, double wall_s, 
   out << "  \"clear_mot\": {\n";
   out << "    \"threshold\": " << jsonReal(s.mot_threshold) << ",\n";
   out << "    \"mota\": " << jsonReal(m.mota) << ",\n";
-  out << "    \"mota_defined\": " << flag(m.mota_defined) << ",\n";
+  out << "    \"mota_defined\": " << jsonBool(m.mota_defined) << ",\n";
   out << "    \"motp\": " << jsonReal(m.motp) << ",\n";
-  out << "    \"motp_defined\": " << flag(m.motp_defined) << ",\n";
+  out << "    \"motp_defined\": " << jsonBool(m.motp_defined) << ",\n";
   out << "    \"id_switches\": " << m.id_switches << ",\n";
   out << "    \"fragmentations\": " << m.fragmentations << ",\n";
   out << "    \"misses\": " << m.misses << ",\n";
@@ -160,7 +154,7 @@ std::string metricsJson(const RunInfo& info, const RunScores& s, double wall_s, 
   const TrackQualitySummary& q = s.track_quality;
   out << "  \"track_quality\": {\n";
   out << "    \"gate\": " << jsonReal(s.quality_gate) << ",\n";
-  out << "    \"means_defined\": " << flag(q.means_defined) << ",\n";
+  out << "    \"means_defined\": " << jsonBool(q.means_defined) << ",\n";
   out << "    \"mean_rse_position\": " << jsonReal(q.mean_rse_position) << ",\n";
   out << "    \"mean_rse_velocity\": " << jsonReal(q.mean_rse_velocity) << ",\n";
   out << "    \"mean_tlr\": " << jsonReal(q.mean_tlr) << ",\n";
@@ -170,7 +164,7 @@ std::string metricsJson(const RunInfo& info, const RunScores& s, double wall_s, 
   for (std::size_t i = 0; i < q.targets.size(); ++i) {
     const TargetQuality& t = q.targets[i];
     out << (i == 0 ? "\n" : ",\n") << "      {\"id\": " << t.id << ", \"ticks_alive\": " << t.ticks_alive
-        << ", \"ticks_associated\": " << t.ticks_associated << ", \"errors_defined\": " << flag(t.errors_defined)
+        << ", \"ticks_associated\": " << t.ticks_associated << ", \"errors_defined\": " << jsonBool(t.errors_defined)
         << ", \"rse_position\": " << jsonReal(t.rse_position) << ", \"rse_velocity\": " << jsonReal(t.rse_velocity)
         << ", \"tlr\": " << jsonReal(t.tlr) << ", \"mean_position_error\": " << jsonReal(t.mean_position_error) << "}";
   }

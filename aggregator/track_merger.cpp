@@ -26,10 +26,6 @@ struct Cluster {
   std::vector<Member> members;
 };
 
-bool isFinite(const TrackEstimate& t) {
-  return std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.vx) && std::isfinite(t.vy);
-}
-
 bool canonicalLess(const TrackEstimate& a, const TrackEstimate& b) {
   return std::tie(a.track, a.x, a.y, a.vx, a.vy) < std::tie(b.track, b.x, b.y, b.vx, b.vy);
 }
@@ -109,7 +105,7 @@ std::vector<TrackEstimate> TrackMerger::merge(std::int32_t tick, const std::vect
   for (const auto& input : inputs) {
     auto& tracks = by_supernode[input.supernode];
     for (const auto& track : input.tracks) {
-      if (isFinite(track))
+      if (common::isFinite(track))
         tracks.push_back(track);
       else
         ++dropped_non_finite_;

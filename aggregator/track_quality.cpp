@@ -19,7 +19,7 @@ void TrackQualityAccumulator::add(const std::vector<common::TargetState>& truth,
   std::vector<common::TrackEstimate> tracks;
   tracks.reserve(tracks_in.size());
   for (const auto& h : tracks_in) {
-    if (std::isfinite(h.x) && std::isfinite(h.y) && std::isfinite(h.vx) && std::isfinite(h.vy))
+    if (common::isFinite(h))
       tracks.push_back(h);
     else
       ++ignored_nonfinite_;

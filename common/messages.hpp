@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -59,6 +60,11 @@ struct TrackEstimate {
   std::int32_t last_seen_tick = 0;
   friend bool operator==(const TrackEstimate&, const TrackEstimate&) = default;
 };
+
+/// A track whose state can be used: x, y, vx, vy all finite (consumers drop and count the rest).
+inline bool isFinite(const TrackEstimate& t) {
+  return std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.vx) && std::isfinite(t.vy);
+}
 
 /// Everything a supernode needs to continue a track another supernode started.
 struct TrackHandoff {

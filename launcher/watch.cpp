@@ -17,6 +17,7 @@
 #include <optional>
 #include <sstream>
 
+#include "common/dds/codec.hpp"
 #include "common/dds/cyclone_config.hpp"
 #include "common/dds/entity.hpp"
 #include "common/dds/process_main.hpp"
@@ -41,11 +42,6 @@ struct WatchOptions {
   double max_fps = 20;
 };
 
-struct TrackRow {
-  std::uint64_t id = 0;
-  double x = 0, y = 0, vx = 0, vy = 0;
-};
-
 /// What the aggregator's TickMetrics say about one tick.
 struct Scores {
   std::int32_t truth_targets = 0;
@@ -54,7 +50,7 @@ struct Scores {
 
 /// One tick's global tracks, waiting to be drawn.
 struct PendingTick {
-  std::vector<TrackRow> tracks;
+  std::vector<common::TrackEstimate> tracks;
   Clock::time_point arrived;
 };
 
@@ -297,11 +293,7 @@ class Watcher {
         last_progress = now;
         auto& pending = pending_[batch.tick];
         pending.arrived = now;
-        pending.tracks.clear();
-        for (std::uint32_t i = 0; i < batch.tracks._length; ++i) {
-          const auto& t = batch.tracks._buffer[i];
-          pending.tracks.push_back({t.track, t.x, t.y, t.vx, t.vy});
-        }
+        pending.tracks = dds::decode(batch.tracks);
       });
       metrics_reader.take<wsn_msg_TickMetrics>([&](const wsn_msg_TickMetrics& m) {
         if (m.run_id != run_.identity.run_id || m.tick <= drawn_tick_) return;
@@ -409,7 +401,7 @@ class Watcher {
 
   void drawTick(std::int32_t tick) {
     auto tracks = std::move(pending_[tick].tracks);
-    std::sort(tracks.begin(), tracks.end(), [](const TrackRow& a, const TrackRow& b) { return a.id < b.id; });
+    std::sort(tracks.begin(), tracks.end(), [](const common::TrackEstimate& a, const common::TrackEstimate& b) { return a.track < b.track; });
     Scores scores;
     const auto found = scores_.find(tick);
     const bool scored = found != scores_.end();
@@ -435,7 +427,7 @@ class Watcher {
     std::snprintf(buffer, sizeof buffer, "  %-14s %9s %9s %8s %8s %7s", "track", "x", "y", "vx", "vy", "speed");
     rows.emplace_back(buffer);
     for (const auto& t : tracks) {
-      std::snprintf(buffer, sizeof buffer, "  %-14s %9.2f %9.2f %8.3f %8.3f %7.3f", compactTrackId(t.id).c_str(), t.x,
+      std::snprintf(buffer, sizeof buffer, "  %-14s %9.2f %9.2f %8.3f %8.3f %7.3f", compactTrackId(t.track).c_str(), t.x,
                     t.y, t.vx, t.vy, std::hypot(t.vx, t.vy));
       rows.emplace_back(buffer);
     }

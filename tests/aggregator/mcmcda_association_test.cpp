@@ -229,3 +229,17 @@ TEST_CASE("A new track takes the free id most of its supernode tracks had", "[ag
   a = ids.assign({{100, {7}}}, {100}, {100});
   CHECK(a.passed == std::vector<TrackId>{0});
 }
+
+TEST_CASE("A track both supernodes pass through is the lower supernode's, whatever the input order",
+          "[aggregator][mcmcda_association]") {
+  const TrackId a = id(0, 1);
+  const TrackEstimate from_sender{a, 10.0, 10.0, 1.0, 0.0, {}, 1};
+  const TrackEstimate from_receiver{a, 10.5, 10.0, 1.0, 0.0, {}, 1};
+  McmcdaAssociator in_order(twoSupernodes());
+  McmcdaAssociator reversed(twoSupernodes());
+  const auto first = in_order.associate(1, {{0, {from_sender}}, {1, {from_receiver}}});
+  const auto second = reversed.associate(1, {{1, {from_receiver}}, {0, {from_sender}}});
+  REQUIRE(first.size() == 1);
+  CHECK(first[0] == from_sender);
+  CHECK(second == first);
+}

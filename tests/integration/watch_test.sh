@@ -167,6 +167,9 @@ EOF
       # shellcheck disable=SC2086
       "$wsntrack" watch "$PWD/plain-dir" $bad >out.txt 2>err.txt; rc=$?
       [ "$rc" -eq 2 ] || fail "watch $bad exited $rc, expected 2"
+      # The option, not the non-run directory, must be what is refused.
+      grep -q -- "${bad%% *}" err.txt && ! grep -q "not a wsntrack run directory" err.txt \
+        || { cat err.txt >&2; fail "watch $bad: message does not name ${bad%% *}"; }
     done
     # The example refuses to start without the run's configuration (never Cyclone's default).
     env -u CYCLONEDDS_URI "$example" 5 abc >out.txt 2>err.txt; rc=$?
