@@ -25,13 +25,16 @@ struct SensorReading {
   friend bool operator==(const SensorReading&, const SensorReading&) = default;
 };
 
-/// A fused report (Oh eq. 6) from the local-maximum sensor, in believed coordinates.
+/// A fused report (Oh eq. 6) from the local-maximum sensor, in believed coordinates; or a raw
+/// acoustic detection (An et al. 2014 eq. 4) at the sensor's believed position with its level.
 struct Report {
   std::int32_t tick = 0;
   SensorId sensor = 0;
   double x = 0.0;
   double y = 0.0;
   TargetId target = kFalseAlarm;
+  /// Acoustic detection: ws = floor(Ps / cs) >= 1 (An et al. 2014 eq. 4, 10); 0 for a fused report.
+  std::int32_t power_level = 0;
   friend bool operator==(const Report&, const Report&) = default;
 };
 
@@ -44,6 +47,7 @@ struct Observation {
   double x = 0.0;
   double y = 0.0;
   TargetId target = kFalseAlarm;
+  std::int32_t power_level = 0;  ///< as in Report
   friend bool operator==(const Observation&, const Observation&) = default;
 };
 

@@ -21,6 +21,9 @@ enum class Purpose : std::uint64_t {
   kNetworkLoss = 9,
   kNetworkDelay = 10,
   kTracker = 11,
+  kAcousticPower = 12,         ///< per (target, emission index): sound-power fluctuation (An 2014 §5.2)
+  kEnvironmentalNoisePhase = 13,  ///< per (sensor, component): offset of its noise episodes
+  kEnvironmentalNoise = 14,    ///< per (sensor, component, episode): noisy or not, and its power
 };
 
 /// SplitMix64 finaliser: a bijective 64-bit mix with full avalanche.

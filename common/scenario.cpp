@@ -7,6 +7,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cerrno>
 #include <charconv>
@@ -435,11 +436,14 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
                               compactNumber(kMaxSensors));
   }
 
-  // sensor_model (Oh eq. 5)
+  // sensor_model (Oh eq. 5, or An et al. 2014 eq. 1-4 for acoustic sensors)
   int sensing_range_line = region_line;
   if (const Entry* e = top.find("sensor_model")) {
-    const Section sec =
-        r.section(*e, "sensor_model", {"alpha", "beta", "gamma", "eta", "sensing_range", "noise_sigma"});
+    const Section sec = r.section(*e, "sensor_model",
+                                  {"kind", "alpha", "beta", "gamma", "eta", "sensing_range", "noise_sigma", "acoustic",
+                                   "environmental_noise"});
+    const int kind = r.choice(sec, "kind", {"signal_strength", "acoustic_doppler"});
+    if (kind >= 0) s.sensor_model.kind = static_cast<SensorModelConfig::Kind>(kind);
     r.number(sec, "alpha", s.sensor_model.alpha, Range{0.0, 100.0, true, false});
     r.number(sec, "gamma", s.sensor_model.gamma, kNonNegative);
     r.number(sec, "eta", s.sensor_model.eta, Range{0.0, 1e9, true, false});
@@ -453,6 +457,64 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
       if (!(s.sensor_model.beta <= 1e12))
         r.fail(sec.line, "'sensor_model.beta' left out is 3 (1 + gamma Rs^alpha) = " +
                              compactNumber(s.sensor_model.beta) + ", outside (0, 1e12]; give beta explicitly");
+    }
+    const bool acoustic = s.sensor_model.kind == SensorModelConfig::Kind::kAcousticDoppler;
+    if (const Entry* a = sec.find("acoustic")) {
+      if (!acoustic)
+        r.fail(Reader::lineOf(a->key), "'sensor_model.acoustic' applies only with 'sensor_model.kind: acoustic_doppler'");
+      const Section asec = r.section(*a, "sensor_model.acoustic",
+                                     {"threshold", "sound_speed", "detection_step_s", "tick_s", "power_fluctuation"});
+      auto& ac = s.sensor_model.acoustic;
+      r.number(asec, "threshold", ac.threshold, Range{0.0, 1e12, true, false});
+      r.number(asec, "sound_speed", ac.sound_speed, kPositive);
+      r.number(asec, "detection_step_s", ac.detection_step_s, Range{0.0, 10.0, true, false});
+      r.number(asec, "tick_s", ac.tick_s, Range{0.0, 1e3, true, false});
+      r.number(asec, "power_fluctuation", ac.power_fluctuation, Range{0.0, 1.0, false, true});
+      const double steps = ac.tick_s / ac.detection_step_s;
+      if (std::abs(steps - std::round(steps)) > 1e-6 * steps || std::round(steps) > 100000.0)
+        r.fail(asec.line, "'sensor_model.acoustic.tick_s' " + compactNumber(ac.tick_s) +
+                              " must be a whole number (at most 100000) of detection steps of " +
+                              compactNumber(ac.detection_step_s) + " s");
+    }
+    if (const Entry* n = sec.find("environmental_noise")) {
+      if (!acoustic)
+        r.fail(Reader::lineOf(n->key),
+               "'sensor_model.environmental_noise' applies only with 'sensor_model.kind: acoustic_doppler'");
+      const Section nsec = r.section(*n, "sensor_model.environmental_noise", {"preset", "components"});
+      auto& noise = s.sensor_model.environmental_noise;
+      const Entry* preset = nsec.find("preset");
+      const Entry* components = nsec.find("components");
+      if (preset != nullptr && components != nullptr)
+        r.fail(nsec.line, "'sensor_model.environmental_noise' takes either 'preset' or 'components', not both");
+      if (preset != nullptr) {
+        const int which = r.choice(nsec, "preset", {"none", "noise1", "noise2", "noise3"});
+        noise.preset = std::array{"none", "noise1", "noise2", "noise3"}[static_cast<std::size_t>(which)];
+        noise.components = *noisePreset(noise.preset);
+      }
+      if (components != nullptr && !components->value.IsNull()) {
+        if (!components->value.IsSequence())
+          r.fail(Reader::lineOf(*components),
+                 "'sensor_model.environmental_noise.components' must be a list of {fraction, duration_s}, got " +
+                     describe(components->value));
+        noise.preset = "custom";
+        double total = 0.0;
+        std::size_t i = 0;
+        for (const auto& item : components->value) {
+          const std::string path = "sensor_model.environmental_noise.components[" + std::to_string(i++) + "]";
+          const int item_line = Reader::lineOf(item) > 0 ? Reader::lineOf(item) : Reader::lineOf(*components);
+          if (!item.IsMap()) r.fail(item_line, "'" + path + "' must be a mapping {fraction, duration_s}, got " + describe(item));
+          const Section c = r.section(item, item_line, path, {"fraction", "duration_s"});
+          r.require(c, {"fraction", "duration_s"}, "share of the sensors and seconds each hears the noise");
+          NoiseComponent component;
+          r.number(c, "fraction", component.fraction, kProbability);
+          r.number(c, "duration_s", component.duration_s, Range{0.0, 1e6, true, false});
+          total += component.fraction;
+          noise.components.push_back(component);
+        }
+        if (total > 1.0)
+          r.fail(Reader::lineOf(*components), "the fractions of 'sensor_model.environmental_noise.components' add up to " +
+                                                  compactNumber(total) + "; expected at most 1");
+      }
     }
   }
 
@@ -489,7 +551,7 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
           r.fail(item_line, "'" + path + "' must be a mapping {appear_tick, disappear_tick, x, y, vx, vy}, got " +
                                 describe(item));
         const Section t =
-            r.section(item, item_line, path, {"appear_tick", "disappear_tick", "x", "y", "vx", "vy"});
+            r.section(item, item_line, path, {"appear_tick", "disappear_tick", "x", "y", "vx", "vy", "sensing_range"});
         r.require(t, {"x", "y"}, "initial position, sensor separations");
         r.require(t, {"vx", "vy"}, "velocity, sensor separations per tick");
         TargetSpec spec;
@@ -499,6 +561,18 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
         r.number(t, "y", spec.position.y, kCoordinate);
         r.number(t, "vx", spec.velocity.x, kCoordinate);
         r.number(t, "vy", spec.velocity.y, kCoordinate);
+        if (r.number(t, "sensing_range", spec.sensing_range, kPositive) &&
+            s.sensor_model.kind != SensorModelConfig::Kind::kAcousticDoppler)
+          r.fail(Reader::lineOf(*t.find("sensing_range")),
+                 "'" + path + ".sensing_range' applies only with 'sensor_model.kind: acoustic_doppler'");
+        if (s.sensor_model.kind == SensorModelConfig::Kind::kAcousticDoppler) {
+          // The retarded emission time is unique only while the target is slower than its sound.
+          const auto& ac = s.sensor_model.acoustic;
+          const double target_speed = std::hypot(spec.velocity.x, spec.velocity.y) / ac.tick_s;
+          if (!(target_speed < ac.sound_speed))
+            r.fail(t.line, "'" + path + "' moves at " + compactNumber(target_speed) + " per second, not slower than the " +
+                               "sound speed " + compactNumber(ac.sound_speed) + " of 'sensor_model.acoustic'");
+        }
         if (spec.disappear_tick != 0 && spec.disappear_tick <= spec.appear_tick)
           r.fail(Reader::lineOf(*t.find("disappear_tick")),
                  "'" + path + ".disappear_tick' must be 0 (never) or greater than appear_tick " +
@@ -895,6 +969,15 @@ Scenario applyOverrides(const std::string& yaml_text, const std::string& name_fo
   }
 }
 
+std::optional<std::vector<NoiseComponent>> noisePreset(const std::string& name) {
+  // An et al. 2013 §3.3.1.
+  if (name == "none") return std::vector<NoiseComponent>{};
+  if (name == "noise1") return std::vector<NoiseComponent>{{0.06, 0.1}};
+  if (name == "noise2") return std::vector<NoiseComponent>{{0.05, 0.1}, {0.01, 0.5}};
+  if (name == "noise3") return std::vector<NoiseComponent>{{0.05, 0.1}, {0.01, 1.0}};
+  return std::nullopt;
+}
+
 Scenario loadScenario(const std::string& path, const std::vector<ScenarioOverride>& overrides,
                       const ScenarioCheck& check) {
   return applyOverrides(readScenarioFile(path), path, overrides, check);
@@ -916,12 +999,33 @@ std::string resolvedScenarioYaml(const Scenario& s) {
       << "  spacing: " << num(s.sensors.spacing) << "\n"
       << "  count: " << s.sensors.count << "\n";
   out << "sensor_model:\n"
+      << "  kind: "
+      << (s.sensor_model.kind == SensorModelConfig::Kind::kAcousticDoppler ? "acoustic_doppler" : "signal_strength")
+      << "\n"
       << "  alpha: " << num(s.sensor_model.alpha) << "\n"
       << "  beta: " << num(s.sensor_model.beta) << "\n"
       << "  gamma: " << num(s.sensor_model.gamma) << "\n"
       << "  eta: " << num(s.sensor_model.eta) << "\n"
       << "  sensing_range: " << num(s.sensor_model.sensing_range) << "\n"
       << "  noise_sigma: " << num(s.sensor_model.noise_sigma) << "\n";
+  if (s.sensor_model.kind == SensorModelConfig::Kind::kAcousticDoppler) {
+    const auto& ac = s.sensor_model.acoustic;
+    out << "  acoustic:\n"
+        << "    threshold: " << num(ac.threshold) << "\n"
+        << "    sound_speed: " << num(ac.sound_speed) << "\n"
+        << "    detection_step_s: " << num(ac.detection_step_s) << "\n"
+        << "    tick_s: " << num(ac.tick_s) << "\n"
+        << "    power_fluctuation: " << num(ac.power_fluctuation) << "\n";
+    const auto& noise = s.sensor_model.environmental_noise;
+    out << "  environmental_noise:\n";
+    if (noise.preset != "custom") {
+      out << "    preset: " << noise.preset << "\n";
+    } else {
+      out << "    components:\n";
+      for (const auto& c : noise.components)
+        out << "      - {fraction: " << num(c.fraction) << ", duration_s: " << num(c.duration_s) << "}\n";
+    }
+  }
   out << "localisation:\n"
       << "  sigma: " << num(s.localisation.sigma) << "\n";
   out << "targets:\n"
@@ -935,7 +1039,8 @@ std::string resolvedScenarioYaml(const Scenario& s) {
     for (const auto& t : s.targets.scripted)
       out << "    - {appear_tick: " << t.appear_tick << ", disappear_tick: " << t.disappear_tick
           << ", x: " << num(t.position.x) << ", y: " << num(t.position.y) << ", vx: " << num(t.velocity.x)
-          << ", vy: " << num(t.velocity.y) << "}\n";
+          << ", vy: " << num(t.velocity.y)
+          << (t.sensing_range > 0.0 ? ", sensing_range: " + num(t.sensing_range) : std::string()) << "}\n";
   }
   out << "dynamics:\n"
       << "  delta: " << num(s.dynamics.delta) << "\n"

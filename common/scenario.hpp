@@ -27,9 +27,43 @@ struct SensorLayoutConfig {
   std::uint32_t count = 10000;
 };
 
+/// Acoustic sensors that hear the targets' sound with the Doppler effect, An et al. 2014 eq. (1)-(4).
+/// A target of sensing range SR emits Pt = threshold * SR^alpha every detection step; a sensor
+/// reports (id, floor(Ps / threshold)) when Ps >= threshold (node/acoustic/).
+struct AcousticConfig {
+  double threshold = 1.0;           ///< cs (gamma_s): the sensor threshold, in power units
+  double sound_speed = 343.0;       ///< Vs, length units per second
+  double detection_step_s = 0.005;  ///< Delta t of the detection model (2014 §3.1)
+  double tick_s = 0.1;              ///< seconds per tick: the fusion centre runs once a tick (2014 §5)
+  /// Each emission's power is Pt (1 + f U(-1, 1)), f = power_fluctuation (2014 §5.2: 0, 0.2, 0.4).
+  double power_fluctuation = 0.0;
+};
+
+/// One kind of sporadic environmental noise, An et al. 2013 §3.1: at any time `fraction` of the
+/// sensors, chosen at random, hear noise of power gamma_s (1 + U(0, 1)) for `duration_s` seconds.
+struct NoiseComponent {
+  double fraction = 0.0;
+  double duration_s = 0.1;
+  friend bool operator==(const NoiseComponent&, const NoiseComponent&) = default;
+};
+
+/// Environmental noise (acoustic sensors only): a named preset of the 2013 paper (noise1: 0.1 s on
+/// 6 %; noise2: 0.1 s on 5 % + 0.5 s on 1 %; noise3: 0.1 s on 5 % + 1 s on 1 %) or explicit components.
+struct EnvironmentalNoiseConfig {
+  std::string preset = "none";  ///< none, noise1, noise2, noise3 or custom (components given)
+  std::vector<NoiseComponent> components;
+};
+
+/// The components of a named preset; nullopt for an unknown name ("none" has none).
+std::optional<std::vector<NoiseComponent>> noisePreset(const std::string& name);
+
 /// Signal-strength sensor model, Oh eq. (5): z = beta / (1 + gamma |s - x|^alpha) + w within
 /// the sensing range Rs, z = w outside, w ~ N(0, noise_sigma^2); detection when z >= eta.
+/// kind = acoustic_doppler selects An et al.'s acoustic sensors instead (alpha, sensing_range,
+/// acoustic and environmental_noise apply; beta, gamma, eta and noise_sigma do not).
 struct SensorModelConfig {
+  enum class Kind { kSignalStrength, kAcousticDoppler };
+  Kind kind = Kind::kSignalStrength;
   double alpha = 2.0;
   /// Oh §VII: beta = 3 (1 + gamma Rs^alpha); filled in by the loader when not given.
   double beta = 9.75;
@@ -37,6 +71,8 @@ struct SensorModelConfig {
   double eta = 2.0;
   double sensing_range = 1.5;
   double noise_sigma = 1.0;
+  AcousticConfig acoustic;
+  EnvironmentalNoiseConfig environmental_noise;
 };
 
 /// Oh §VII-B: a sensor believes it is at s* + N(0, sigma^2 I).
@@ -50,6 +86,8 @@ struct TargetSpec {
   std::int32_t disappear_tick = 0;  ///< 0: until the end of the run (or leaving the region)
   Vec2 position;
   Vec2 velocity;  ///< per tick
+  /// Acoustic sensors: this target's sensing range SR (its sound power); 0 = sensor_model.sensing_range.
+  double sensing_range = 0.0;
 };
 
 /// Speed classes of Oh §VII-A: |vx|, |vy| uniform in [min, max] per tick, random signs.

@@ -110,7 +110,7 @@ std::span<const ReportFate> Router::submit(std::int32_t tick, std::span<const co
         if (d > 0) ++group.delayed;
         if (d >= window_size_) ++group.beyond_window;
         pending_[fate.supernode][fate.tick_delivered].push_back(common::Observation{
-            report.tick, fate.tick_delivered, report.sensor, report.x, report.y, report.target});
+            report.tick, fate.tick_delivered, report.sensor, report.x, report.y, report.target, report.power_level});
         ++pending_count_;
       }
     }

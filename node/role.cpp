@@ -1,8 +1,11 @@
 #include "node/role.hpp"
 
+#include <optional>
+
 #include "common/dds/codec.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
+#include "node/acoustic/acoustic_field.hpp"
 #include "node/sensor_field.hpp"
 #include "node/tiling.hpp"
 
@@ -16,6 +19,11 @@ void runNodeRole(const dds::RoleContext& context) {
     const common::SensorLayout layout(scenario);
     const auto tiles = makeTiles(layout, context.shape.tiles);
     const SensorField field(scenario, layout, tiles.at(context.index));
+    // Acoustic sensors report straight to the fusion centre (An et al. 2014 §2): no readings are
+    // exchanged between tiles, each tile publishes its sensors' raw detections.
+    const bool acoustic = scenario.sensor_model.kind == common::SensorModelConfig::Kind::kAcousticDoppler;
+    std::optional<acoustic::AcousticField> acoustic_field;
+    if (acoustic) acoustic_field.emplace(scenario, layout, tiles.at(context.index), truth);
 
     Writer boundary_writer(participant, topics.sensor_boundary, Qos::reliableKeepAll());
     Writer report_writer(participant, topics.report_batch, Qos::reliableKeepAll());
@@ -48,23 +56,30 @@ void runNodeRole(const dds::RoleContext& context) {
     for (std::int32_t t = 1; t <= ticks; ++t) {
       progress.paceTick();  // --tick-interval: the sources set the pace, back-pressure the rest
       progress.waitForCompleted(t - in_flight);
-      const auto& targets = truth.at(t);
-      const auto own = field.detect(t, targets);
+      std::vector<common::Report> tick_reports;
+      if (acoustic_field) {
+        tick_reports = acoustic_field->detect(t);
+      } else {
+        const auto& targets = truth.at(t);
+        const auto own = field.detect(t, targets);
 
-      auto boundary = encode(field.boundaryReadings(own));
-      wsn_msg_SensorBoundary boundary_sample{};
-      boundary_sample.run_id = context.run_id;
-      boundary_sample.tile = context.index;
-      boundary_sample.tick = t;
-      boundary_sample.readings = sequenceView<dds_sequence_wsn_msg_SensorReading>(boundary);
-      boundary_writer.write(boundary_sample);
+        auto boundary = encode(field.boundaryReadings(own));
+        wsn_msg_SensorBoundary boundary_sample{};
+        boundary_sample.run_id = context.run_id;
+        boundary_sample.tile = context.index;
+        boundary_sample.tick = t;
+        boundary_sample.readings = sequenceView<dds_sequence_wsn_msg_SensorReading>(boundary);
+        boundary_writer.write(boundary_sample);
 
-      loop.waitUntil([&] { return boundary_inbox.count(t) >= others; },
-                     [&] { return "boundary readings of tick " + std::to_string(t) + " from the other tiles"; });
-      std::vector<common::SensorReading> foreign;
-      for (auto& [tile, readings] : boundary_inbox.take(t)) foreign.insert(foreign.end(), readings.begin(), readings.end());
+        loop.waitUntil([&] { return boundary_inbox.count(t) >= others; },
+                       [&] { return "boundary readings of tick " + std::to_string(t) + " from the other tiles"; });
+        std::vector<common::SensorReading> foreign;
+        for (auto& [tile, readings] : boundary_inbox.take(t))
+          foreign.insert(foreign.end(), readings.begin(), readings.end());
+        tick_reports = field.fuse(t, own, foreign, targets);
+      }
 
-      auto reports = encode(field.fuse(t, own, foreign, targets));
+      auto reports = encode(tick_reports);
       wsn_msg_ReportBatch report_sample{};
       report_sample.run_id = context.run_id;
       report_sample.tile = context.index;

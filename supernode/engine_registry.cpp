@@ -4,6 +4,7 @@
 #include "supernode/engine.hpp"
 #include "supernode/gnn/gnn_engine.hpp"
 #include "supernode/mcmcda/mcmcda_engine.hpp"
+#include "supernode/rulebased/rulebased_engine.hpp"
 
 namespace wsn::supernode {
 namespace {
@@ -24,6 +25,7 @@ const std::vector<EngineSpec>& engineRegistry() {
   static const std::vector<EngineSpec> registry = {
       gnn::engineSpec(),
       mcmcda::engineSpec(),
+      rulebased::engineSpec(),
       // A new engine is a sibling folder plus one line here.
   };
   return registry;

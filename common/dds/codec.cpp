@@ -40,25 +40,25 @@ std::vector<common::SensorReading> decode(const dds_sequence_wsn_msg_SensorReadi
 
 std::vector<wsn_msg_Report> encode(const std::vector<common::Report>& reports) {
   return mapVector<wsn_msg_Report>(reports, [](const common::Report& r) {
-    return wsn_msg_Report{r.sensor, r.x, r.y, r.target};
+    return wsn_msg_Report{r.sensor, r.x, r.y, r.target, r.power_level};
   });
 }
 
 std::vector<common::Report> decode(const dds_sequence_wsn_msg_Report& seq, std::int32_t tick) {
   return mapSequence<common::Report>(seq, [tick](const wsn_msg_Report& r) {
-    return common::Report{tick, r.sensor, r.x, r.y, r.target};
+    return common::Report{tick, r.sensor, r.x, r.y, r.target, r.power_level};
   });
 }
 
 std::vector<wsn_msg_Observation> encode(const std::vector<common::Observation>& observations) {
   return mapVector<wsn_msg_Observation>(observations, [](const common::Observation& o) {
-    return wsn_msg_Observation{o.tick_generated, o.sensor, o.x, o.y, o.target};
+    return wsn_msg_Observation{o.tick_generated, o.sensor, o.x, o.y, o.target, o.power_level};
   });
 }
 
 std::vector<common::Observation> decode(const dds_sequence_wsn_msg_Observation& seq, std::int32_t tick_delivered) {
   return mapSequence<common::Observation>(seq, [tick_delivered](const wsn_msg_Observation& o) {
-    return common::Observation{o.tick_generated, tick_delivered, o.sensor, o.x, o.y, o.target};
+    return common::Observation{o.tick_generated, tick_delivered, o.sensor, o.x, o.y, o.target, o.power_level};
   });
 }
 

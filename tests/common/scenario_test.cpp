@@ -2,6 +2,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -68,6 +69,14 @@ void requireSameScenario(const Scenario& a, const Scenario& b) {
   CHECK(a.sensor_model.eta == b.sensor_model.eta);
   CHECK(a.sensor_model.sensing_range == b.sensor_model.sensing_range);
   CHECK(a.sensor_model.noise_sigma == b.sensor_model.noise_sigma);
+  CHECK(a.sensor_model.kind == b.sensor_model.kind);
+  CHECK(a.sensor_model.acoustic.threshold == b.sensor_model.acoustic.threshold);
+  CHECK(a.sensor_model.acoustic.sound_speed == b.sensor_model.acoustic.sound_speed);
+  CHECK(a.sensor_model.acoustic.detection_step_s == b.sensor_model.acoustic.detection_step_s);
+  CHECK(a.sensor_model.acoustic.tick_s == b.sensor_model.acoustic.tick_s);
+  CHECK(a.sensor_model.acoustic.power_fluctuation == b.sensor_model.acoustic.power_fluctuation);
+  CHECK(a.sensor_model.environmental_noise.preset == b.sensor_model.environmental_noise.preset);
+  CHECK(a.sensor_model.environmental_noise.components == b.sensor_model.environmental_noise.components);
   CHECK(a.localisation.sigma == b.localisation.sigma);
   REQUIRE(a.targets.scripted.size() == b.targets.scripted.size());
   for (std::size_t i = 0; i < a.targets.scripted.size(); ++i) {
@@ -76,6 +85,7 @@ void requireSameScenario(const Scenario& a, const Scenario& b) {
     CHECK(a.targets.scripted[i].disappear_tick == b.targets.scripted[i].disappear_tick);
     CHECK(a.targets.scripted[i].position == b.targets.scripted[i].position);
     CHECK(a.targets.scripted[i].velocity == b.targets.scripted[i].velocity);
+    CHECK(a.targets.scripted[i].sensing_range == b.targets.scripted[i].sensing_range);
   }
   CHECK(a.targets.birth_rate == b.targets.birth_rate);
   CHECK(a.targets.death_probability == b.targets.death_probability);
@@ -239,7 +249,7 @@ TEST_CASE("an unknown key names the key's line, its section and the known keys",
         "s.yaml:2: unknown key 'netwrok' at the top level; expected one of: aggregator, dynamics, localisation, metrics, name, "
         "network, region, run, sensor_model, sensors, supernodes, targets, tracker");
   CHECK(errorOf("targets:\n  scripted:\n    - {x: 1, y: 1, vx: 0, vy: 0, z: 3}\n") ==
-        "s.yaml:3: unknown key 'z' in 'targets.scripted[0]'; expected one of: appear_tick, disappear_tick, vx, vy, "
+        "s.yaml:3: unknown key 'z' in 'targets.scripted[0]'; expected one of: appear_tick, disappear_tick, sensing_range, vx, vy, "
         "x, y");
   CHECK(errorOf("supernodes:\n  - x: 1\n    y: 1\n    z: 1\n") ==
         "s.yaml:4: unknown key 'z' in 'supernodes[0]'; expected one of: x, y");
@@ -494,6 +504,100 @@ TEST_CASE("scenarios/oh_single_supernode.yaml is the setting of Oh §VII-C/D", "
   // 10 expected births over T = 50 ticks on 10^4 units of area: 2e-5 * 10^4 * 50 = 10.
   CHECK(s.targets.birth_rate * s.region.area() * s.run.ticks == Approx(10.0).margin(1e-9));
   requireRoundTrip(s);
+}
+
+TEST_CASE("acoustic sensors: kind, acoustic parameters, noise presets and per-target sensing ranges",
+          "[scenario][acoustic]") {
+  const Scenario s = parse(
+      "sensor_model:\n"
+      "  kind: acoustic_doppler\n"
+      "  sensing_range: 40\n"
+      "  acoustic: {threshold: 2, sound_speed: 340, detection_step_s: 0.01, tick_s: 0.2, power_fluctuation: 0.2}\n"
+      "  environmental_noise: {preset: noise2}\n"
+      "targets:\n"
+      "  scripted:\n"
+      "    - {x: 10, y: 10, vx: 1, vy: 0, sensing_range: 30}\n"
+      "    - {x: 20, y: 10, vx: 1, vy: 0}\n");
+  CHECK(s.sensor_model.kind == SensorModelConfig::Kind::kAcousticDoppler);
+  CHECK(s.sensor_model.acoustic.threshold == 2.0);
+  CHECK(s.sensor_model.acoustic.sound_speed == 340.0);
+  CHECK(s.sensor_model.acoustic.tick_s == 0.2);
+  CHECK(s.sensor_model.acoustic.power_fluctuation == 0.2);
+  // An et al. 2013 §3.3.1, Noise 2: 0.1 s on 5 % and 0.5 s on 1 %.
+  CHECK(s.sensor_model.environmental_noise.preset == "noise2");
+  CHECK(s.sensor_model.environmental_noise.components == std::vector<NoiseComponent>{{0.05, 0.1}, {0.01, 0.5}});
+  CHECK(s.targets.scripted[0].sensing_range == 30.0);
+  CHECK(s.targets.scripted[1].sensing_range == 0.0);  // takes sensor_model.sensing_range
+  requireRoundTrip(s);
+
+  const Scenario custom = parse(
+      "sensor_model:\n  kind: acoustic_doppler\n"
+      "  environmental_noise:\n    components:\n      - {fraction: 0.02, duration_s: 0.3}\n");
+  CHECK(custom.sensor_model.environmental_noise.preset == "custom");
+  CHECK(custom.sensor_model.environmental_noise.components == std::vector<NoiseComponent>{{0.02, 0.3}});
+  requireRoundTrip(custom);
+
+  CHECK(noisePreset("noise1") == std::vector<NoiseComponent>{{0.06, 0.1}});
+  CHECK(noisePreset("noise3") == std::vector<NoiseComponent>{{0.05, 0.1}, {0.01, 1.0}});
+  CHECK(noisePreset("none") == std::vector<NoiseComponent>{});
+  CHECK_FALSE(noisePreset("noise4").has_value());
+}
+
+TEST_CASE("acoustic keys are rejected where they do not apply or do not fit", "[scenario][acoustic][errors]") {
+  CHECK(errorOf("sensor_model:\n  acoustic: {threshold: 1}\n") ==
+        "s.yaml:2: 'sensor_model.acoustic' applies only with 'sensor_model.kind: acoustic_doppler'");
+  CHECK(errorOf("sensor_model:\n  environmental_noise: {preset: noise1}\n") ==
+        "s.yaml:2: 'sensor_model.environmental_noise' applies only with 'sensor_model.kind: acoustic_doppler'");
+  CHECK_THAT(errorOf("sensor_model:\n  kind: acoustic\n"),
+             Catch::StartsWith("s.yaml:2: 'sensor_model.kind' must be one of: signal_strength, acoustic_doppler"));
+  CHECK_THAT(errorOf("sensor_model:\n  kind: acoustic_doppler\n  environmental_noise: {preset: noise9}\n"),
+             Catch::Contains("'sensor_model.environmental_noise.preset' must be one of: none, noise1, noise2, noise3"));
+  CHECK_THAT(errorOf("sensor_model:\n  kind: acoustic_doppler\n  environmental_noise:\n    preset: noise1\n"
+                     "    components: []\n"),
+             Catch::Contains("takes either 'preset' or 'components', not both"));
+  CHECK_THAT(errorOf("sensor_model:\n  kind: acoustic_doppler\n  environmental_noise:\n    components:\n"
+                     "      - {fraction: 0.7, duration_s: 1}\n      - {fraction: 0.5, duration_s: 1}\n"),
+             Catch::Contains("add up to 1.2; expected at most 1"));
+  CHECK_THAT(errorOf("sensor_model:\n  kind: acoustic_doppler\n  environmental_noise:\n    components:\n"
+                     "      - {fraction: 0.1}\n"),
+             Catch::Contains("s.yaml:5: 'sensor_model.environmental_noise.components[0]' needs 'duration_s'"));
+  // 0.1 s is not a whole number of 0.03 s steps.
+  CHECK_THAT(errorOf("sensor_model:\n  kind: acoustic_doppler\n  acoustic: {detection_step_s: 0.03}\n"),
+             Catch::Contains("must be a whole number (at most 100000) of detection steps of 0.03 s"));
+  // 40 m per tick of 0.1 s is 400 m/s, faster than sound.
+  CHECK_THAT(errorOf("sensor_model:\n  kind: acoustic_doppler\ntargets:\n  scripted:\n"
+                     "    - {x: 10, y: 10, vx: 40, vy: 0}\n"),
+             Catch::Contains("s.yaml:5: 'targets.scripted[0]' moves at 400 per second, not slower than the sound speed 343"));
+  CHECK(errorOf("targets:\n  scripted:\n    - {x: 10, y: 10, vx: 1, vy: 0, sensing_range: 3}\n") ==
+        "s.yaml:3: 'targets.scripted[0].sensing_range' applies only with 'sensor_model.kind: acoustic_doppler'");
+}
+
+TEST_CASE("scenarios/an2014_scenario*.yaml are An et al. 2014 Table 1", "[scenario][shipped]") {
+  for (const char* name : {"an2014_scenario1", "an2014_scenario2", "an2014_scenario3"}) {
+    INFO(name);
+    const Scenario s = loadScenario(std::string(WSN_SCENARIO_DIR "/") + name + ".yaml");
+    CHECK(s.name == name);
+    CHECK(s.sensor_model.kind == SensorModelConfig::Kind::kAcousticDoppler);
+    CHECK(s.sensors.spacing == 25.0);  // Ds = 25 m on a 50 x 50 grid
+    CHECK(s.region.width() / s.sensors.spacing == 50.0);
+    CHECK(s.tracker.engine == "rulebased");
+    REQUIRE(s.targets.scripted.size() >= 3);
+    // Target 1 of every scenario starts at (200, 100) m with SR 40 m; target 2 at (150, 260) m,
+    // 20 m/s east and 5 m/s north (2 and 0.5 m per tick of 0.1 s), SR 30 m.
+    CHECK(s.targets.scripted[0].position == Vec2{200, 100});
+    CHECK(s.targets.scripted[0].sensing_range == 40.0);
+    CHECK(s.targets.scripted[1].velocity == Vec2{2.0, 0.5});
+    CHECK(s.targets.scripted[1].sensing_range == 30.0);
+    requireRoundTrip(s);
+  }
+  CHECK(loadScenario(WSN_SCENARIO_DIR "/an2014_scenario3.yaml").targets.scripted.size() == 5);
+  const Scenario noise = loadScenario(WSN_SCENARIO_DIR "/an2013_noise3.yaml");
+  CHECK(noise.sensor_model.environmental_noise.preset == "noise3");
+  REQUIRE(noise.targets.scripted.size() == 1);
+  // 20 m/s: |(1.6, 1.2)| m per tick of 0.1 s.
+  CHECK(std::hypot(noise.targets.scripted[0].velocity.x, noise.targets.scripted[0].velocity.y) / 0.1 ==
+        Approx(20.0));
+  CHECK(noise.targets.scripted[0].sensing_range == 30.0);
 }
 
 // ------------------------------------------------------------------------------------------

@@ -1,0 +1,478 @@
+#include "supernode/rulebased/rulebased_engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+
+#include "common/assignment.hpp"
+#include "supernode/gnn/gnn_engine.hpp"
+
+namespace wsn::supernode::rulebased {
+namespace {
+
+using common::GaussianState;
+using common::kVx;
+using common::kVy;
+using common::kX;
+using common::kY;
+
+common::Vec2 positionOf(const GaussianState& s) { return {s.x(kX), s.x(kY)}; }
+common::Vec2 velocityOf(const GaussianState& s) { return {s.x(kVx), s.x(kVy)}; }
+
+bool byId(const RulebasedEngine::Identity& a, const RulebasedEngine::Identity& b) { return a.id < b.id; }
+
+std::int32_t count(const common::Scenario& scenario, const char* name, std::int32_t fallback) {
+  return static_cast<std::int32_t>(std::lround(engineParam(scenario, name, fallback)));
+}
+
+}  // namespace
+
+EngineSpec engineSpec() {
+  EngineSpec spec;
+  spec.name = "rulebased";
+  spec.description =
+      "rule-based centroid tracker (An et al. 2014): 8-connected clusters of detecting sensors, weighted "
+      "centroids, match/merge indicators through merging and splitting, nearest-neighbour Kalman tracks with "
+      "NIS-adapted process noise; optional noise mitigation (An et al. 2013). Lengths in sensor separations Ds";
+  const RulebasedParams d;
+  spec.params = {
+      {"link_distance", d.link_distance, 0.01, 100.0,
+       "two detecting sensors are in one cluster when at most this far apart (Ds); on a grid any value in "
+       "[1.415, 2) is eq. 6's 8-connectivity"},
+      {"measurement_sigma", d.measurement_sigma, 1e-3, 100.0,
+       "std. deviation of a centroid's position error, R = sigma^2 I (Ds)"},
+      {"process_noise", d.process_noise, 1e-6, 100.0,
+       "initial std. deviation q of the acceleration noise of a new track (Ds per tick^2); adapted by the NIS"},
+      {"process_noise_min", d.process_noise_min, 1e-6, 100.0, "lower bound of the NIS-adapted q (Ds per tick^2)"},
+      {"process_noise_max", d.process_noise_max, 1e-6, 100.0, "upper bound of the NIS-adapted q (Ds per tick^2)"},
+      {"claim_gate", d.claim_gate, 0.0, 1000.0,
+       "a cluster farther than r_a + r_d + claim_gate from every track's cluster is not theirs: a new target "
+       "or noise (Ds)"},
+      {"max_merge_gap", d.max_merge_gap, -1000.0, 1000.0,
+       "Rule 1 merges two clusters only when the gap D of eq. 22 between them is at most this (Ds)"},
+      {"merged_split_distance", d.merged_split_distance, 0.0, 1000.0,
+       "merged identities predicted at least this far apart share out their merged cluster by nearest "
+       "prediction, each updated with its share's centroid; 0: the paper's Rule 3 (they coast) (Ds)"},
+      {"merged_measurement_sigma", d.merged_measurement_sigma, 1e-3, 100.0,
+       "std. deviation of the position error of a share of a merged cluster (Ds)"},
+      {"confirm_ticks", static_cast<double>(d.confirm_ticks), 1.0, 100.0,
+       "consecutive ticks an unclaimed cluster must be seen before it becomes a track", true},
+      {"max_coast_ticks", static_cast<double>(d.max_coast_ticks), 1.0, 100000.0,
+       "consecutive ticks without a cluster (and not merged) after which a track is deleted", true},
+      {"max_merge_ticks", static_cast<double>(d.max_merge_ticks), 1.0, 100000.0,
+       "consecutive ticks inside a merged cluster after which a track is deleted", true},
+      {"denoise", d.denoise ? 1.0 : 0.0, 0.0, 1.0,
+       "1: noise mitigation of An et al. 2013 §3.3 (persistence, spatial test, centroid-jump gate)", true},
+      {"persistence_ticks", static_cast<double>(d.persistence_ticks), 1.0, 100.0,
+       "denoise step 1 (eq. 11): a sensor must detect in this many consecutive ticks", true},
+      {"denoise_radius", d.denoise_radius, 0.0, 1000.0, "denoise step 2 (eq. 13-14): the 3 Ds neighbourhood (Ds)"},
+      {"denoise_min_cluster", static_cast<double>(d.denoise_min_cluster), 1.0, 10000.0,
+       "denoise step 2 with several targets: a sensor with this many survivors within denoise_radius is kept",
+       true},
+      {"jump_gate", d.jump_gate, 0.0, 1000.0,
+       "denoise step 3 (eq. 15): a centroid farther than this from the track's previous one is discarded (Ds)"},
+      {"quick_solution", d.quick_solution ? 1.0 : 0.0, 0.0, 1.0,
+       "1: An et al. 2013 §3.2: a cluster's measurement is its strongest sensor instead of the weighted centroid",
+       true},
+  };
+  spec.create = [](const EngineContext& context) -> std::unique_ptr<Engine> {
+    return std::make_unique<RulebasedEngine>(context);
+  };
+  return spec;
+}
+
+RulebasedParams RulebasedParams::fromScenario(const common::Scenario& scenario) {
+  RulebasedParams p;
+  p.link_distance = engineParam(scenario, "link_distance", p.link_distance);
+  p.measurement_sigma = engineParam(scenario, "measurement_sigma", p.measurement_sigma);
+  p.process_noise = engineParam(scenario, "process_noise", p.process_noise);
+  p.process_noise_min = engineParam(scenario, "process_noise_min", p.process_noise_min);
+  p.process_noise_max = engineParam(scenario, "process_noise_max", p.process_noise_max);
+  p.claim_gate = engineParam(scenario, "claim_gate", p.claim_gate);
+  p.max_merge_gap = engineParam(scenario, "max_merge_gap", p.max_merge_gap);
+  p.merged_split_distance = engineParam(scenario, "merged_split_distance", p.merged_split_distance);
+  p.merged_measurement_sigma = engineParam(scenario, "merged_measurement_sigma", p.merged_measurement_sigma);
+  p.confirm_ticks = count(scenario, "confirm_ticks", p.confirm_ticks);
+  p.max_coast_ticks = count(scenario, "max_coast_ticks", p.max_coast_ticks);
+  p.max_merge_ticks = count(scenario, "max_merge_ticks", p.max_merge_ticks);
+  p.denoise = engineParam(scenario, "denoise", p.denoise ? 1.0 : 0.0) != 0.0;
+  p.persistence_ticks = count(scenario, "persistence_ticks", p.persistence_ticks);
+  p.denoise_radius = engineParam(scenario, "denoise_radius", p.denoise_radius);
+  p.denoise_min_cluster = count(scenario, "denoise_min_cluster", p.denoise_min_cluster);
+  p.jump_gate = engineParam(scenario, "jump_gate", p.jump_gate);
+  p.quick_solution = engineParam(scenario, "quick_solution", p.quick_solution ? 1.0 : 0.0) != 0.0;
+  return p;
+}
+
+RulebasedEngine::RulebasedEngine(const EngineContext& context)
+    : supernode_(context.supernode),
+      region_(context.scenario.region),
+      spacing_(context.scenario.sensors.spacing),
+      delta_(context.scenario.dynamics.delta),
+      params_(RulebasedParams::fromScenario(context.scenario)),
+      persistence_(params_.denoise ? params_.persistence_ticks : 1) {
+  // The scenario states q in Ds per tick^2; the filter works in the scenario's lengths.
+  noise_config_.q_initial = params_.process_noise * spacing_;
+  noise_config_.q_min = std::min(params_.process_noise_min, params_.process_noise) * spacing_;
+  noise_config_.q_max = std::max(params_.process_noise_max, params_.process_noise) * spacing_;
+}
+
+common::ConstantVelocityModel RulebasedEngine::model(double q, double measurement_sigma) const {
+  return common::ConstantVelocityModel(delta_, q, measurement_sigma * spacing_);
+}
+
+std::vector<Detection> RulebasedEngine::mitigateNoise(std::int32_t tick, std::vector<Detection> detections) {
+  if (!params_.denoise) return detections;
+  const auto persistent = persistence_.apply(tick, detections);                                   // step 1
+  return spatialFilter(persistent, params_.denoise_radius * spacing_, params_.denoise_min_cluster);  // step 2
+}
+
+common::Vec2 RulebasedEngine::measurementOf(const Cluster& cluster) const {
+  return params_.quick_solution ? cluster.strongest : cluster.centroid;
+}
+
+bool RulebasedEngine::withinClaim(const ClusterSummary& cluster, const ClusterSummary& identity,
+                                  common::Vec2 predicted) const {
+  const double reach = cluster.radius + identity.radius + params_.claim_gate * spacing_;
+  return common::distance(cluster.centroid, identity.centroid) <= reach ||
+         common::distance(cluster.centroid, predicted) <= reach;
+}
+
+bool RulebasedEngine::nearGhost(common::Vec2 position, std::int32_t tick) const {
+  const double reach = (params_.claim_gate + params_.jump_gate) * spacing_;
+  return std::any_of(ghosts_.begin(), ghosts_.end(), [&](const Ghost& g) {
+    const common::Vec2 now = g.position + static_cast<double>(tick - g.tick) * g.velocity;
+    return common::squaredDistance(now, position) <= reach * reach;
+  });
+}
+
+void RulebasedEngine::adopt(const common::TrackHandoff& handoff) {
+  Identity adopted{handoff.track, {}, handoff.last_tick, NisAdaptation(noise_config_), {}, 0, handoff.hits,
+                   handoff.misses, 0, false};
+  for (int i = 0; i < common::kStateDim; ++i) adopted.state.x(i) = handoff.state[static_cast<std::size_t>(i)];
+  adopted.state.P = common::fromRowMajor(handoff.covariance);
+  if (!adopted.state.x.allFinite() || !adopted.state.P.allFinite()) return;  // a corrupt handoff continues nothing
+  adopted.last_seen_tick = handoff.last_tick;
+  // The radius of a typical cluster (four sensors) until the track's first own cluster here.
+  adopted.cluster = {positionOf(adopted.state), clusterRadius(4, spacing_)};
+  // A track this supernode started on the part of the same target's cluster that lies on its side
+  // of the boundary is the same target: the handed-over track, with its longer history, replaces it.
+  const double reach = params_.claim_gate * spacing_;
+  std::erase_if(identities_, [&](const Identity& local) {
+    const double gap = common::distance(local.cluster.centroid, adopted.cluster.centroid) -
+                       (local.cluster.radius + adopted.cluster.radius);
+    return local.id != adopted.id && local.hits < adopted.hits && gap <= reach;
+  });
+  const auto it = std::lower_bound(identities_.begin(), identities_.end(), adopted, byId);
+  if (it != identities_.end() && it->id == adopted.id)
+    *it = adopted;
+  else
+    identities_.insert(it, adopted);
+}
+
+common::TrackHandoff RulebasedEngine::release(common::TrackId track, std::uint32_t to_supernode) {
+  const auto it = std::find_if(identities_.begin(), identities_.end(), [&](const Identity& i) { return i.id == track; });
+  if (it == identities_.end()) return {};
+  common::TrackHandoff handoff;
+  handoff.track = it->id;
+  handoff.to_supernode = to_supernode;
+  handoff.last_tick = it->state_tick;
+  for (int i = 0; i < common::kStateDim; ++i) handoff.state[static_cast<std::size_t>(i)] = it->state.x(i);
+  handoff.covariance = common::toRowMajor(it->state.P);
+  handoff.hits = it->hits;
+  handoff.misses = it->misses;
+  handoff.confirmed = true;
+  ghosts_.push_back({positionOf(it->state), delta_ * velocityOf(it->state), it->state_tick});
+  identities_.erase(it);
+  return handoff;
+}
+
+void RulebasedEngine::step(const ObservationWindow& window) {
+  const std::int32_t newest = window.newestTick();
+  // Reports generated at a tick are used at that tick: the engine does not revisit a tick when a
+  // delayed report arrives later (docs/RULEBASED.md).
+  const std::int32_t first = processed_tick_ == 0 ? newest : std::max(processed_tick_ + 1, window.oldestTick());
+  for (std::int32_t tick = first; tick <= newest; ++tick) processTick(tick, window.slot(tick));
+}
+
+RulebasedEngine::Association RulebasedEngine::associate(const std::vector<Cluster>& clusters,
+                                                        const std::vector<std::size_t>& claimed,
+                                                        const std::vector<GaussianState>& predicted) {
+  const std::size_t tracks = identities_.size();
+  Association out{std::vector<int>(tracks, -1), std::vector<bool>(clusters.size(), false), std::vector<int>(tracks, -1)};
+  auto& own = out.own;
+  if (tracks == 0) return out;
+  if (claimed.empty()) {
+    for (auto& identity : identities_) identity.merged = false;
+    return out;
+  }
+
+  std::vector<ClusterSummary> previous;
+  for (const auto& identity : identities_) previous.push_back(identity.cluster);
+  std::vector<ClusterSummary> current;
+  for (const std::size_t a : claimed) current.push_back({clusters[a].centroid, clusters[a].radius});
+
+  if (current.size() < tracks) {
+    // 2014 Case 2, M_k < M_k-1: Algorithm 4.2.1(b).
+    const auto indicators = mergeSplitIndicators(previous, current, params_.max_merge_gap * spacing_);
+    stats_.merges += static_cast<std::int64_t>(indicators.merged.size());
+    std::vector<double> best(tracks, std::numeric_limits<double>::infinity());
+    for (std::size_t a = 0; a < current.size(); ++a) {
+      const auto d = static_cast<std::size_t>(indicators.nearest[a]);
+      if (indicators.merge[d]) {  // Rule 3: a merged cluster feeds neither of its targets
+        out.consumed[claimed[a]] = true;
+        continue;
+      }
+      const double s = matchDistance(current[a], previous[d]);  // Rule 2: the nearest by eq. (20)
+      if (s < best[d]) {
+        best[d] = s;
+        own[d] = static_cast<int>(claimed[a]);
+      }
+    }
+    for (std::size_t d = 0; d < tracks; ++d) {
+      identities_[d].merged = indicators.merge[d];
+      if (own[d] >= 0) out.consumed[static_cast<std::size_t>(own[d])] = true;
+      if (!indicators.merge[d]) continue;
+      // The merged cluster a merged identity is in: the nearest of the merged clusters to its prediction.
+      double nearest = std::numeric_limits<double>::infinity();
+      for (std::size_t a = 0; a < current.size(); ++a) {
+        const auto chooser = static_cast<std::size_t>(indicators.nearest[a]);
+        const double gap = common::squaredDistance(current[a].centroid, positionOf(predicted[d]));
+        if (indicators.merge[chooser] && gap < nearest) {
+          nearest = gap;
+          out.merged_into[d] = static_cast<int>(claimed[a]);
+        }
+      }
+    }
+    return out;
+  }
+
+  // 2014 Case 1 (M_k = M_k-1) and the case M_k > M_k-1 (a cluster merged before the tracks began
+  // splits, a new target appears next to a track, or noise survives): eq. (27) between clusters
+  // and the predicted tracks, solved as one optimal assignment so that two tracks never take the
+  // same cluster; clusters left over are candidate new targets.
+  // A pair outside the claim reach of each other is never assigned: the track coasts rather than
+  // jump to the cluster of another target.
+  std::vector<double> cost(tracks * current.size(), common::kForbidden);
+  for (std::size_t d = 0; d < tracks; ++d) {
+    const ClusterSummary track{positionOf(predicted[d]), previous[d].radius};
+    for (std::size_t a = 0; a < current.size(); ++a)
+      if (withinClaim(current[a], previous[d], track.centroid)) cost[d * current.size() + a] = matchDistance(current[a], track);
+  }
+  const auto assignment = common::solveAssignment(cost, tracks, current.size());
+  for (std::size_t d = 0; d < tracks; ++d) {
+    identities_[d].merged = false;
+    if (assignment[d] < 0) continue;
+    own[d] = static_cast<int>(claimed[static_cast<std::size_t>(assignment[d])]);
+    out.consumed[static_cast<std::size_t>(own[d])] = true;
+  }
+  return out;
+}
+
+std::vector<std::optional<common::Vec2>> RulebasedEngine::shareMergedClusters(
+    const std::vector<Cluster>& clusters, const Association& association, const std::vector<GaussianState>& predicted) const {
+  std::vector<std::optional<common::Vec2>> out(identities_.size());
+  if (!(params_.merged_split_distance > 0.0)) return out;
+  const double apart = params_.merged_split_distance * spacing_;
+  for (std::size_t a = 0; a < clusters.size(); ++a) {
+    std::vector<std::size_t> members;
+    for (std::size_t d = 0; d < identities_.size(); ++d)
+      if (association.merged_into[d] == static_cast<int>(a)) members.push_back(d);
+    if (members.size() < 2) continue;
+    bool separable = true;
+    for (std::size_t i = 0; i < members.size() && separable; ++i)
+      for (std::size_t j = i + 1; j < members.size() && separable; ++j)
+        separable = common::distance(positionOf(predicted[members[i]]), positionOf(predicted[members[j]])) >= apart;
+    if (!separable) continue;  // too close to tell apart: Rule 3, the group coasts
+    // Each detection goes to the nearest predicted member; each member's share gives it a weighted
+    // centroid (eq. 10) as its measurement.
+    std::vector<double> weight(members.size(), 0.0);
+    std::vector<common::Vec2> sum(members.size());
+    for (const auto& detection : clusters[a].members) {
+      std::size_t best = 0;
+      for (std::size_t i = 1; i < members.size(); ++i)
+        if (common::squaredDistance(detection.position, positionOf(predicted[members[i]])) <
+            common::squaredDistance(detection.position, positionOf(predicted[members[best]])))
+          best = i;
+      const double w = centroidWeight(detection);
+      weight[best] += w;
+      sum[best] = sum[best] + w * detection.position;
+    }
+    for (std::size_t i = 0; i < members.size(); ++i)
+      if (weight[i] > 0.0) out[members[i]] = (1.0 / weight[i]) * sum[i];
+  }
+  return out;
+}
+
+void RulebasedEngine::processTick(std::int32_t tick, std::span<const common::Observation> slot) {
+  ++stats_.ticks;
+  std::vector<Detection> detections;
+  detections.reserve(slot.size());
+  for (const auto& o : slot) detections.push_back({o.sensor, {o.x, o.y}, o.power_level});
+  stats_.detections_in += static_cast<std::int64_t>(detections.size());
+  detections = mitigateNoise(tick, std::move(detections));
+  stats_.detections_kept += static_cast<std::int64_t>(detections.size());
+  clusters_ = clusterDetections(detections, params_.link_distance * spacing_, spacing_);
+
+  std::vector<GaussianState> predicted;
+  for (const auto& identity : identities_) {
+    GaussianState state = identity.state;
+    for (std::int32_t t = identity.state_tick; t < tick; ++t) state = common::predict(model(identity.noise.q(), params_.measurement_sigma), state);
+    predicted.push_back(state);
+  }
+
+  // A cluster is claimed by the tracks when it lies near one of them (its previous cluster or its
+  // prediction); the others are new targets or noise.
+  std::vector<std::size_t> claimed;
+  std::vector<std::size_t> unclaimed;
+  for (std::size_t a = 0; a < clusters_.size(); ++a) {
+    const ClusterSummary cluster{clusters_[a].centroid, clusters_[a].radius};
+    bool near = false;
+    for (std::size_t d = 0; d < identities_.size() && !near; ++d)
+      near = withinClaim(cluster, identities_[d].cluster, positionOf(predicted[d]));
+    (near ? claimed : unclaimed).push_back(a);
+  }
+
+  const Association association = associate(clusters_, claimed, predicted);
+  const auto shares = shareMergedClusters(clusters_, association, predicted);
+  for (std::size_t d = 0; d < identities_.size(); ++d) {
+    Identity& identity = identities_[d];
+    identity.state_tick = tick;
+    const int own = association.own[d];
+    std::optional<common::Vec2> z;
+    double sigma = params_.measurement_sigma;
+    if (own >= 0) {
+      z = measurementOf(clusters_[static_cast<std::size_t>(own)]);
+    } else if (shares[d]) {
+      z = shares[d];
+      sigma = params_.merged_measurement_sigma;
+    }
+    if (z && params_.denoise && !withinJump(identity.cluster.centroid, *z, params_.jump_gate * spacing_)) {
+      ++stats_.jump_rejections;  // 2013 step 3: the centroid jumped, most likely onto noise
+      z.reset();
+    }
+    const auto m = model(identity.noise.q(), sigma);
+    const auto updated = z ? common::update(m, predicted[d], common::MeasurementVector(z->x, z->y)) : std::nullopt;
+    if (!updated) {  // coast: the prediction, and the centroid extrapolated (Rule 3)
+      identity.state = predicted[d];
+      identity.cluster.centroid = identity.cluster.centroid + delta_ * velocityOf(predicted[d]);
+      if (identity.merged)
+        ++identity.merged_ticks;
+      else
+        ++identity.misses;
+      continue;
+    }
+    identity.noise.observe(
+        common::mahalanobisSquared(common::innovation(m, predicted[d], common::MeasurementVector(z->x, z->y))));
+    identity.state = *updated;
+    if (own >= 0)
+      identity.cluster = {clusters_[static_cast<std::size_t>(own)].centroid, clusters_[static_cast<std::size_t>(own)].radius};
+    else
+      identity.cluster.centroid = *z;  // its share of the merged cluster; the radius stays its own
+    identity.last_seen_tick = tick;
+    ++identity.hits;
+    identity.misses = 0;
+    identity.merged_ticks = 0;
+  }
+  // Claimed clusters that neither a track nor a merge took (more clusters than tracks) may be new
+  // targets too.
+  for (const std::size_t a : claimed)
+    if (!association.consumed[a]) unclaimed.push_back(a);
+  std::sort(unclaimed.begin(), unclaimed.end());
+
+  const auto before = identities_.size();
+  std::erase_if(identities_, [&](const Identity& i) {
+    return i.misses > params_.max_coast_ticks || i.merged_ticks > params_.max_merge_ticks ||
+           region_.distanceTo(positionOf(i.state)) > 0.0;
+  });
+  stats_.deletions += static_cast<std::int64_t>(before - identities_.size());
+
+  std::erase_if(ghosts_, [&](const Ghost& g) { return tick - g.tick > params_.max_coast_ticks; });
+  updateBirthCandidates(tick, clusters_, unclaimed);
+  processed_tick_ = tick;
+}
+
+void RulebasedEngine::updateBirthCandidates(std::int32_t tick, const std::vector<Cluster>& clusters,
+                                            const std::vector<std::size_t>& unclaimed) {
+  std::vector<std::size_t> fresh;
+  for (const std::size_t a : unclaimed)
+    if (!nearGhost(clusters[a].centroid, tick)) fresh.push_back(a);
+
+  // Each candidate of the previous tick continues in at most one cluster near it (optimal
+  // assignment on eq. 20); the rest start anew, and candidates not seen again are dropped.
+  std::vector<double> cost(candidates_.size() * fresh.size(), common::kForbidden);
+  for (std::size_t c = 0; c < candidates_.size(); ++c)
+    for (std::size_t f = 0; f < fresh.size(); ++f) {
+      const Cluster& cluster = clusters[fresh[f]];
+      const ClusterSummary summary{cluster.centroid, cluster.radius};
+      const double reach = cluster.radius + candidates_[c].cluster.radius + params_.claim_gate * spacing_;
+      if (common::distance(cluster.centroid, candidates_[c].cluster.centroid) <= reach)
+        cost[c * fresh.size() + f] = matchDistance(summary, candidates_[c].cluster);
+    }
+  const auto assignment = common::solveAssignment(cost, candidates_.size(), fresh.size());
+  std::vector<int> continued(fresh.size(), -1);
+  for (std::size_t c = 0; c < candidates_.size(); ++c)
+    if (assignment[c] >= 0) continued[static_cast<std::size_t>(assignment[c])] = static_cast<int>(c);
+
+  std::vector<Candidate> next;
+  const double sigma = params_.measurement_sigma * spacing_;
+  for (std::size_t f = 0; f < fresh.size(); ++f) {
+    const Cluster& cluster = clusters[fresh[f]];
+    Candidate candidate;
+    if (continued[f] >= 0) {
+      candidate = candidates_[static_cast<std::size_t>(continued[f])];
+      candidate.previous_measurement = candidate.measurement;
+    } else {
+      candidate.id = gnn::birthTrackId(supernode_, tick, cluster.members.front().sensor);
+    }
+    candidate.cluster = {cluster.centroid, cluster.radius};
+    candidate.measurement = measurementOf(cluster);
+    ++candidate.sightings;
+    if (candidate.sightings < params_.confirm_ticks) {
+      next.push_back(candidate);
+      continue;
+    }
+    // Two-point initiation: the velocity is the difference of the last two measurements, with
+    // the variance of that difference; a single sighting leaves it unknown (one Ds per tick).
+    Identity born{candidate.id, {}, tick, NisAdaptation(noise_config_), candidate.cluster, tick, candidate.sightings,
+                  0, 0, false};
+    born.state.x << candidate.measurement.x, candidate.measurement.y, 0.0, 0.0;
+    double velocity_variance = spacing_ * spacing_ / (delta_ * delta_);
+    if (candidate.sightings >= 2) {
+      const common::Vec2 v = (1.0 / delta_) * (candidate.measurement - candidate.previous_measurement);
+      born.state.x(kVx) = v.x;
+      born.state.x(kVy) = v.y;
+      velocity_variance = 2.0 * sigma * sigma / (delta_ * delta_);
+    }
+    born.state.P.diagonal() << sigma * sigma, sigma * sigma, velocity_variance, velocity_variance;
+    identities_.insert(std::lower_bound(identities_.begin(), identities_.end(), born, byId), born);
+    ++stats_.births;
+  }
+  candidates_ = std::move(next);
+}
+
+std::vector<common::TrackEstimate> RulebasedEngine::confirmedTracks() const {
+  std::vector<common::TrackEstimate> out;
+  for (const auto& identity : identities_) {
+    common::TrackEstimate e;
+    e.track = identity.id;
+    e.x = identity.state.x(kX);
+    e.y = identity.state.x(kY);
+    e.vx = identity.state.x(kVx);
+    e.vy = identity.state.x(kVy);
+    e.covariance = common::toRowMajor(identity.state.P);
+    e.last_seen_tick = identity.last_seen_tick;
+    out.push_back(e);
+  }
+  return out;
+}
+
+std::vector<TrackPrediction> RulebasedEngine::predictions() const {
+  std::vector<TrackPrediction> out;
+  for (const auto& identity : identities_)
+    out.push_back({identity.id, positionOf(common::predict(model(identity.noise.q(), params_.measurement_sigma), identity.state))});
+  return out;
+}
+
+}  // namespace wsn::supernode::rulebased
