@@ -57,18 +57,29 @@ MergeSplitIndicators mergeSplitIndicators(std::span<const ClusterSummary> previo
   const std::ptrdiff_t merges_due =
       static_cast<std::ptrdiff_t>(previous.size()) - static_cast<std::ptrdiff_t>(current.size());
   std::ptrdiff_t merged = 0;
-  const auto pairs = closestPairs(previous);
+  // The paper's X (eq. 24) first, then every other pair by gap: X holds only each cluster's closest
+  // later cluster, so when three clusters merge into one the pair that joins the third can be
+  // missing from it.
+  auto pairs = closestPairs(previous);
+  std::vector<ClosestPair> others;
+  for (int e = 0; e < static_cast<int>(previous.size()); ++e)
+    for (int d = e + 1; d < static_cast<int>(previous.size()); ++d)
+      if (std::none_of(pairs.begin(), pairs.end(), [&](const ClosestPair& p) { return p.e == e && p.d == d; }))
+        others.push_back({e, d, pairDistance(previous[static_cast<std::size_t>(e)], previous[static_cast<std::size_t>(d)])});
+  std::stable_sort(others.begin(), others.end(),
+                   [](const ClosestPair& a, const ClosestPair& b) { return a.distance < b.distance; });
+  pairs.insert(pairs.end(), others.begin(), others.end());
   std::vector<bool> taken(pairs.size(), false);
   // One scan of X is the paper's loop (lines 14-21). When three or more clusters merge into one, the
   // pair of the two that the merged cluster did not choose (indicators 0 and 0) can come first and
-  // be skipped; it qualifies once one of its clusters merged, so X is scanned again while merges are
-  // still due and the last scan found one. Where one scan suffices (Fig. 6-8) the result is the same.
+  // be skipped; it qualifies once one of its clusters merged, so the pairs are scanned again while
+  // merges are still due and the last scan found one. Where one scan of X suffices (Fig. 6-8) the
+  // result is the paper's.
   for (bool progress = true; progress && merged < merges_due;) {
     progress = false;
     for (std::size_t n = 0; n < pairs.size() && merged < merges_due; ++n) {
       const auto& pair = pairs[n];
-      if (taken[n]) continue;
-      if (pair.distance > max_merge_gap) break;  // sorted: every later pair is farther apart
+      if (taken[n] || pair.distance > max_merge_gap) continue;
       const auto e = static_cast<std::size_t>(pair.e);
       const auto d = static_cast<std::size_t>(pair.d);
       if (out.match[e] == out.match[d]) continue;  // Rule 1: match indicators 1 and 0

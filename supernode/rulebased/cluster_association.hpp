@@ -52,9 +52,10 @@ struct MergeSplitIndicators {
 /// Rule 1 on clusters at k - 1 (`previous`) and k (`current`): Mc from eq. (20); then the first
 /// m = M_k-1 - M_k pairs of X (eq. 24) whose match indicators are 1 and 0 get Mg = 1 and Mc = 1
 /// (eq. 25-26), the indicators being updated as pairs are taken (so three clusters can merge
-/// into one through two pairs). Beyond the paper: X is scanned again while merges are due and the
-/// previous scan found one, since a pair skipped with indicators 0 and 0 qualifies once one of its
-/// clusters has merged (three clusters into one, in any order); and a pair whose gap D exceeds
+/// into one through two pairs). Beyond the paper, for three or more clusters merging into one: after
+/// X come the pairs X leaves out, by gap (X holds only each cluster's closest later one), and the
+/// pairs are scanned again while merges are due and the previous scan found one (a pair skipped
+/// with indicators 0 and 0 qualifies once one of its clusters merged). And a pair whose gap D exceeds
 /// `max_merge_gap` is never merged (two clusters whose discs are far apart cannot have become
 /// one; this keeps a target that vanishes next to another from dragging it into a merge).
 /// With m <= 0 nothing merges.

@@ -42,6 +42,9 @@ EngineSpec engineSpec() {
        "[1.415, 2) is eq. 6's 8-connectivity"},
       {"measurement_sigma", d.measurement_sigma, 1e-3, 100.0,
        "std. deviation of a centroid's position error, R = sigma^2 I (Ds)"},
+      {"measurement_lag", d.measurement_lag, 0.0, 100.0,
+       "ticks by which a centroid lags the target, z = x - lag v: acoustic sensors hear where the target "
+       "was when the sound left it (docs/RULEBASED.md derives it; 0: no lag)"},
       {"process_noise", d.process_noise, 1e-6, 100.0,
        "initial std. deviation q of the acceleration noise of a new track (Ds per tick^2); adapted by the NIS"},
       {"process_noise_min", d.process_noise_min, 1e-6, 100.0, "lower bound of the NIS-adapted q (Ds per tick^2)"},
@@ -58,6 +61,8 @@ EngineSpec engineSpec() {
        "std. deviation of the position error of a share of a merged cluster (Ds)"},
       {"confirm_ticks", static_cast<double>(d.confirm_ticks), 1.0, 100.0,
        "consecutive ticks an unclaimed cluster must be seen before it becomes a track", true},
+      {"birth_min_sensors", static_cast<double>(d.birth_min_sensors), 1.0, 10000.0,
+       "a candidate becomes a track only when its cluster has at least this many sensors", true},
       {"max_coast_ticks", static_cast<double>(d.max_coast_ticks), 1.0, 100000.0,
        "consecutive ticks without a cluster (and not merged) after which a track is deleted", true},
       {"max_merge_ticks", static_cast<double>(d.max_merge_ticks), 1.0, 100000.0,
@@ -86,6 +91,7 @@ RulebasedParams RulebasedParams::fromScenario(const common::Scenario& scenario) 
   RulebasedParams p;
   p.link_distance = engineParam(scenario, "link_distance", p.link_distance);
   p.measurement_sigma = engineParam(scenario, "measurement_sigma", p.measurement_sigma);
+  p.measurement_lag = engineParam(scenario, "measurement_lag", p.measurement_lag);
   p.process_noise = engineParam(scenario, "process_noise", p.process_noise);
   p.process_noise_min = engineParam(scenario, "process_noise_min", p.process_noise_min);
   p.process_noise_max = engineParam(scenario, "process_noise_max", p.process_noise_max);
@@ -94,6 +100,7 @@ RulebasedParams RulebasedParams::fromScenario(const common::Scenario& scenario) 
   p.merged_split_distance = engineParam(scenario, "merged_split_distance", p.merged_split_distance);
   p.merged_measurement_sigma = engineParam(scenario, "merged_measurement_sigma", p.merged_measurement_sigma);
   p.confirm_ticks = count(scenario, "confirm_ticks", p.confirm_ticks);
+  p.birth_min_sensors = count(scenario, "birth_min_sensors", p.birth_min_sensors);
   p.max_coast_ticks = count(scenario, "max_coast_ticks", p.max_coast_ticks);
   p.max_merge_ticks = count(scenario, "max_merge_ticks", p.max_merge_ticks);
   p.denoise = engineParam(scenario, "denoise", p.denoise ? 1.0 : 0.0) != 0.0;
@@ -119,7 +126,11 @@ RulebasedEngine::RulebasedEngine(const EngineContext& context)
 }
 
 common::ConstantVelocityModel RulebasedEngine::model(double q, double measurement_sigma) const {
-  return common::ConstantVelocityModel(delta_, q, measurement_sigma * spacing_);
+  common::ConstantVelocityModel m(delta_, q, measurement_sigma * spacing_);
+  // The centroid shows where the target was `measurement_lag` ticks ago: z = x - lag v.
+  m.H(0, kVx) = -params_.measurement_lag;
+  m.H(1, kVy) = -params_.measurement_lag;
+  return m;
 }
 
 std::vector<Detection> RulebasedEngine::mitigateNoise(std::int32_t tick, std::vector<Detection> detections) {
@@ -429,7 +440,7 @@ void RulebasedEngine::updateBirthCandidates(std::int32_t tick, const std::vector
     candidate.cluster = {cluster.centroid, cluster.radius};
     candidate.measurement = measurementOf(cluster);
     ++candidate.sightings;
-    if (candidate.sightings < params_.confirm_ticks) {
+    if (candidate.sightings < params_.confirm_ticks || cluster.size() < params_.birth_min_sensors) {
       next.push_back(candidate);
       continue;
     }
@@ -437,14 +448,14 @@ void RulebasedEngine::updateBirthCandidates(std::int32_t tick, const std::vector
     // the variance of that difference; a single sighting leaves it unknown (one Ds per tick).
     Identity born{candidate.id, {}, tick, NisAdaptation(noise_config_), candidate.cluster, tick, candidate.sightings,
                   0, 0, false};
-    born.state.x << candidate.measurement.x, candidate.measurement.y, 0.0, 0.0;
+    common::Vec2 v;
     double velocity_variance = spacing_ * spacing_ / (delta_ * delta_);
     if (candidate.sightings >= 2) {
-      const common::Vec2 v = (1.0 / delta_) * (candidate.measurement - candidate.previous_measurement);
-      born.state.x(kVx) = v.x;
-      born.state.x(kVy) = v.y;
+      v = (1.0 / delta_) * (candidate.measurement - candidate.previous_measurement);
       velocity_variance = 2.0 * sigma * sigma / (delta_ * delta_);
     }
+    const common::Vec2 position = candidate.measurement + params_.measurement_lag * v;  // undo the lag
+    born.state.x << position.x, position.y, v.x, v.y;
     born.state.P.diagonal() << sigma * sigma, sigma * sigma, velocity_variance, velocity_variance;
     identities_.insert(std::lower_bound(identities_.begin(), identities_.end(), born, byId), born);
     ++stats_.births;

@@ -26,6 +26,7 @@ EngineSpec engineSpec();
 struct RulebasedParams {
   double link_distance = 1.5;
   double measurement_sigma = 0.2;
+  double measurement_lag = 0.0;
   double process_noise = 0.002;
   double process_noise_min = 0.0001;
   double process_noise_max = 0.2;
@@ -34,6 +35,7 @@ struct RulebasedParams {
   double merged_split_distance = 2.0;
   double merged_measurement_sigma = 0.4;
   std::int32_t confirm_ticks = 2;
+  std::int32_t birth_min_sensors = 2;
   std::int32_t max_coast_ticks = 10;
   std::int32_t max_merge_ticks = 600;
   bool denoise = false;
