@@ -22,6 +22,10 @@ common::Vec2 velocityOf(const GaussianState& s) { return {s.x(kVx), s.x(kVy)}; }
 
 bool byId(const RulebasedEngine::Identity& a, const RulebasedEngine::Identity& b) { return a.id < b.id; }
 
+// Track ids are gnn::birthTrackId's: (supernode + 1) << 48 | tick << 24 | sensor.
+constexpr int kBirthSupernodeShift = 48;
+std::int32_t birthTick(common::TrackId id) { return static_cast<std::int32_t>((id >> 24) & 0xffffff); }
+
 std::int32_t count(const common::Scenario& scenario, const char* name, std::int32_t fallback) {
   return static_cast<std::int32_t>(std::lround(engineParam(scenario, name, fallback)));
 }
@@ -67,6 +71,9 @@ EngineSpec engineSpec() {
        "consecutive ticks without a cluster (and not merged) after which a track is deleted", true},
       {"max_merge_ticks", static_cast<double>(d.max_merge_ticks), 1.0, 100000.0,
        "consecutive ticks inside a merged cluster after which a track is deleted", true},
+      {"handoff_ghost_ticks", static_cast<double>(d.handoff_ghost_ticks), 0.0, 100000.0,
+       "ticks after a handover during which clusters near the handed-over track's extrapolation are left to "
+       "the neighbour (the part of its cluster still on this side of the boundary)", true},
       {"denoise", d.denoise ? 1.0 : 0.0, 0.0, 1.0,
        "1: noise mitigation of An et al. 2013 §3.3 (persistence, spatial test, centroid-jump gate)", true},
       {"persistence_ticks", static_cast<double>(d.persistence_ticks), 1.0, 100.0,
@@ -103,6 +110,7 @@ RulebasedParams RulebasedParams::fromScenario(const common::Scenario& scenario) 
   p.birth_min_sensors = count(scenario, "birth_min_sensors", p.birth_min_sensors);
   p.max_coast_ticks = count(scenario, "max_coast_ticks", p.max_coast_ticks);
   p.max_merge_ticks = count(scenario, "max_merge_ticks", p.max_merge_ticks);
+  p.handoff_ghost_ticks = count(scenario, "handoff_ghost_ticks", p.handoff_ghost_ticks);
   p.denoise = engineParam(scenario, "denoise", p.denoise ? 1.0 : 0.0) != 0.0;
   p.persistence_ticks = count(scenario, "persistence_ticks", p.persistence_ticks);
   p.denoise_radius = engineParam(scenario, "denoise_radius", p.denoise_radius);
@@ -150,12 +158,11 @@ bool RulebasedEngine::withinClaim(const ClusterSummary& cluster, const ClusterSu
          common::distance(cluster.centroid, predicted) <= reach;
 }
 
-bool RulebasedEngine::nearGhost(common::Vec2 position, std::int32_t tick) const {
-  const double reach = (params_.claim_gate + params_.jump_gate) * spacing_;
-  return std::any_of(ghosts_.begin(), ghosts_.end(), [&](const Ghost& g) {
-    const common::Vec2 now = g.position + static_cast<double>(tick - g.tick) * g.velocity;
-    return common::squaredDistance(now, position) <= reach * reach;
-  });
+double RulebasedEngine::ghostDistance(common::Vec2 position, std::int32_t tick) const {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const Ghost& g : ghosts_)
+    nearest = std::min(nearest, common::distance(g.position + static_cast<double>(tick - g.tick) * g.velocity, position));
+  return nearest;
 }
 
 void RulebasedEngine::adopt(const common::TrackHandoff& handoff) {
@@ -167,13 +174,16 @@ void RulebasedEngine::adopt(const common::TrackHandoff& handoff) {
   adopted.last_seen_tick = handoff.last_tick;
   // The radius of a typical cluster (four sensors) until the track's first own cluster here.
   adopted.cluster = {positionOf(adopted.state), clusterRadius(4, spacing_)};
-  // A track this supernode started on the part of the same target's cluster that lies on its side
-  // of the boundary is the same target: the handed-over track, with its longer history, replaces it.
+  // A track this supernode started lately on the part of the same target's cluster that lies on
+  // its side of the boundary is the same target: the handed-over track, with its longer history,
+  // replaces it. Tracks handed over earlier are other targets and stay.
   const double reach = params_.claim_gate * spacing_;
   std::erase_if(identities_, [&](const Identity& local) {
     const double gap = common::distance(local.cluster.centroid, adopted.cluster.centroid) -
                        (local.cluster.radius + adopted.cluster.radius);
-    return local.id != adopted.id && local.hits < adopted.hits && gap <= reach;
+    const bool born_here_lately = local.id >> kBirthSupernodeShift == std::uint64_t{supernode_} + 1 &&
+                                  handoff.last_tick - birthTick(local.id) <= params_.handoff_ghost_ticks;
+    return local.id != adopted.id && born_here_lately && gap <= reach;
   });
   const auto it = std::lower_bound(identities_.begin(), identities_.end(), adopted, byId);
   if (it != identities_.end() && it->id == adopted.id)
@@ -299,6 +309,7 @@ std::vector<std::optional<common::Vec2>> RulebasedEngine::shareMergedClusters(
     // Each detection goes to the nearest predicted member; each member's share gives it a weighted
     // centroid (eq. 10) as its measurement.
     std::vector<double> weight(members.size(), 0.0);
+    std::vector<int> count(members.size(), 0);
     std::vector<common::Vec2> sum(members.size());
     for (const auto& detection : clusters[a].members) {
       std::size_t best = 0;
@@ -308,10 +319,12 @@ std::vector<std::optional<common::Vec2>> RulebasedEngine::shareMergedClusters(
           best = i;
       const double w = centroidWeight(detection);
       weight[best] += w;
+      ++count[best];
       sum[best] = sum[best] + w * detection.position;
     }
+    // One sensor's position says too little about a target inside a merged cluster.
     for (std::size_t i = 0; i < members.size(); ++i)
-      if (weight[i] > 0.0) out[members[i]] = (1.0 / weight[i]) * sum[i];
+      if (count[i] >= 2) out[members[i]] = (1.0 / weight[i]) * sum[i];
   }
   return out;
 }
@@ -337,12 +350,23 @@ void RulebasedEngine::processTick(std::int32_t tick, std::span<const common::Obs
   // prediction); the others are new targets or noise.
   std::vector<std::size_t> claimed;
   std::vector<std::size_t> unclaimed;
+  std::vector<std::size_t> left_to_neighbour;
   for (std::size_t a = 0; a < clusters_.size(); ++a) {
     const ClusterSummary cluster{clusters_[a].centroid, clusters_[a].radius};
+    // The part of a handed-over target's cluster still on this side of the boundary belongs to the
+    // neighbour's track, unless one of this supernode's own tracks is nearer to it.
+    const double ghost = ghostDistance(cluster.centroid, tick);
     bool near = false;
-    for (std::size_t d = 0; d < identities_.size() && !near; ++d)
-      near = withinClaim(cluster, identities_[d].cluster, positionOf(predicted[d]));
-    (near ? claimed : unclaimed).push_back(a);
+    bool nearer_than_ghost = false;
+    for (std::size_t d = 0; d < identities_.size(); ++d) {
+      if (!withinClaim(cluster, identities_[d].cluster, positionOf(predicted[d]))) continue;
+      near = true;
+      nearer_than_ghost = nearer_than_ghost || common::distance(cluster.centroid, positionOf(predicted[d])) < ghost;
+    }
+    if (ghost <= (params_.claim_gate + params_.jump_gate) * spacing_ && !nearer_than_ghost)
+      left_to_neighbour.push_back(a);
+    else
+      (near ? claimed : unclaimed).push_back(a);
   }
 
   const Association association = associate(clusters_, claimed, predicted);
@@ -399,16 +423,14 @@ void RulebasedEngine::processTick(std::int32_t tick, std::span<const common::Obs
   });
   stats_.deletions += static_cast<std::int64_t>(before - identities_.size());
 
-  std::erase_if(ghosts_, [&](const Ghost& g) { return tick - g.tick > params_.max_coast_ticks; });
+  std::erase_if(ghosts_, [&](const Ghost& g) { return tick - g.tick > params_.handoff_ghost_ticks; });
   updateBirthCandidates(tick, clusters_, unclaimed);
   processed_tick_ = tick;
 }
 
 void RulebasedEngine::updateBirthCandidates(std::int32_t tick, const std::vector<Cluster>& clusters,
                                             const std::vector<std::size_t>& unclaimed) {
-  std::vector<std::size_t> fresh;
-  for (const std::size_t a : unclaimed)
-    if (!nearGhost(clusters[a].centroid, tick)) fresh.push_back(a);
+  const std::vector<std::size_t>& fresh = unclaimed;
 
   // Each candidate of the previous tick continues in at most one cluster near it (optimal
   // assignment on eq. 20); the rest start anew, and candidates not seen again are dropped.

@@ -38,6 +38,7 @@ struct RulebasedParams {
   std::int32_t birth_min_sensors = 2;
   std::int32_t max_coast_ticks = 10;
   std::int32_t max_merge_ticks = 600;
+  std::int32_t handoff_ghost_ticks = 50;
   bool denoise = false;
   std::int32_t persistence_ticks = 3;
   double denoise_radius = 3.0;
@@ -124,7 +125,8 @@ class RulebasedEngine final : public Engine {
                                                                const Association& association,
                                                                const std::vector<common::GaussianState>& predicted) const;
   common::ConstantVelocityModel model(double q, double measurement_sigma) const;
-  bool nearGhost(common::Vec2 position, std::int32_t tick) const;
+  /// Distance from `position` to the nearest ghost's extrapolated position at `tick` (+inf: none).
+  double ghostDistance(common::Vec2 position, std::int32_t tick) const;
   /// The claim test: `cluster` lies within r_a + r_d + claim_gate of the identity's cluster or of
   /// its predicted position.
   bool withinClaim(const ClusterSummary& cluster, const ClusterSummary& identity, common::Vec2 predicted) const;
