@@ -235,9 +235,13 @@ std::vector<common::Report> AcousticField::detect(std::int32_t tick) const {
       layout_->collectWithin(0.5 * (a + b), source.reach + 0.5 * common::distance(a, b) + 1e-9 * (1.0 + source.reach), found);
       candidates.insert(candidates.end(), found.begin(), found.end());
     };
-    const double t0 = source.path.start();
+    // Only the part of the path whose sound can still arrive within `reach` matters: emitted at most
+    // reach / Vs before the tick's first step (emissions older than that are farther than `reach`).
+    const double now = static_cast<double>(tick) * ac.tick_s;
     const double t1 = source.path.end();
-    if (t1 <= t0) visit(source.path.at(t0), source.path.at(t0));
+    const double t0 = std::max(source.path.start(), now - ac.tick_s - source.reach / ac.sound_speed - ac.tick_s);
+    if (t1 < t0) continue;
+    if (t1 - t0 < 1e-12) visit(source.path.at(t0), source.path.at(t0));
     for (double t = t0; t < t1 - 1e-12; t += ac.tick_s) visit(source.path.at(t), source.path.at(std::min(t + ac.tick_s, t1)));
   }
   std::vector<double> noise;
