@@ -84,6 +84,9 @@ EngineSpec engineSpec() {
        true},
       {"jump_gate", d.jump_gate, 0.0, 1000.0,
        "denoise step 3 (eq. 15): a centroid farther than this from the track's previous one is discarded (Ds)"},
+      {"noise_cluster_sensors", static_cast<double>(d.noise_cluster_sensors), 1.0, 10000.0,
+       "with denoise, Noise_find (2014 Algorithm 4.2.1 c): clusters of at most this many sensors that survive "
+       "the denoising steps are residual noise", true},
       {"quick_solution", d.quick_solution ? 1.0 : 0.0, 0.0, 1.0,
        "1: An et al. 2013 §3.2: a cluster's measurement is its strongest sensor instead of the weighted centroid",
        true},
@@ -116,6 +119,7 @@ RulebasedParams RulebasedParams::fromScenario(const common::Scenario& scenario) 
   p.denoise_radius = engineParam(scenario, "denoise_radius", p.denoise_radius);
   p.denoise_min_cluster = count(scenario, "denoise_min_cluster", p.denoise_min_cluster);
   p.jump_gate = engineParam(scenario, "jump_gate", p.jump_gate);
+  p.noise_cluster_sensors = count(scenario, "noise_cluster_sensors", p.noise_cluster_sensors);
   p.quick_solution = engineParam(scenario, "quick_solution", p.quick_solution ? 1.0 : 0.0) != 0.0;
   return p;
 }
@@ -338,6 +342,13 @@ void RulebasedEngine::processTick(std::int32_t tick, std::span<const common::Obs
   detections = mitigateNoise(tick, std::move(detections));
   stats_.detections_kept += static_cast<std::int64_t>(detections.size());
   clusters_ = clusterDetections(detections, params_.link_distance * spacing_, spacing_);
+  if (params_.denoise) {
+    // Noise_find (Algorithm 4.2.1 c): a lone noisy sensor next to a target survives the spatial test
+    // and, as a cluster of its own, would pass for a split; such small clusters are residual noise.
+    const auto before = clusters_.size();
+    std::erase_if(clusters_, [&](const Cluster& c) { return c.size() <= params_.noise_cluster_sensors; });
+    stats_.noise_clusters += static_cast<std::int64_t>(before - clusters_.size());
+  }
 
   std::vector<GaussianState> predicted;
   for (const auto& identity : identities_) {

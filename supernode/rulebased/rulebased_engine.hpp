@@ -44,6 +44,7 @@ struct RulebasedParams {
   double denoise_radius = 3.0;
   std::int32_t denoise_min_cluster = 3;
   double jump_gate = 3.0;
+  std::int32_t noise_cluster_sensors = 1;
   bool quick_solution = false;
 
   /// Reads scenario.tracker.params (already resolved: every parameter present).
@@ -57,6 +58,7 @@ struct RulebasedStats {
   std::int64_t births = 0;             ///< tracks started from persistent unclaimed clusters
   std::int64_t deletions = 0;          ///< tracks dropped after coasting too long
   std::int64_t jump_rejections = 0;    ///< measurements the centroid-jump gate (2013 eq. 15) refused
+  std::int64_t noise_clusters = 0;     ///< clusters Noise_find (2014 Algorithm 4.2.1 c) set aside
   std::int64_t detections_in = 0;      ///< detections received
   std::int64_t detections_kept = 0;    ///< detections left after noise mitigation
 };
