@@ -44,7 +44,7 @@ struct RulebasedParams {
   double denoise_radius = 3.0;
   std::int32_t denoise_min_cluster = 3;
   double jump_gate = 3.0;
-  std::int32_t noise_cluster_sensors = 1;
+  std::int32_t noise_cluster_sensors = 2;
   bool quick_solution = false;
 
   /// Reads scenario.tracker.params (already resolved: every parameter present).
