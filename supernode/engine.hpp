@@ -53,6 +53,9 @@ struct EngineSpec {
   std::string description;
   std::vector<ParamSpec> params;
   std::function<std::unique_ptr<Engine>(const EngineContext&)> create;
+  /// Optional: checks the resolved parameters against the rest of the scenario; throws
+  /// common::ScenarioError "file:line: ..." when they do not fit.
+  std::function<void(const common::Scenario&)> check;
 };
 
 /// All engines, in registration order.

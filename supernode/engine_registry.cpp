@@ -43,6 +43,7 @@ void resolveEngineParams(common::Scenario& scenario) {
 
   common::resolveParams(scenario.source_path, "tracker.params", "engine '" + spec->name + "'", spec->params,
                         tracker.params);
+  if (spec->check) spec->check(scenario);
 }
 
 std::unique_ptr<Engine> makeEngine(const EngineContext& context) {

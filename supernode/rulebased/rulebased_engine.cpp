@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <string>
 
 #include "common/assignment.hpp"
 #include "supernode/gnn/gnn_engine.hpp"
@@ -63,6 +64,9 @@ EngineSpec engineSpec() {
        "prediction, each updated with its share's centroid; 0: the paper's Rule 3 (they coast) (Ds)"},
       {"merged_measurement_sigma", d.merged_measurement_sigma, 1e-3, 100.0,
        "std. deviation of the position error of a share of a merged cluster (Ds)"},
+      {"decision_lag", static_cast<double>(d.decision_lag), 0.0, 100.0,
+       "ticks a tick waits before it is processed, so that reports the network delayed by up to this many "
+       "ticks are used; the tracks are predicted to the newest tick (must stay below window_size)", true},
       {"confirm_ticks", static_cast<double>(d.confirm_ticks), 1.0, 100.0,
        "consecutive ticks an unclaimed cluster must be seen before it becomes a track", true},
       {"birth_min_sensors", static_cast<double>(d.birth_min_sensors), 1.0, 10000.0,
@@ -94,6 +98,14 @@ EngineSpec engineSpec() {
   spec.create = [](const EngineContext& context) -> std::unique_ptr<Engine> {
     return std::make_unique<RulebasedEngine>(context);
   };
+  spec.check = [](const common::Scenario& scenario) {
+    // The lagged tick must still be in the window when it is processed.
+    const auto& lag = scenario.tracker.params.at("decision_lag");
+    if (lag.value >= scenario.tracker.window_size)
+      throw common::ScenarioError(scenario.source_path + ":" + std::to_string(std::max(lag.line, 1)) +
+                                  ": 'tracker.params.decision_lag' " + common::formatNumber(lag.value) +
+                                  " must be below 'tracker.window_size' " + std::to_string(scenario.tracker.window_size));
+  };
   return spec;
 }
 
@@ -109,6 +121,7 @@ RulebasedParams RulebasedParams::fromScenario(const common::Scenario& scenario) 
   p.max_merge_gap = engineParam(scenario, "max_merge_gap", p.max_merge_gap);
   p.merged_split_distance = engineParam(scenario, "merged_split_distance", p.merged_split_distance);
   p.merged_measurement_sigma = engineParam(scenario, "merged_measurement_sigma", p.merged_measurement_sigma);
+  p.decision_lag = count(scenario, "decision_lag", p.decision_lag);
   p.confirm_ticks = count(scenario, "confirm_ticks", p.confirm_ticks);
   p.birth_min_sensors = count(scenario, "birth_min_sensors", p.birth_min_sensors);
   p.max_coast_ticks = count(scenario, "max_coast_ticks", p.max_coast_ticks);
@@ -214,11 +227,19 @@ common::TrackHandoff RulebasedEngine::release(common::TrackId track, std::uint32
 }
 
 void RulebasedEngine::step(const ObservationWindow& window) {
-  const std::int32_t newest = window.newestTick();
-  // Reports generated at a tick are used at that tick: the engine does not revisit a tick when a
-  // delayed report arrives later (docs/RULEBASED.md).
-  const std::int32_t first = processed_tick_ == 0 ? newest : std::max(processed_tick_ + 1, window.oldestTick());
-  for (std::int32_t tick = first; tick <= newest; ++tick) processTick(tick, window.slot(tick));
+  newest_tick_ = window.newestTick();
+  // A tick is processed decision_lag ticks after it happened, so that reports the network delayed
+  // by up to that many ticks are in its slot; a report later still is not used (docs/RULEBASED.md).
+  const std::int32_t last = newest_tick_ - params_.decision_lag;
+  for (std::int32_t tick = std::max(processed_tick_ + 1, window.oldestTick()); tick <= last; ++tick)
+    processTick(tick, window.slot(tick));
+}
+
+GaussianState RulebasedEngine::stateAt(const Identity& identity, std::int32_t tick) const {
+  GaussianState state = identity.state;
+  const auto m = model(identity.noise.q(), params_.measurement_sigma);
+  for (std::int32_t t = identity.state_tick; t < tick; ++t) state = common::predict(m, state);
+  return state;
 }
 
 RulebasedEngine::Association RulebasedEngine::associate(const std::vector<Cluster>& clusters,
@@ -351,11 +372,7 @@ void RulebasedEngine::processTick(std::int32_t tick, std::span<const common::Obs
   }
 
   std::vector<GaussianState> predicted;
-  for (const auto& identity : identities_) {
-    GaussianState state = identity.state;
-    for (std::int32_t t = identity.state_tick; t < tick; ++t) state = common::predict(model(identity.noise.q(), params_.measurement_sigma), state);
-    predicted.push_back(state);
-  }
+  for (const auto& identity : identities_) predicted.push_back(stateAt(identity, tick));
 
   // A cluster is claimed by the tracks when it lies near one of them (its previous cluster or its
   // prediction); the others are new targets or noise.
@@ -499,13 +516,15 @@ void RulebasedEngine::updateBirthCandidates(std::int32_t tick, const std::vector
 std::vector<common::TrackEstimate> RulebasedEngine::confirmedTracks() const {
   std::vector<common::TrackEstimate> out;
   for (const auto& identity : identities_) {
+    // With a decision lag the last processed tick is behind the newest: report the prediction.
+    const GaussianState state = stateAt(identity, std::max(newest_tick_, identity.state_tick));
     common::TrackEstimate e;
     e.track = identity.id;
-    e.x = identity.state.x(kX);
-    e.y = identity.state.x(kY);
-    e.vx = identity.state.x(kVx);
-    e.vy = identity.state.x(kVy);
-    e.covariance = common::toRowMajor(identity.state.P);
+    e.x = state.x(kX);
+    e.y = state.x(kY);
+    e.vx = state.x(kVx);
+    e.vy = state.x(kVy);
+    e.covariance = common::toRowMajor(state.P);
     e.last_seen_tick = identity.last_seen_tick;
     out.push_back(e);
   }
@@ -515,7 +534,7 @@ std::vector<common::TrackEstimate> RulebasedEngine::confirmedTracks() const {
 std::vector<TrackPrediction> RulebasedEngine::predictions() const {
   std::vector<TrackPrediction> out;
   for (const auto& identity : identities_)
-    out.push_back({identity.id, positionOf(common::predict(model(identity.noise.q(), params_.measurement_sigma), identity.state))});
+    out.push_back({identity.id, positionOf(stateAt(identity, std::max(newest_tick_, identity.state_tick) + 1))});
   return out;
 }
 

@@ -34,6 +34,7 @@ struct RulebasedParams {
   double max_merge_gap = 3.0;
   double merged_split_distance = 2.0;
   double merged_measurement_sigma = 0.4;
+  std::int32_t decision_lag = 0;
   std::int32_t confirm_ticks = 2;
   std::int32_t birth_min_sensors = 2;
   std::int32_t max_coast_ticks = 10;
@@ -127,6 +128,8 @@ class RulebasedEngine final : public Engine {
                                                                const Association& association,
                                                                const std::vector<common::GaussianState>& predicted) const;
   common::ConstantVelocityModel model(double q, double measurement_sigma) const;
+  /// The identity's state predicted to `tick` (>= its state_tick).
+  common::GaussianState stateAt(const Identity& identity, std::int32_t tick) const;
   /// Distance from `position` to the nearest ghost's extrapolated position at `tick` (+inf: none).
   double ghostDistance(common::Vec2 position, std::int32_t tick) const;
   /// The claim test: `cluster` lies within r_a + r_d + claim_gate of the identity's cluster or of
@@ -141,6 +144,7 @@ class RulebasedEngine final : public Engine {
   NisAdaptationConfig noise_config_;
   PersistenceFilter persistence_;
   std::int32_t processed_tick_ = 0;
+  std::int32_t newest_tick_ = 0;  ///< the window's newest tick at the last step
   std::vector<Identity> identities_;
   std::vector<Candidate> candidates_;
   std::vector<Ghost> ghosts_;

@@ -269,6 +269,31 @@ TEST_CASE("a released track is handed over with its state and continues under it
   CHECK(nearestTrack(tracks, movers[0].at(60)).second < 5.0);
 }
 
+TEST_CASE("a decision lag lets delayed reports in and reports the tracks at the newest tick", "[rulebased]") {
+  // Every report arrives 2 ticks late. Without a lag the engine has processed each tick before its
+  // reports arrive and sees nothing; with decision_lag = 2 it processes tick t - 2 once they are in.
+  const std::vector<Mover> movers = {{300, 400, 2.0, 0.0, 40}};
+  Harness eager(fieldScenario());
+  Harness patient(fieldScenario({{"decision_lag", 2}}));
+  for (std::int32_t t = 1; t <= 40; ++t) {
+    std::vector<common::Observation> late = t > 2 ? detections(t - 2, movers) : std::vector<common::Observation>{};
+    for (auto& o : late) o.tick_delivered = t;
+    eager.step(t, late);
+    patient.step(t, late);
+  }
+  CHECK(eager.engine.confirmedTracks().empty());
+  const auto tracks = patient.engine.confirmedTracks();
+  REQUIRE(tracks.size() == 1);
+  // The state of tick 38, predicted two ticks to tick 40.
+  CHECK(nearestTrack(tracks, movers[0].at(40)).second < 5.0);
+  CHECK(patient.engine.identities()[0].state_tick == 38);
+
+  common::Scenario s = fieldScenario();
+  s.tracker.params["decision_lag"] = {10, 7};  // window_size is 10
+  CHECK_THROWS_WITH(resolveEngineParams(s),
+                    "test.yaml:7: 'tracker.params.decision_lag' 10 must be below 'tracker.window_size' 10");
+}
+
 TEST_CASE("the engine is deterministic", "[rulebased]") {
   const std::vector<Mover> movers = {{400, 400, 2.0, 2.0, 40}, {400, 800, 2.0, -2.0, 35}};
   Harness a(fieldScenario());
