@@ -31,7 +31,7 @@ Draws the plots of a wsntrack run directory (what 'wsntrack run' does after ever
                       (the terms of eps_K, Oh eq. 9)
   ospa.FORMAT         OSPA at every tick, with its cut-off c
 
-Lengths are in sensor separations, times in ticks. Reads scenario.yaml, truth.csv, tracks.csv,
+Lengths are in the scenario's units (sensor separations when the grid spacing is 1), times in ticks. Reads scenario.yaml, truth.csv, tracks.csv,
 metrics_per_tick.csv (else metrics.json's metrics.ospa_per_tick) and sensors.csv when present
 (else the sensor grid is computed from scenario.yaml).
 
@@ -526,6 +526,14 @@ def new_figure(mpl, width, height, left, right, bottom, top):
     return fig, ax
 
 
+def length_unit(scenario):
+    """The axis unit: sensor separations on a unit grid, else the scenario's own unit with Ds."""
+    spacing = scenario["spacing"]
+    if spacing is None or spacing == 1:
+        return "sensor separations"
+    return f"scenario units, Ds = {spacing:g}"
+
+
 def plot_tracks(mpl, scenario, sensors, truth, tracks, summary, out_path):
     from matplotlib.lines import Line2D
     from matplotlib.patches import Polygon, Patch
@@ -591,8 +599,8 @@ def plot_tracks(mpl, scenario, sensors, truth, tracks, summary, out_path):
         ax.annotate(f"S{j}", (sx, sy), xytext=(10, -14), textcoords="offset points", fontsize=11, fontweight="bold",
                     zorder=8, bbox=dict(boxstyle="round,pad=0.2", facecolor="white", edgecolor="#444444", alpha=0.85))
 
-    ax.set_xlabel("x (sensor separations)", fontsize=12)
-    ax.set_ylabel("y (sensor separations)", fontsize=12)
+    ax.set_xlabel(f"x ({length_unit(scenario)})", fontsize=12)
+    ax.set_ylabel(f"y ({length_unit(scenario)})", fontsize=12)
     ax.tick_params(labelsize=10)
     metrics = []
     if "eps_k" in summary:
@@ -673,7 +681,7 @@ def plot_ospa(mpl, scenario, ticks, ospa, source, out_path):
     ax.set_ylim(0, top * 1.12)
     ax.set_xlim(0.5, scenario["ticks"] + 0.5)
     ax.set_xlabel("tick", fontsize=11)
-    ax.set_ylabel("OSPA (sensor separations)", fontsize=11)
+    ax.set_ylabel(f"OSPA ({length_unit(scenario)})", fontsize=11)
     ax.grid(True, color="#dddddd", linewidth=0.6)
     order = f", p = {p:g}" if math.isfinite(p) else ""
     ax.set_title(f"OSPA distance between tracks and targets (c = {c:g}{order}; from {source})", fontsize=12, pad=30)

@@ -224,6 +224,14 @@ TEST_CASE("explore more", "[explore2]") {
   explore("vanish while merged", {{{400, 400}, {1.4, 1.4}, 40, 1, 90}, {{400, 800}, {1.4, -1.4}, 35}}, 250);
   explore("appear next", {{{400, 400}, {2, 0}, 40}, {{470, 400}, {2, 0}, 40, 30}}, 100);
 }
+TEST_CASE("explore vanish near", "[explore3]") {
+  for (double sep : {100.0, 110.0, 120.0, 130.0, 140.0, 150.0, 160.0}) {
+    char name[64]; std::snprintf(name, sizeof name, "vanish parallel sep %.0f", sep);
+    explore(name, {{{300, 600}, {2, 0}, 40}, {{300, 600 + sep}, {2, 0}, 40, 1, 30}}, 100);
+  }
+  explore("vanish static sep 120", {{{600, 600}, {0, 0}, 40}, {{600, 720}, {0, 0}, 40, 1, 30}}, 100);
+  explore("vanish crossing-ish 120", {{{300, 600}, {2, 0}, 40}, {{300, 720}, {2, -0.3}, 40, 1, 30}}, 100);
+}
 
 }  // namespace
 }  // namespace wsn::supernode::rulebased
