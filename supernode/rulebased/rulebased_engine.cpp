@@ -284,12 +284,29 @@ RulebasedEngine::Association RulebasedEngine::associate(const std::vector<Cluste
       double nearest = std::numeric_limits<double>::infinity();
       for (std::size_t a = 0; a < current.size(); ++a) {
         const auto chooser = static_cast<std::size_t>(indicators.nearest[a]);
-        const double gap = common::squaredDistance(current[a].centroid, positionOf(predicted[d]));
+        const double gap = common::distance(current[a].centroid, positionOf(predicted[d]));
         if (indicators.merge[chooser] && gap < nearest) {
           nearest = gap;
           out.merged_into[d] = static_cast<int>(claimed[a]);
         }
       }
+      // Beyond Rule 1: a target is in a merged cluster only when its prediction lies within that
+      // cluster's reach. One that vanished beside another has no cluster left, not a merged one.
+      if (out.merged_into[d] >= 0 &&
+          nearest > clusters[static_cast<std::size_t>(out.merged_into[d])].radius + params_.claim_gate * spacing_) {
+        identities_[d].merged = false;
+        out.merged_into[d] = -1;
+      }
+    }
+    // A merged cluster left with a single merged identity is that identity's own (Rule 2).
+    for (std::size_t d = 0; d < tracks; ++d) {
+      const int a = out.merged_into[d];
+      if (a < 0) continue;
+      const auto members = std::count(out.merged_into.begin(), out.merged_into.end(), a);
+      if (members > 1) continue;
+      identities_[d].merged = false;
+      out.merged_into[d] = -1;
+      if (own[d] < 0) own[d] = a;
     }
     return out;
   }
