@@ -371,17 +371,17 @@ TEST_CASE("a target that disappears is deleted after max_coast_ticks", "[rulebas
   checkDeletedAfterCoasting(h, stays, goes, max_coast);
 }
 
-TEST_CASE("a target that disappears 120 m from another is deleted after max_coast_ticks", "[rulebased][!mayfail]") {
+TEST_CASE("a target that disappears 120 m from another is deleted after max_coast_ticks", "[rulebased]") {
   // Two targets side by side, 120 m apart, at the same velocity. Their clusters are separate (the
   // nearest sensors of the two SR = 40 m footprints are at least 120 - 2 * 40 = 40 m > 1.5 Ds apart),
   // so when `goes` falls silent after tick 30 nothing merged: its track should coast and be deleted
   // after max_coast_ticks = 10, at tick 41, like the lone target above.
-  // [!mayfail] until the engine tells a disappearance from a merge. The engine of commit 3740290
-  // fails it: with one cluster left for two tracks (Case 2), Rule 1 merges the pair because its
-  // eq. 22 gap, 115.9 - 2 * 35.4 = 45.2 m, is within max_merge_gap = 3 Ds = 75 m, although the
-  // remaining cluster did not grow (8 sensors before and after). The silent track's extrapolated
-  // cluster keeps that gap, so it is re-merged every tick and counts merged ticks instead of misses:
-  // it lives until max_merge_ticks (600 ticks, 60 s).
+  // A regression test: with one cluster left for two tracks (Case 2), Rule 1 alone merges the pair,
+  // its eq. 22 gap 115.9 - 2 * 35.4 = 45.2 m being within max_merge_gap = 3 Ds = 75 m, although the
+  // remaining cluster did not grow (8 sensors before and after); the silent track, re-merged every
+  // tick at that gap, then counted merged ticks instead of misses and lived until max_merge_ticks
+  // (600 ticks). The engine now keeps a track whose prediction is outside the cluster's reach out of
+  // the merge.
   Harness h(fieldScenario());
   const Mover stays{{300, 600}, {2.0, 0.0}, 40};
   Mover goes{{300, 720}, {2.0, 0.0}, 40};
@@ -635,6 +635,34 @@ TEST_CASE("a measurement lag of L ticks starts a track L velocities ahead of its
   const auto p = plain.tracks()[0];
   CHECK(lagged.tracks()[0].x == Approx(p.x + 2.0 * p.vx).margin(1e-9));
   CHECK(lagged.tracks()[0].y == Approx(p.y + 2.0 * p.vy).margin(1e-9));
+}
+
+TEST_CASE("a decision lag lets delayed reports in and reports the tracks at the newest tick", "[rulebased]") {
+  // Every report arrives 2 ticks late. Without a lag the engine processes each tick before its
+  // reports arrive and sees nothing; with decision_lag = 2 it processes tick t - 2 once they are in,
+  // and reports the state of tick t - 2 predicted to t.
+  const Mover mover{{300, 400}, {2.0, 0.0}, 40};
+  Harness eager(fieldScenario());
+  Harness patient(fieldScenario({{"decision_lag", 2}}));
+  for (std::int32_t t = 1; t <= 40; ++t) {
+    std::vector<common::Observation> late = t > 2 ? detections(t - 2, {mover}) : std::vector<common::Observation>{};
+    for (auto& o : late) o.tick_delivered = t;
+    eager.step(t, late);
+    patient.step(t, late);
+  }
+  CHECK(eager.tracks().empty());
+  const auto tracks = patient.tracks();
+  REQUIRE(tracks.size() == 1);
+  CHECK(nearestTrack(tracks, mover.at(40)).distance < 0.25 * kDs);
+  CHECK(patient.rulebased().identities().front().state_tick == 38);
+  REQUIRE(patient.engine().predictions().size() == 1);
+  CHECK(patient.engine().predictions()[0].next_position.x == Approx(tracks[0].x + tracks[0].vx));
+
+  // The lagged tick must still be in the window (window_size 10).
+  common::Scenario s = fieldScenario();
+  s.tracker.params["decision_lag"] = {10, 7};
+  CHECK_THROWS_WITH(resolveEngineParams(s),
+                    "test.yaml:7: 'tracker.params.decision_lag' 10 must be below 'tracker.window_size' 10");
 }
 
 }  // namespace
