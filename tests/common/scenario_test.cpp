@@ -591,6 +591,12 @@ TEST_CASE("scenarios/an2014_scenario*.yaml are An et al. 2014 Table 1", "[scenar
     requireRoundTrip(s);
   }
   CHECK(loadScenario(WSN_SCENARIO_DIR "/an2014_scenario3.yaml").targets.scripted.size() == 5);
+  for (const char* preset : {"noise1", "noise2"})
+    CHECK(loadScenario(std::string(WSN_SCENARIO_DIR "/an2013_") + preset + ".yaml").sensor_model.environmental_noise.preset ==
+          preset);
+  const Scenario two = loadScenario(WSN_SCENARIO_DIR "/an2014_two_centres.yaml");
+  CHECK(two.supernodes.size() == 2);
+  requireRoundTrip(two);
   const Scenario noise = loadScenario(WSN_SCENARIO_DIR "/an2013_noise3.yaml");
   CHECK(noise.sensor_model.environmental_noise.preset == "noise3");
   REQUIRE(noise.targets.scripted.size() == 1);
