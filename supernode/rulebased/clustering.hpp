@@ -2,6 +2,7 @@
 // §3.2, eq. 5-6 and 10): what turns a tick's raw acoustic detections into target measurements.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -26,6 +27,14 @@ struct Cluster {
   common::Vec2 strongest;          ///< position of the member with the largest ws (2013 §3.2)
   double radius = 0.0;             ///< eq. 21: r = sqrt(N) Ds / 2
   std::int32_t size() const { return static_cast<std::int32_t>(members.size()); }
+  /// The sensors the cluster stands for: its members, but a fused report (level 0, Oh eq. 6)
+  /// already stands for all the sensors that heard its target, so a cluster holding one counts as
+  /// large as `full` (the size rules of births and Noise_find are about raw detections).
+  std::int32_t evidence(std::int32_t full) const {
+    for (const auto& d : members)
+      if (d.level <= 0) return std::max(size(), full);
+    return size();
+  }
 };
 
 /// The weight ws of a detection in eq. (10): its level, or 1 for a report without one (a fused

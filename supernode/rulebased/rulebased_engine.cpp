@@ -384,7 +384,9 @@ void RulebasedEngine::processTick(std::int32_t tick, std::span<const common::Obs
     // Noise_find (Algorithm 4.2.1 c): a lone noisy sensor next to a target survives the spatial test
     // and, as a cluster of its own, would pass for a split; such small clusters are residual noise.
     const auto before = clusters_.size();
-    std::erase_if(clusters_, [&](const Cluster& c) { return c.size() <= params_.noise_cluster_sensors; });
+    std::erase_if(clusters_, [&](const Cluster& c) {
+      return c.evidence(params_.noise_cluster_sensors + 1) <= params_.noise_cluster_sensors;
+    });
     stats_.noise_clusters += static_cast<std::int64_t>(before - clusters_.size());
   }
 
@@ -507,7 +509,7 @@ void RulebasedEngine::updateBirthCandidates(std::int32_t tick, const std::vector
     candidate.cluster = {cluster.centroid, cluster.radius};
     candidate.measurement = measurementOf(cluster);
     ++candidate.sightings;
-    if (candidate.sightings < params_.confirm_ticks || cluster.size() < params_.birth_min_sensors) {
+    if (candidate.sightings < params_.confirm_ticks || cluster.evidence(params_.birth_min_sensors) < params_.birth_min_sensors) {
       next.push_back(candidate);
       continue;
     }

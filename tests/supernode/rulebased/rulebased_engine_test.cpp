@@ -665,5 +665,19 @@ TEST_CASE("a decision lag lets delayed reports in and reports the tracks at the 
                     "test.yaml:7: 'tracker.params.decision_lag' 10 must be below 'tracker.window_size' 10");
 }
 
+TEST_CASE("fused reports (level 0), one per target, start and keep tracks", "[rulebased]") {
+  // Oh's sensors fuse their neighbours' readings (eq. 6): one report per target and tick, level 0.
+  // It stands for all the sensors that heard the target, so birth_min_sensors = 2 does not stop it.
+  Harness h(fieldScenario());
+  for (std::int32_t t = 1; t <= 20; ++t) {
+    const common::Vec2 p{300.0 + 2.0 * t, 500.0};
+    h.step(t, std::vector<common::Observation>{{t, t, sensorId(12, 20), p.x, p.y, 0, 0}});
+  }
+  const auto tracks = h.tracks();
+  REQUIRE(tracks.size() == 1);
+  CHECK(tracks[0].x == Approx(340.0).margin(1.0));
+  CHECK(tracks[0].vx == Approx(2.0).margin(0.2));
+}
+
 }  // namespace
 }  // namespace wsn::supernode::rulebased
