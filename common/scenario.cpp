@@ -585,6 +585,19 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
     }
   }
 
+  if (s.sensor_model.kind == SensorModelConfig::Kind::kAcousticDoppler && s.targets.birth_rate > 0.0) {
+    // Born targets move at up to the speed class's bound on each axis (common/truth.cpp); the
+    // retarded emission time is unique only while they are slower than their sound.
+    const double per_axis = s.targets.speed_class == SpeedClass::kSlow ? 1.0
+                            : s.targets.speed_class == SpeedClass::kMedium ? 2.0 : 5.0;
+    const double fastest = per_axis * std::sqrt(2.0) / s.sensor_model.acoustic.tick_s;
+    if (!(fastest < s.sensor_model.acoustic.sound_speed))
+      r.fail(Reader::lineOf(*top.find("targets")), "'targets.speed_class' lets born targets move at up to " +
+                                                      compactNumber(fastest) + " per second, not slower than the sound speed " +
+                                                      compactNumber(s.sensor_model.acoustic.sound_speed) +
+                                                      " of 'sensor_model.acoustic'");
+  }
+
   // dynamics (Oh eq. 8)
   if (const Entry* e = top.find("dynamics")) {
     const Section sec = r.section(*e, "dynamics", {"delta", "process_noise_sigma"});

@@ -568,6 +568,10 @@ TEST_CASE("acoustic keys are rejected where they do not apply or do not fit", "[
   CHECK_THAT(errorOf("sensor_model:\n  kind: acoustic_doppler\ntargets:\n  scripted:\n"
                      "    - {x: 10, y: 10, vx: 40, vy: 0}\n"),
              Catch::Contains("s.yaml:5: 'targets.scripted[0]' moves at 400 per second, not slower than the sound speed 343"));
+  // Born fast targets reach 5 sqrt(2) per tick of 0.01 s = 707 per second.
+  CHECK_THAT(errorOf("sensor_model:\n  kind: acoustic_doppler\n  acoustic: {tick_s: 0.01}\n"
+                     "targets: {birth_rate: 0.0001, speed_class: fast}\n"),
+             Catch::Contains("s.yaml:4: 'targets.speed_class' lets born targets move at up to 707.1"));
   CHECK(errorOf("targets:\n  scripted:\n    - {x: 10, y: 10, vx: 1, vy: 0, sensing_range: 3}\n") ==
         "s.yaml:3: 'targets.scripted[0].sensing_range' applies only with 'sensor_model.kind: acoustic_doppler'");
 }
