@@ -141,9 +141,7 @@ std::vector<AcousticField::Source> AcousticField::sources(std::int32_t tick) con
   std::map<common::TargetId, std::pair<std::int32_t, std::vector<common::Vec2>>> paths;
   for (std::int32_t t = std::max(1, tick - history_ticks_); t <= tick; ++t)
     for (const auto& s : truth_->at(t)) {
-      auto [it, fresh] = paths.try_emplace(s.id, t, std::vector<common::Vec2>{});
-      (void)fresh;
-      it->second.second.push_back({s.x, s.y});
+      paths.try_emplace(s.id, t, std::vector<common::Vec2>{}).first->second.second.push_back({s.x, s.y});
     }
   std::vector<Source> out;
   for (auto& [id, path] : paths) {
@@ -244,10 +242,14 @@ std::vector<common::Report> AcousticField::detect(std::int32_t tick) const {
     if (t1 - t0 < 1e-12) visit(source.path.at(t0), source.path.at(t0));
     for (double t = t0; t < t1 - 1e-12; t += ac.tick_s) visit(source.path.at(t), source.path.at(std::min(t + ac.tick_s, t1)));
   }
-  std::vector<double> noise;
+  // Each owned sensor's noise is drawn once per tick (sorted by id, as owned_ is).
+  std::vector<std::pair<common::SensorId, double>> noisy;
   if (!noise_ticks_.empty())
     for (const common::SensorId id : owned_)
-      if (noisePower(id, tick) > 0.0) candidates.push_back(id);
+      if (const double p = noisePower(id, tick); p > 0.0) {
+        noisy.emplace_back(id, p);
+        candidates.push_back(id);
+      }
   std::sort(candidates.begin(), candidates.end());
   candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
 
@@ -255,7 +257,9 @@ std::vector<common::Report> AcousticField::detect(std::int32_t tick) const {
   for (const common::SensorId id : candidates) {
     if (!std::binary_search(owned_.begin(), owned_.end(), id)) continue;
     const auto [target_power, target] = targetPower(layout_->truePosition(id), tick, all);
-    const double total = target_power + noisePower(id, tick);  // 2013 eq. (8)
+    const auto hit = std::lower_bound(noisy.begin(), noisy.end(), std::pair{id, 0.0});
+    const double noise = hit != noisy.end() && hit->first == id ? hit->second : 0.0;
+    const double total = target_power + noise;  // 2013 eq. (8)
     if (!(total >= ac.threshold)) continue;
     const double level = std::floor(total / ac.threshold);
     const common::Vec2 believed = layout_->believedPosition(id);

@@ -75,6 +75,12 @@ common::TrackId birthTrackId(std::uint32_t supernode, std::int32_t tick, common:
          static_cast<std::uint64_t>(sensor);
 }
 
+std::uint32_t birthSupernode(common::TrackId id) { return static_cast<std::uint32_t>((id >> kSupernodeShift) - 1); }
+
+std::int32_t birthTick(common::TrackId id) {
+  return static_cast<std::int32_t>((id >> kSensorBits) & ((std::uint64_t{1} << kTickBits) - 1));
+}
+
 GnnEngine::GnnEngine(const EngineContext& context)
     : supernode_(context.supernode),
       region_(context.scenario.region),

@@ -33,6 +33,10 @@ struct GnnParams {
 /// Throws std::out_of_range when tick or sensor does not fit in 24 bits.
 common::TrackId birthTrackId(std::uint32_t supernode, std::int32_t tick, common::SensorId sensor);
 
+/// The supernode and tick a birthTrackId names.
+std::uint32_t birthSupernode(common::TrackId id);
+std::int32_t birthTick(common::TrackId id);
+
 /// GNN tracker with window replay. The engine keeps an *anchor* (its tracks after every tick that
 /// already left the window) and, on each step, replays the window's ticks from the anchor, so an
 /// observation that arrives late in its own slot changes the newest estimate just as if it had been

@@ -23,9 +23,6 @@ common::Vec2 velocityOf(const GaussianState& s) { return {s.x(kVx), s.x(kVy)}; }
 
 bool byId(const RulebasedEngine::Identity& a, const RulebasedEngine::Identity& b) { return a.id < b.id; }
 
-// Track ids are gnn::birthTrackId's: (supernode + 1) << 48 | tick << 24 | sensor.
-constexpr int kBirthSupernodeShift = 48;
-std::int32_t birthTick(common::TrackId id) { return static_cast<std::int32_t>((id >> 24) & 0xffffff); }
 
 std::int32_t count(const common::Scenario& scenario, const char* name, std::int32_t fallback) {
   return static_cast<std::int32_t>(std::lround(engineParam(scenario, name, fallback)));
@@ -198,8 +195,8 @@ void RulebasedEngine::adopt(const common::TrackHandoff& handoff) {
   std::erase_if(identities_, [&](const Identity& local) {
     const double gap = common::distance(local.cluster.centroid, adopted.cluster.centroid) -
                        (local.cluster.radius + adopted.cluster.radius);
-    const bool born_here_lately = local.id >> kBirthSupernodeShift == std::uint64_t{supernode_} + 1 &&
-                                  handoff.last_tick - birthTick(local.id) <= params_.handoff_ghost_ticks;
+    const bool born_here_lately = gnn::birthSupernode(local.id) == supernode_ &&
+                                  handoff.last_tick - gnn::birthTick(local.id) <= params_.handoff_ghost_ticks;
     return local.id != adopted.id && born_here_lately && gap <= reach;
   });
   const auto it = std::lower_bound(identities_.begin(), identities_.end(), adopted, byId);

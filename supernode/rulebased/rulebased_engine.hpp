@@ -55,7 +55,7 @@ struct RulebasedParams {
 /// What the engine did so far, for tests and the docs' tables.
 struct RulebasedStats {
   std::int64_t ticks = 0;
-  std::int64_t merges = 0;             ///< pairs Rule 1 merged
+  std::int64_t merges = 0;             ///< pairs Rule 1 merged, summed over the ticks (a pair merged for 10 ticks counts 10)
   std::int64_t births = 0;             ///< tracks started from persistent unclaimed clusters
   std::int64_t deletions = 0;          ///< tracks dropped after coasting too long
   std::int64_t jump_rejections = 0;    ///< measurements the centroid-jump gate (2013 eq. 15) refused

@@ -234,11 +234,19 @@ TEST_CASE("the detections do not depend on the tiling and are deterministic", "[
   CHECK(again.detect(30) == whole.detect(30));
 }
 
-TEST_CASE("the acoustic field refuses a scenario whose sensors are not acoustic", "[acoustic]") {
+TEST_CASE("the acoustic field refuses a non-acoustic scenario and more than 8 noise components", "[acoustic]") {
   const auto scenario = common::parseScenario("run: {ticks: 5}\n", "plain.yaml");
   const common::Truth truth(scenario);
   const common::SensorLayout layout(scenario);
   CHECK_THROWS_AS(AcousticField(scenario, layout, makeTiles(layout, 1).front(), truth), std::invalid_argument);
+
+  // Noise streams are keyed by sensor * 8 + component: a ninth component would share them.
+  auto crowded = acousticScenario("    - {x: 10, y: 10, vx: 0, vy: 0}\n");
+  crowded.sensor_model.environmental_noise.components.assign(9, {0.01, 0.1});
+  const common::Truth crowded_truth(crowded);
+  const common::SensorLayout crowded_layout(crowded);
+  CHECK_THROWS_WITH(AcousticField(crowded, crowded_layout, makeTiles(crowded_layout, 1).front(), crowded_truth),
+                    Catch::Contains("9 environmental noise components; at most 8"));
 }
 
 }  // namespace

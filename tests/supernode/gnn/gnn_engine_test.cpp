@@ -42,6 +42,8 @@ TEST_CASE("a track id encodes supernode, birth tick and sensor", "[gnn]") {
   // (0 + 1) << 48 | 3 << 24 | 5
   CHECK(birthTrackId(0, 3, 5) == ((std::uint64_t{1} << 48) | (std::uint64_t{3} << 24) | 5));
   CHECK(birthTrackId(2, 0, 0) == (std::uint64_t{3} << 48));
+  CHECK(birthSupernode(birthTrackId(2, 77, 9)) == 2);
+  CHECK(birthTick(birthTrackId(2, 77, 9)) == 77);
   CHECK_THROWS_AS(birthTrackId(0, 1, 1u << 24), std::out_of_range);
   CHECK_THROWS_AS(birthTrackId(0, 1 << 24, 0), std::out_of_range);
 }
