@@ -44,12 +44,6 @@ TrackEstimate observedAt(TrackId track, std::int32_t tick, std::int32_t seen) {
   return e;
 }
 
-std::set<TrackId> idsOf(const std::vector<TrackEstimate>& tracks) {
-  std::set<TrackId> ids;
-  for (const auto& t : tracks) ids.insert(t.track);
-  return ids;
-}
-
 }  // namespace
 
 TEST_CASE("A target whose track breaks at a boundary keeps one global id", "[aggregator][mcmcda_association]") {
@@ -116,7 +110,7 @@ TEST_CASE("A new supernode track is reported from its first tick and keeps its i
   }
 }
 
-TEST_CASE("Coasted estimates are not elements; a late observation goes into its own slot",
+TEST_CASE("Coasted estimates are not elements, and a late observation goes into its own slot",
           "[aggregator][mcmcda_association]") {
   const TrackId a = id(0, 1);
   McmcdaAssociator associator(twoSupernodes());
@@ -140,7 +134,8 @@ TEST_CASE("Track-level association does not depend on input order", "[aggregator
     for (std::int32_t t = 1; t <= 15; ++t) {
       std::vector<SupernodeTracks> in{{0, {}}, {1, {}}};
       for (std::uint64_t k = 1; k <= 4; ++k) {
-        TrackEstimate e{id(k % 2, k), 10.0 * k + t, 20.0 + 5.0 * k, 1.0, 0.0, {}, t};
+        const auto kk = static_cast<double>(k);
+        TrackEstimate e{id(k % 2, k), 10.0 * kk + t, 20.0 + 5.0 * kk, 1.0, 0.0, {}, t};
         in[k % 2].tracks.push_back(e);
       }
       if (shuffled) {

@@ -131,7 +131,7 @@ TEST_CASE("an unknown key is the loader's message, naming the --set and no line"
   CHECK(errorOf({"run.ticks=0"}) == "override: --set run.ticks=0: 'run.ticks' must be in [1, 1000000], got 0");
 }
 
-TEST_CASE("list items are addressed as name[i] and never added", "[scenario][override]") {
+TEST_CASE("list items are addressed by index and never added", "[scenario][override]") {
   const Scenario s = apply({"supernodes[1].x=60"});
   CHECK(s.supernodes[0].x == 25.0);
   CHECK(s.supernodes[1].x == 60.0);

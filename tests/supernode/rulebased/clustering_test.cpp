@@ -78,7 +78,7 @@ TEST_CASE("single linkage: a staircase of diagonal neighbours is one cluster, a 
   CHECK(ids(broken[1]) == std::vector<common::SensorId>{306, 357, 408, 459});
 }
 
-TEST_CASE("every link distance in [sqrt(2) Ds, 2 Ds) gives the same 8-connected clusters", "[rulebased]") {
+TEST_CASE("every link distance from sqrt(2) Ds up to but excluding 2 Ds gives the same 8-connected clusters", "[rulebased]") {
   // A pattern with side links, diagonal links and gaps of one sensor: an L of (3,3), (4,3), (4,4),
   // a diagonal pair (10,3), (11,4), and (13,4) two columns from (11,4).
   const std::vector<Detection> detections = {at(3, 3), at(4, 3), at(4, 4), at(10, 3), at(11, 4), at(13, 4)};

@@ -136,7 +136,7 @@ TEST_CASE("eq. 11: a tick without the sensor's detection starts its count again"
   }
 }
 
-TEST_CASE("eq. 11: the persistence length is a parameter; one tick keeps everything", "[rulebased]") {
+TEST_CASE("eq. 11: the persistence length is a parameter, and one tick keeps everything", "[rulebased]") {
   // Four ticks: a detection starting at tick 1 passes from tick 4.
   PersistenceFilter four(4);
   const std::vector<Detection> one = {at(10, 10)};

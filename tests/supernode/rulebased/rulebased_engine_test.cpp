@@ -545,7 +545,7 @@ TEST_CASE("with quick_solution, a cluster's measurement is its strongest sensor"
   CHECK(nearestTrack(moving.tracks(), movers[0].at(60)).distance < 0.5 * kDs);
 }
 
-TEST_CASE("a released track's handoff carries its state; adopted, it continues under its id", "[rulebased]") {
+TEST_CASE("a released track's handoff carries its state, and adopted it continues under its id", "[rulebased]") {
   const std::vector<Mover> movers = {{{500, 600}, {2.0, 0.0}, 40}};
   Harness from(fieldScenario());
   from.run(1, 30, movers);
