@@ -16,8 +16,9 @@ case "$mode" in
   *) usage >&2; exit 2 ;;
 esac
 
-packages=(build-essential cmake pkg-config cyclonedds-dev cyclonedds-tools libeigen3-dev
-          libboost-program-options-dev catch2 libyaml-cpp-dev libbenchmark-dev procps python3-matplotlib)
+packages=(build-essential cmake pkg-config git cyclonedds-dev cyclonedds-tools libeigen3-dev
+          libboost-program-options-dev catch2 libyaml-cpp-dev libbenchmark-dev nlohmann-json3-dev libssl-dev
+          procps python3 python3-numpy python3-matplotlib python3-pil)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -32,7 +33,10 @@ fi
 
 build_dir="${WSN_BUILD_DIR:-build}"
 jobs="$(nproc 2>/dev/null || echo 2)"
-cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+# The checked build (build, test) treats warnings as errors; `run` keeps whatever the build dir has.
+config=(-DCMAKE_BUILD_TYPE=RelWithDebInfo)
+[ "$mode" != run ] && config+=(-DWSN_WERROR=ON)
+cmake -S . -B "$build_dir" "${config[@]}" >/dev/null
 cmake --build "$build_dir" -j"$jobs"
 
 case "$mode" in

@@ -7,6 +7,7 @@
 #include "aggregator/run_scorer.hpp"
 #include "common/dds/codec.hpp"
 #include "common/output.hpp"
+#include "common/provenance.hpp"
 #include "common/truth.hpp"
 
 namespace wsn::aggregator {
@@ -18,10 +19,17 @@ struct SupernodeBatch {
   std::uint32_t observations_dropped_stale = 0;
 };
 
-/// "track,x,y,vx,vy" of a CSV row.
+/// The track columns of tracks.csv and tracks_supernode.csv: the id, its readable label, the state
+/// and the upper triangle of its covariance over (x, y, vx, vy), as the supernodes published it.
+constexpr const char* kTrackColumns =
+    "track,label,x,y,vx,vy,p_xx,p_xy,p_xvx,p_xvy,p_yy,p_yvx,p_yvy,p_vxvx,p_vxvy,p_vyvy";
+
 std::string trackFields(const common::TrackEstimate& track) {
-  return std::to_string(track.track) + "," + common::fixed6(track.x) + "," + common::fixed6(track.y) + "," +
-         common::fixed6(track.vx) + "," + common::fixed6(track.vy);
+  std::string row = std::to_string(track.track) + "," + common::trackLabel(track.track);
+  for (const double value : {track.x, track.y, track.vx, track.vy}) row += "," + common::fixed6(value);
+  for (int i = 0; i < 4; ++i)
+    for (int j = i; j < 4; ++j) row += "," + common::fixed6(track.covariance[static_cast<std::size_t>(4 * i + j)]);
+  return row;
 }
 
 }  // namespace
@@ -55,8 +63,8 @@ void runAggregatorRole(const dds::RoleContext& context) {
                      context, std::chrono::seconds(30));
     status.ready();
 
-    common::CsvFile supernode_csv(context.run_dir + "/tracks_supernode.csv", "tick,supernode,track,x,y,vx,vy");
-    common::CsvFile global_csv(context.run_dir + "/tracks.csv", "tick,track,x,y,vx,vy");
+    common::CsvFile supernode_csv(context.run_dir + "/tracks_supernode.csv", std::string("tick,supernode,") + kTrackColumns);
+    common::CsvFile global_csv(context.run_dir + "/tracks.csv", std::string("tick,") + kTrackColumns);
     common::CsvFile per_tick_csv(context.run_dir + "/metrics_per_tick.csv", kPerTickCsvHeader);
     // Each supernode reports its running total of stale drops; the run's total is the sum of
     // the last value of each.
@@ -114,7 +122,8 @@ void runAggregatorRole(const dds::RoleContext& context) {
 
     // Everything but the "timing" line is a pure function of (scenario, seed).
     const RunInfo info{scenario.name, scenario.run.seed, ticks, scenario.tracker.engine, truth.targetCount(),
-                       dropped_stale_total, scenario.aggregator.association};
+                       dropped_stale_total, scenario.aggregator.association,
+                       common::readRunProvenance(context.run_dir + "/run.json")};
     common::writeTextFile(context.run_dir + "/metrics.json", metricsJson(info, run_scores, wall_s, ticks_per_s));
     status.done(ticks);
     global_writer.waitForAcknowledgements(std::chrono::seconds(10));

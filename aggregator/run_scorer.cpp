@@ -180,6 +180,7 @@ std::string metricsJson(const RunInfo& info, const RunScores& s, double wall_s, 
   out << "    \"interior\": " << countsJson(b.interior) << "\n";
   out << "  },\n";
 
+  if (!info.provenance_json.empty()) out << "  \"provenance\": " << info.provenance_json << ",\n";
   out << "  \"timing\": {\"wall_s\": " << jsonReal(wall_s) << ", \"ticks_per_s\": " << jsonReal(ticks_per_s) << "}\n";
   out << "}\n";
   return out.str();

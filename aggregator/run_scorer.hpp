@@ -89,10 +89,12 @@ struct RunInfo {
   std::int32_t truth_targets = 0;
   std::uint64_t observations_dropped_stale = 0;
   std::string association = "gated";  ///< the aggregator's track association (aggregator.association)
+  std::string provenance_json;        ///< common::provenanceJson of the run; omitted when empty
 };
 
-/// The whole metrics.json text. The "timing" block is last and on one line: it is the only part
-/// that differs between equal runs, and the determinism test drops exactly that line.
+/// The whole metrics.json text. The "provenance" and "timing" blocks are last and one line each:
+/// they are the only parts that differ between equal runs, and the determinism test drops exactly
+/// those two lines.
 std::string metricsJson(const RunInfo& info, const RunScores& scores, double wall_s, double ticks_per_s);
 
 }  // namespace wsn::aggregator

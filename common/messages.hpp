@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace wsn::common {
@@ -14,6 +15,16 @@ using SensorId = std::uint32_t;
 /// Track identities are global: (supernode + 1) << 48 | per-supernode serial (engines mint them,
 /// e.g. gnn::birthTrackId); ids below 1 << 48 are the aggregator's own.
 using TrackId = std::uint64_t;
+inline constexpr int kTrackOwnerShift = 48;
+
+/// A track id as people read it: "S:N" for serial N of supernode S, "gN" for an id the aggregator
+/// minted. `wsntrack watch` and the track CSVs show ids this way.
+inline std::string trackLabel(TrackId id) {
+  const std::uint64_t owner = id >> kTrackOwnerShift;
+  const std::uint64_t serial = id & ((std::uint64_t{1} << kTrackOwnerShift) - 1);
+  if (owner == 0) return "g" + std::to_string(serial);
+  return std::to_string(owner - 1) + ":" + std::to_string(serial);
+}
 /// Ground-truth target id; kFalseAlarm marks a report that no target caused.
 using TargetId = std::int32_t;
 inline constexpr TargetId kFalseAlarm = -1;

@@ -341,6 +341,7 @@ ClusterResult runCluster(const ClusterOptions& options) {
   description.tick_interval_s = options.tick_interval_s;
   description.in_process = options.in_process;
   description.launcher_pid = ::getpid();
+  description.provenance_json = options.provenance_json;
   try {
     writeRunDescription(options.run_dir, description);
   } catch (const std::exception& error) {

@@ -23,6 +23,7 @@ struct ClusterOptions {
   double stall_timeout_s = 60.0;
   double tick_interval_s = 0.0;  ///< --tick-interval: real-time pacing of the sources (0: none)
   bool show_progress = true;
+  std::string provenance_json;  ///< common::provenanceJson, written into run.json (and so metrics.json)
 };
 
 /// How one process (or role thread) ended.

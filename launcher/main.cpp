@@ -2,7 +2,9 @@
 #include <unistd.h>
 
 #include <boost/program_options.hpp>
+#include <cerrno>
 #include <charconv>
+#include <cstring>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,8 +15,11 @@
 #include <sstream>
 
 #include "aggregator/association.hpp"
+#include "common/provenance.hpp"
 #include "common/scenario.hpp"
+#include "common/version.hpp"
 #include "launcher/cluster.hpp"
+#include "launcher/install_layout.hpp"
 #include "launcher/run_directory.hpp"
 #include "launcher/watch.hpp"
 #include "supernode/engine.hpp"
@@ -33,6 +38,8 @@ constexpr const char* kUsage =
     "  watch RUN_DIR      live view of a running cluster's tracks and metrics (from another terminal)\n"
     "  validate FILE...   check scenario files without running them\n"
     "  engines            list the supernode tracking engines, the aggregator's association methods and their parameters\n"
+    "  replay RUN_DIR     write an animation of a finished run (GIF, MP4 or HTML) with plot_run.py --animate\n"
+    "  version            print the version, git commit and Cyclone DDS version (also --version)\n"
     "  help               show this text\n\n"
     "'wsntrack <command> --help' explains each command's options.\n";
 
@@ -181,7 +188,37 @@ std::string executableDirectory() {
   return std::filesystem::canonical("/proc/self/exe").parent_path().string();
 }
 
-int commandRun(const std::vector<std::string>& args) {
+/// `wsntrack replay RUN_DIR [options]`: the animation is drawn by plot_run.py --animate (matplotlib),
+/// so this only finds the script and hands over; its options and exit status are the script's.
+int commandReplay(const std::vector<std::string>& args) {
+  const std::string python = "/usr/bin/python3";
+  const std::string script = launcher::locateInstall(executableDirectory()).plot_script;
+  const bool help = args.empty() || args.front() == "--help" || args.front() == "-h";
+  if (::access(python.c_str(), X_OK) != 0 || ::access(script.c_str(), R_OK) != 0) {
+    std::cerr << "wsntrack replay: needs " << python << " (Debian's python3-matplotlib) and " << script << "\n";
+    return 2;
+  }
+  std::vector<std::string> exec_args{python, script, "--animate"};
+  if (help) {
+    std::cout << "Usage: wsntrack replay RUN_DIR [plot_run.py --animate options]\n\n"
+                 "Writes an animation of a finished run: the sensor field, the observations delivered at\n"
+                 "each tick, the true targets and the tracks with their ids and covariance ellipses.\n"
+                 "The work is done by plot_run.py --animate, whose options follow:\n\n"
+              << std::flush;
+    exec_args.push_back("--help");
+  } else {
+    exec_args.insert(exec_args.end(), args.begin(), args.end());
+  }
+  std::vector<char*> argv;
+  for (auto& arg : exec_args) argv.push_back(arg.data());
+  argv.push_back(nullptr);
+  ::execv(python.c_str(), argv.data());
+  std::cerr << "wsntrack replay: cannot start " << python << ": " << std::strerror(errno) << "\n";
+  return 1;
+}
+
+int commandRun(const std::vector<std::string>& command_line) {
+  const std::vector<std::string> args(command_line.begin() + 2, command_line.end());
   std::string scenario_path;
   std::string out_dir;
   std::string seed_text;
@@ -304,7 +341,13 @@ int commandRun(const std::vector<std::string>& args) {
     return 2;
   }
   cluster.tick_interval_s = tick_interval_s;
-  cluster.bin_dir = executableDirectory();
+  try {
+    cluster.provenance_json = common::provenanceJson(common::captureProvenance(command_line, scenario_path));
+  } catch (const std::exception& error) {
+    std::cerr << "wsntrack run: " << error.what() << "\n";
+    return 2;
+  }
+  cluster.bin_dir = launcher::locateInstall(executableDirectory()).requireRoleDir();
   cluster.run_dir = out_dir.empty() ? launcher::defaultRunDirectory(scenario) : out_dir;
   try {
     launcher::createRunDirectory(cluster.run_dir, vm.count("overwrite") != 0);
@@ -329,7 +372,7 @@ int commandRun(const std::vector<std::string>& args) {
             << (cluster.in_process ? ", in-process" : "") << "\n";
   // Started before the cluster so that python and matplotlib load while it runs.
   std::optional<launcher::PlotJob> plot_job;
-  if (!vm.count("no-plot")) plot_job.emplace(cluster.bin_dir, cluster.run_dir, plot_format);
+  if (!vm.count("no-plot")) plot_job.emplace(executableDirectory(), cluster.run_dir, plot_format);
   const auto result = launcher::runCluster(cluster);
   if (!result.ok) {
     std::cerr << "wsntrack run: FAILED: " << result.failure << "\n";
@@ -363,9 +406,15 @@ int main(int argc, char** argv) {
     return 2;
   }
   const std::string command = argv[1];
+  const std::vector<std::string> command_line(argv, argv + argc);
   const std::vector<std::string> args(argv + 2, argv + argc);
   try {
-    if (command == "run") return commandRun(args);
+    if (command == "run") return commandRun(command_line);
+    if (command == "replay") return commandReplay(args);
+    if (command == "version" || command == "--version" || command == "-V") {
+      std::cout << version::describe() << "\n";
+      return 0;
+    }
     if (command == "validate") return commandValidate(args);
     if (command == "engines") return commandEngines();
     if (command == "watch") return launcher::commandWatch(args);

@@ -24,6 +24,7 @@
 #include "common/rng.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
+#include "launcher/install_layout.hpp"
 
 extern char** environ;
 
@@ -123,7 +124,7 @@ std::string lastLine(const std::string& path) {
 PlotJob::PlotJob(const std::string& bin_dir, const std::string& run_dir, const std::string& format)
     : log_(run_dir + "/logs/plot.log"), files_(run_dir + "/plots/{tracks,cardinality,ospa}." + format) {
   const std::string python = "/usr/bin/python3";
-  const std::string script = bin_dir + "/plot_run.py";
+  const std::string script = locateInstall(bin_dir).plot_script;
   if (::access(python.c_str(), X_OK) != 0) {
     outcome_.message = python + " not found (plots need Debian's python3-matplotlib)";
     return;
@@ -226,8 +227,9 @@ void writeRunDescription(const std::string& run_dir, const RunDescription& run) 
        << "  \"processes\": " << run.processes << ",\n"
        << "  \"tick_interval_s\": " << common::fixed6(run.tick_interval_s) << ",\n"
        << "  \"in_process\": " << (run.in_process ? "true" : "false") << ",\n"
-       << "  \"launcher_pid\": " << run.launcher_pid << "\n"
-       << "}\n";
+       << "  \"launcher_pid\": " << run.launcher_pid << (run.provenance_json.empty() ? "\n" : ",\n");
+  if (!run.provenance_json.empty()) json << "  \"provenance\": " << run.provenance_json << "\n";
+  json << "}\n";
   // Written whole and renamed into place: a viewer never reads half a file.
   const std::string path = run_dir + "/run.json";
   common::writeTextFile(path + ".tmp", json.str());

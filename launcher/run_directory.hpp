@@ -77,6 +77,7 @@ struct RunDescription {
   double tick_interval_s = 0;
   bool in_process = false;
   long long launcher_pid = 0;  ///< the run is live while this wsntrack process is
+  std::string provenance_json;  ///< common::provenanceJson of the run; the last line of run.json
 };
 
 /// Writes run_dir/run.json atomically (written aside, then renamed).

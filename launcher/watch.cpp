@@ -73,15 +73,6 @@ std::string fixed(double value, int decimals) {
   return buffer;
 }
 
-/// A track id as supernode:serial (ids are (supernode + 1) << 48 | serial, common/messages.hpp);
-/// ids below 1 << 48 are the aggregator's own, shown as g<id>.
-std::string compactTrackId(std::uint64_t id) {
-  const std::uint64_t owner = id >> 48;
-  const std::uint64_t serial = id & ((std::uint64_t{1} << 48) - 1);
-  if (owner == 0) return "g" + std::to_string(serial);
-  return std::to_string(owner - 1) + ":" + std::to_string(serial);
-}
-
 /// Whether the launcher that wrote run.json still runs: its pid is alive and still a wsntrack
 /// (a pid reused by another program does not count).
 bool launcherAlive(long long pid) {
@@ -427,7 +418,7 @@ class Watcher {
     std::snprintf(buffer, sizeof buffer, "  %-14s %9s %9s %8s %8s %7s", "track", "x", "y", "vx", "vy", "speed");
     rows.emplace_back(buffer);
     for (const auto& t : tracks) {
-      std::snprintf(buffer, sizeof buffer, "  %-14s %9.2f %9.2f %8.3f %8.3f %7.3f", compactTrackId(t.track).c_str(), t.x,
+      std::snprintf(buffer, sizeof buffer, "  %-14s %9.2f %9.2f %8.3f %8.3f %7.3f", common::trackLabel(t.track).c_str(), t.x,
                     t.y, t.vx, t.vy, std::hypot(t.vx, t.vy));
       rows.emplace_back(buffer);
     }

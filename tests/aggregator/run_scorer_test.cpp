@@ -266,20 +266,25 @@ TEST_CASE("metrics_per_tick.csv has the header the plotting script reads", "[run
   CHECK(perTickCsvRow(empty) == "7,0,0,0.000000,0.000000,0.000000,0.000000,0.000000");
 }
 
-TEST_CASE("metrics.json keeps the sweep's keys on top, every block in order and timing last", "[run_scorer][json]") {
+TEST_CASE("metrics.json keeps the sweep's keys on top, every block in order, provenance and timing last",
+          "[run_scorer][json]") {
   RunScorer scorer(defaults(), {{25, 25}, {75, 25}});
   scorer.add(1, {target(1, 47, 25), target(2, 10, 10)}, {track(10, 47, 25), track(11, 48, 25)});
   scorer.add(2, {target(1, 48, 25), target(2, 10, 10)}, {track(10, 48, 25), track(20, 10, 11)});
   const RunScores scores = scorer.finish();
-  const RunInfo info{"a \"quoted\" name", 7, 2, "gnn", 2, 3};
+  const RunInfo info{"a \"quoted\" name", 7, 2, "gnn", 2, 3, "gated", "{\"version\":\"0.1.0\"}"};
   const std::string json = metricsJson(info, scores, 1.5, 2.0);
+  // Without provenance (a role started by hand) the line is left out.
+  const RunInfo bare{"n", 7, 2, "gnn", 2, 3, "gated", ""};
+  CHECK(metricsJson(bare, scores, 1.5, 2.0).find("provenance") == std::string::npos);
+  CHECK(json.find("\n  \"provenance\": {\"version\":\"0.1.0\"},\n  \"timing\": ") != std::string::npos);
 
   // Top-level keys in this order; the launcher and tools/sweep.py take eps_k, eps_x, ospa,
   // ospa_mean, track_ids, wall_s, ticks_per_s from their first occurrence.
   const std::vector<std::string> top = {"scenario",     "seed",  "ticks",     "engine",        "association", "truth_targets",
                                         "eps_k",        "eps_x", "ospa",      "observations_dropped_stale",
                                         "metrics",      "gospa", "clear_mot", "track_quality", "boundary",
-                                        "timing"};
+                                        "provenance",   "timing"};
   std::size_t at = 0;
   for (const auto& key : top) {
     const auto found = json.find("\n  \"" + key + "\": ", at);

@@ -18,8 +18,8 @@ run_ok() {
     || { cat "$out.stderr" >&2; for f in "$out"/logs/*.log; do echo "== $f" >&2; tail -5 "$f" >&2; done; fail "run $out $*"; }
 }
 
-# metrics.json without its timing line: everything else is a function of (scenario, seed).
-deterministic_metrics() { grep -v '"timing"' "$1/metrics.json"; }
+# metrics.json without its provenance and timing lines: everything else is a function of (scenario, seed).
+deterministic_metrics() { grep -v -e '"timing"' -e '"provenance"' "$1/metrics.json"; }
 
 same_outputs() {
   local a="$1" b="$2"
@@ -51,6 +51,36 @@ case "$case_name" in
     [ "$(wc -l <"$PWD/mp2/tracks.csv")" -gt 50 ] || fail "suspiciously few track rows"
     grep -q '"eps_k"' "$PWD/mp2/metrics.json" || fail "metrics.json lacks eps_k"
     grep -q '"wall_s"' "$PWD/mp2/metrics.json" || fail "metrics.json lacks wall_s"
+    no_leftovers ;;
+  provenance)
+    # --version names version, commit and Cyclone DDS; run.json and metrics.json carry the same
+    # provenance: that build, the exact command line, a UTC time, the host and the scenario's sha256.
+    version_line=$("$wsntrack" --version) || fail "wsntrack --version exited $?"
+    [[ "$version_line" =~ ^wsntrack\ [0-9]+\.[0-9]+\.[0-9]+\ \(commit\ ([0-9a-f]{12}|unknown)(\+dirty)?,\ Cyclone\ DDS\ [0-9.]+\)$ ]] \
+      || fail "wsntrack --version printed '$version_line'"
+    [ "$("$wsntrack" version)" = "$version_line" ] || fail "'wsntrack version' differs from --version"
+    cp "$scenario" "$PWD/my scenario.yaml"
+    timeout 300 "$wsntrack" run "$PWD/my scenario.yaml" --quiet --no-plot --out "$PWD/p" --ticks 5 --set network.pte=0.1 \
+      >p.stdout 2>p.stderr || { cat p.stderr >&2; fail "run"; }
+    /usr/bin/python3 - "$PWD/p" "$PWD/my scenario.yaml" "$wsntrack" "$version_line" <<'EOF' || fail "provenance (above)"
+import hashlib, json, re, socket, sys
+run_dir, scenario, wsntrack, version_line = sys.argv[1:5]
+run = json.load(open(f"{run_dir}/run.json"))
+metrics = json.load(open(f"{run_dir}/metrics.json"))
+p = run["provenance"]
+assert metrics["provenance"] == p, f"metrics.json provenance {metrics['provenance']} != run.json {p}"
+assert p["command_line"] == [wsntrack, "run", scenario, "--quiet", "--no-plot", "--out", run_dir,
+                             "--ticks", "5", "--set", "network.pte=0.1"], p["command_line"]
+assert p["scenario_file"] == scenario
+assert p["scenario_sha256"] == hashlib.sha256(open(scenario, "rb").read()).hexdigest()
+assert p["host"] == socket.gethostname(), p["host"]
+assert re.fullmatch(r"\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ", p["started_utc"]), p["started_utc"]
+assert version_line.startswith(f"wsntrack {p['version']} (commit {p['commit'][:12]}"), (version_line, p)
+assert version_line.endswith(f"Cyclone DDS {p['cyclone_dds']})"), (version_line, p)
+assert len(p["commit"].removesuffix("+dirty")) in (40, 7), p["commit"]  # a full hash or 'unknown'
+lines = open(f"{run_dir}/metrics.json").read().splitlines()
+assert [l for l in lines if '"provenance"' in l] and lines[-2].lstrip().startswith('"timing"'), lines[-3:]
+EOF
     no_leftovers ;;
   seed_changes_results)
     run_ok "$PWD/a" --seed 1 --ticks 30

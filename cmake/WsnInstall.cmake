@@ -1,0 +1,26 @@
+# What `cmake --install BUILD --prefix P` (and the .deb) puts in place: the commands, the role
+# executables, the python tools, scenarios, IDL, examples and docs. Test and bench binaries stay out.
+include(${PROJECT_SOURCE_DIR}/cmake/WsnInstallDirs.cmake)
+
+# The user-facing commands. examples/watch_tracks is not among them: it is an example to read and
+# build, shipped as source with the IDL; `wsntrack watch` is the installed viewer.
+install(TARGETS wsntrack wsntrack-network-calibrate RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS wsntrack-node wsntrack-network wsntrack-supernode wsntrack-aggregator
+        RUNTIME DESTINATION ${WSN_INSTALL_ROLE_DIR})
+
+install(PROGRAMS tools/plot_run.py tools/sweep.py DESTINATION ${WSN_INSTALL_TOOLS_DIR})
+# The run loader is imported rather than run; OPTIONAL because it is younger than this file and a
+# tree without it must still install.
+install(FILES tools/wsntrack_run.py DESTINATION ${WSN_INSTALL_TOOLS_DIR} OPTIONAL)
+
+install(DIRECTORY scenarios/ DESTINATION ${WSN_INSTALL_SCENARIO_DIR} FILES_MATCHING PATTERN "*.yaml")
+install(DIRECTORY idl/ DESTINATION ${WSN_INSTALL_IDL_DIR} FILES_MATCHING PATTERN "*.idl")
+
+# The docs keep the repository's relative layout, so that the links between them still resolve.
+install(FILES README.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(DIRECTORY docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs FILES_MATCHING PATTERN "*.md")
+install(FILES scenarios/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR}/scenarios)
+# Sources and README only: the examples' CMakeLists.txt builds them inside this project, not from an install.
+install(DIRECTORY examples/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/examples
+        FILES_MATCHING PATTERN "*.md" PATTERN "*.c" PATTERN "*.h" PATTERN "*.cpp" PATTERN "*.hpp" PATTERN "*.py"
+        PATTERN "__pycache__" EXCLUDE)
