@@ -46,7 +46,7 @@ constexpr const char* kUsage =
 /// The help of --set, shared by run and validate.
 constexpr const char* kSetHelp =
     "set a scenario value, KEY=VALUE (repeatable): KEY is a dotted path into the scenario YAML, list "
-    "items as name[i] (network.pte=0.4, tracker.engine=gnn, tracker.params.gate_chi2=12, run.ticks=20, "
+    "items as name[i] (network.pte=0.4, tracker.engine=gnn, tracker.params.max_speed=4, run.ticks=20, "
     "supernodes[0].x=30); VALUE is one YAML scalar; the result is checked like a file";
 
 /// The --set options, in the order given; throws common::OverrideError for one without '='.
@@ -266,7 +266,7 @@ int commandRun(const std::vector<std::string>& command_line) {
                  "--set KEY=VALUE changes one value as an edit of the file would: values the loader\n"
                  "derives (sensor_model.beta) follow it, and the result passes every check of\n"
                  "'wsntrack validate'. The --set options apply in order, before --seed, --nodes and\n"
-                 "--ticks; e.g. --set network.pte=0.4 --set tracker.params.gate_chi2=12. The run\n"
+                 "--ticks; e.g. --set network.pte=0.4 --set tracker.params.max_speed=4. The run\n"
                  "directory's scenario.yaml records the result.\n\n"
               << options << "\n";
     return vm.count("help") ? 0 : 2;

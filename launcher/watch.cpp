@@ -125,9 +125,19 @@ class Watcher {
   RunPresence presence(std::string& why) {
     const std::string dir = options_.run_dir;
     std::error_code error;
+    // A missing or empty directory is where a run is about to start ('wsntrack run --out DIR' in
+    // another terminal may not have made it yet): wait for it rather than race the launcher.
+    if (!fs::exists(dir, error)) {
+      why = dir + ": no such directory (yet)";
+      return RunPresence::kNotRunning;
+    }
     if (!fs::is_directory(dir, error)) {
-      why = dir + ": no such directory";
+      why = dir + ": not a directory";
       return RunPresence::kNotARun;
+    }
+    if (fs::is_empty(dir, error) && !error) {
+      why = dir + " is empty: no run has started there yet";
+      return RunPresence::kNotRunning;
     }
     if (!fs::exists(dir + "/run.json", error)) {
       // A launcher writes cyclonedds.xml, then run.json just before it starts the cluster.
@@ -481,7 +491,8 @@ constexpr const char* kWatchHelp =
     "ticks in between are skipped, the last tick is always drawn.\n\n"
     "RUN_DIR's run.json says how to join (run id, domain, the participant indices kept for\n"
     "viewers: up to 4 viewers at a time). The watch waits up to --timeout seconds for a run to\n"
-    "start there and then for each sign of progress; it never slows the run down or changes it.\n\n"
+    "start there (RUN_DIR may not exist yet) and then for each sign of progress; it never slows\n"
+    "the run down or changes it.\n\n"
     "Exit status: 0 when the run finished (the aggregator reported DONE or the last tick was shown);\n"
     "1 when the run failed, its launcher exited early, no run started or nothing happened within\n"
     "--timeout; 2 for bad options or when RUN_DIR is not a run directory; 130 on Ctrl-C.\n\n";

@@ -31,12 +31,24 @@ Draws the plots of a wsntrack run directory (what 'wsntrack run' does after ever
                       (the terms of eps_K, Oh eq. 9)
   ospa.FORMAT         OSPA at every tick, with its cut-off c
 
-Lengths are in the scenario's units (sensor separations when the grid spacing is 1), times in ticks. Reads scenario.yaml, truth.csv, tracks.csv,
-metrics_per_tick.csv (else metrics.json's metrics.ospa_per_tick) and sensors.csv when present
-(else the sensor grid is computed from scenario.yaml).
+With --animate it writes instead an animation of the run, one frame per tick (what 'wsntrack
+replay RUN_DIR [OPTION]...' does): the sensor field with the supernodes and their tracking groups,
+the reports delivered to the supernodes at the tick (observations.csv; late ones and false alarms
+marked), the true targets with fading trails, the global tracks with their ids (S:N) and 2-sigma
+position ellipses, and beside them the legend, K and K* and OSPA up to the tick. As
+replay.FORMAT in RUN_DIR/plots unless --out names a file or another directory: a GIF (default),
+an MP4 (H.264; needs ffmpeg) or an HTML page holding every frame and a player (no network needed).
 
-Exit status: 0 on success, 2 for a bad command line or a missing or malformed input file
-(reported as FILE:LINE: what was expected), 3 when matplotlib is not available to this python.
+Lengths are in the scenario's units (sensor separations when the grid spacing is 1), times in
+ticks. Reads scenario.yaml, truth.csv, tracks.csv (columns found by name: runs from before the
+label and covariance columns read too), observations.csv (--animate), metrics_per_tick.csv (else
+metrics.json's metrics.ospa_per_tick) and sensors.csv when present (else the sensor grid is
+computed from scenario.yaml).
+
+Exit status: 0 on success; 1 when the video encoder (ffmpeg) fails; 2 for a bad command line, a
+missing or malformed input file (reported as FILE:LINE: what was expected) or an output that cannot
+be written; 3 when a tool is missing: matplotlib (or numpy or Pillow for --animate) for this python,
+or ffmpeg on PATH for an MP4.
 """
 
 
@@ -250,17 +262,54 @@ def _number(value, path, line, column, kind=float):
     return number
 
 
-def read_csv(path, header, types):
-    """Rows of a CSV file with exactly `header`, converted column by column with `types`."""
+# A column type of read_table besides int, float and str: a whole number or an empty field (None).
+OPTIONAL_INT = "optional int"
+
+
+def _convert(value, path, line, column, kind):
+    if kind is str:
+        return value
+    if kind == OPTIONAL_INT:
+        return None if value == "" else _number(value, path, line, column, int)
+    return _number(value, path, line, column, kind)
+
+
+def read_table(path, columns, optional=(), expected=None, check=None, check_header=None):
+    """Rows of a CSV file, its columns found by header name so that a file with more columns (from a
+    newer wsntrack) still reads. `columns`: (name, type) pairs the header must have; `optional`:
+    (name, type, default) triples, read when the header has them, else `default` in every row. A
+    type is int, float, str or OPTIONAL_INT. Returns (rows, present): every row a tuple in the order
+    of `columns` then `optional`, and the set of the optional names the header has. `expected`
+    describes the header in the message about a missing column (default: the names of `columns`);
+    `check(row)`, when given, returns what is wrong with a converted row, or None, and
+    `check_header(present)` what is wrong with the optional columns found."""
     _require(path)
+    if expected is None:
+        expected = "'" + ",".join(name for name, _ in columns) + "'"
     rows = []
     with open(path, newline="", encoding="utf-8", errors="replace") as handle:
         reader = csv.reader(handle)
         try:
-            first = next(reader, None)
-            if first is None or first != header:
-                got = "an empty file" if first is None else "'" + ",".join(first) + "'"
-                raise InputError(f"{path}:1: expected the header '{','.join(header)}', got {got}")
+            header = next(reader, None)
+            if header is None:
+                raise InputError(f"{path}:1: expected the header {expected}, got an empty file")
+            index = {}
+            for i, name in enumerate(header):
+                if name in index:
+                    raise InputError(f"{path}:1: column '{name}' appears twice in the header")
+                index[name] = i
+            missing = [name for name, _ in columns if name not in index]
+            if missing:
+                raise InputError(f"{path}:1: expected the header {expected}, got '{','.join(header)}' "
+                                 f"(no column '{missing[0]}')")
+            present = {name for name, _, _ in optional if name in index}
+            problem = check_header(present) if check_header else None
+            if problem:
+                raise InputError(f"{path}:1: {problem}")
+            # One entry per output field: (index in the row, name, type), or (None, default, None).
+            fields = [(index[name], name, kind) for name, kind in columns]
+            fields += [(index[name], name, kind) if name in present else (None, default, None)
+                       for name, kind, default in optional]
             for row in reader:
                 line = reader.line_num
                 if not row:
@@ -268,10 +317,83 @@ def read_csv(path, header, types):
                 if len(row) != len(header):
                     raise InputError(
                         f"{path}:{line}: expected {len(header)} fields ({','.join(header)}), got {len(row)}")
-                rows.append(tuple(_number(v, path, line, c, t) if t else v for v, c, t in zip(row, header, types)))
+                rows.append(tuple(name if i is None else _convert(row[i], path, line, name, kind)
+                                  for i, name, kind in fields))
+                problem = check(rows[-1]) if check else None
+                if problem:
+                    raise InputError(f"{path}:{line}: {problem}")
         except csv.Error as error:
             raise InputError(f"{path}:{reader.line_num}: malformed CSV ({error})") from None
-    return rows
+    return rows, present
+
+
+def read_csv(path, header, types):
+    """Rows of a CSV file with the columns `header` (found by name), converted with `types` (None:
+    kept as text)."""
+    return read_table(path, [(name, kind or str) for name, kind in zip(header, types)])[0]
+
+
+# The upper triangle of the symmetric 4 x 4 covariance over (x, y, vx, vy), as tracks.csv orders it,
+# and the (row, column) of each in the matrix.
+COVARIANCE_COLUMNS = ("p_xx", "p_xy", "p_xvx", "p_xvy", "p_yy", "p_yvx", "p_yvy", "p_vxvx", "p_vxvy", "p_vyvy")
+COVARIANCE_INDEX = ((0, 0), (0, 1), (0, 2), (0, 3), (1, 1), (1, 2), (1, 3), (2, 2), (2, 3), (3, 3))
+TRACK_ID_SHIFT = 48
+
+
+def track_label(track):
+    """The readable id of a numeric track id, as 'wsntrack watch' shows it and newer tracks.csv
+    files write it: S:N for serial N of supernode S (ids are (S + 1) << 48 | N), gN for an id the
+    aggregator minted (below 1 << 48)."""
+    owner, serial = track >> TRACK_ID_SHIFT, track & ((1 << TRACK_ID_SHIFT) - 1)
+    return f"{owner - 1}:{serial}" if owner > 0 else f"g{track}"
+
+
+def read_tracks(path, supernode=False):
+    """tracks.csv (or tracks_supernode.csv with `supernode`) as (rows, has_label, has_covariance).
+    A row is (tick, [supernode,] track, x, y, vx, vy, label, p_xx, p_xy, ..., p_vyvy), the p_* in
+    COVARIANCE_COLUMNS order. Files of older runs have neither label nor covariance columns: the
+    label is then made from the id (track_label) and the covariance is all zero, which tracks.csv
+    also writes for an unknown covariance."""
+    key = ["tick"] + (["supernode"] if supernode else []) + ["track"]
+    columns = [(name, int) for name in key] + [(name, float) for name in ("x", "y", "vx", "vy")]
+    optional = [("label", str, "")] + [(name, float, 0.0) for name in COVARIANCE_COLUMNS]
+    newer = key + ["label", "x", "y", "vx", "vy"] + list(COVARIANCE_COLUMNS)
+    expected = f"'{','.join(newer)}' (or the older '{','.join(name for name, _ in columns)}')"
+
+    def check_header(present):
+        lacking = [name for name in COVARIANCE_COLUMNS if name not in present]
+        if lacking and len(lacking) < len(COVARIANCE_COLUMNS):
+            return f"expected every covariance column {','.join(COVARIANCE_COLUMNS)} or none, got no '{lacking[0]}'"
+        return None
+
+    rows, present = read_table(path, columns, optional, expected, check_header=check_header)
+    has_covariance = bool(present & set(COVARIANCE_COLUMNS))
+    has_label = "label" in present
+    if not has_label:
+        at = len(key) + 4
+        rows = [row[:at] + (track_label(row[len(key) - 1]),) + row[at + 1:] for row in rows]
+    return rows, has_label, has_covariance
+
+
+OBSERVATION_FATES = ("delivered", "lost", "unreachable", "after_end")
+
+
+def read_observations(path):
+    """observations.csv: rows (tick_generated, tick_delivered, sensor, supernode, hops, delay, x, y,
+    target, fate); tick_delivered and delay are None when the report was not delivered."""
+    columns = [("tick_generated", int), ("tick_delivered", OPTIONAL_INT), ("sensor", int), ("supernode", int),
+               ("hops", int), ("delay", OPTIONAL_INT), ("x", float), ("y", float), ("target", int),
+               ("fate", str)]
+
+    def check(row):
+        if row[9] not in OBSERVATION_FATES:
+            return f"column 'fate' must be one of {', '.join(OBSERVATION_FATES)}, got '{row[9]}'"
+        if (row[1] is None) != (row[9] != "delivered"):
+            return (f"column 'tick_delivered' must be set exactly when the fate is delivered, got "
+                    f"'{'' if row[1] is None else row[1]}' with fate {row[9]}")
+        return None
+
+    return read_table(path, columns, check=check)[0]
 
 
 def read_scenario(run_dir):
@@ -689,6 +811,565 @@ def plot_ospa(mpl, scenario, ticks, ospa, source, out_path):
     fig.savefig(out_path)
 
 
+# ---------------------------------------------------------------------------------------------
+# Animation (--animate): one frame per tick, drawn onto one figure whose static parts are drawn once
+
+
+ANIMATION_FORMATS = ("gif", "mp4", "html")
+ANIMATION_SUFFIXES = {".gif": "gif", ".mp4": "mp4", ".html": "html", ".htm": "html"}
+ANIMATION_NAME = "replay"
+OBSERVATION_COLOUR = "#1a1a1a"
+FALSE_ALARM_COLOUR = "#e0115f"
+SENSOR_COLOUR = "#c2c2c2"
+# 2 sigma: the ellipse of Mahalanobis distance 2 around the position, holding 86 % of a 2-D Gaussian.
+ELLIPSE_SIGMAS = 2.0
+
+
+def ellipse_axes(pxx, pxy, pyy, sigmas=ELLIPSE_SIGMAS):
+    """(width, height, angle in degrees) of the `sigmas` ellipse of a 2 x 2 position covariance,
+    or None when it is zero or not a covariance (not positive semi-definite)."""
+    half_trace = (pxx + pyy) / 2.0
+    spread = math.hypot((pxx - pyy) / 2.0, pxy)
+    major, minor = half_trace + spread, half_trace - spread
+    if not major > 0 or minor < -1e-9 * major:
+        return None
+    angle = math.degrees(0.5 * math.atan2(2.0 * pxy, pxx - pyy))
+    return 2 * sigmas * math.sqrt(major), 2 * sigmas * math.sqrt(max(minor, 0.0)), angle
+
+
+def animation_target(out, run_dir, chosen_format):
+    """(path, format) of the animation: --out names the file when it ends in .gif, .mp4 or .html
+    (.htm), else a directory (default RUN_DIR/plots) which gets replay.FORMAT; the format is
+    --animate-format, else the file's suffix, else gif."""
+    path = Path(out) if out else None
+    suffix_format = None
+    if path is not None and path.suffix.lower() in ANIMATION_SUFFIXES and not path.is_dir():
+        suffix_format = ANIMATION_SUFFIXES[path.suffix.lower()]
+        if chosen_format and chosen_format != suffix_format:
+            raise InputError(f"--out {out}: the suffix says {suffix_format}, --animate-format says {chosen_format}")
+        return path, suffix_format
+    if path is not None and path.suffix and not path.is_dir():
+        raise InputError(f"--out {out}: an animation is written to a .gif, .mp4 or .html file, or into a "
+                         f"directory (which a name ending in '{path.suffix}' is not, unless it exists)")
+    chosen_format = chosen_format or "gif"
+    directory = path if path is not None else run_dir / "plots"
+    return directory / f"{ANIMATION_NAME}.{chosen_format}", chosen_format
+
+
+def parse_size(text):
+    """'WIDTHxHEIGHT' in pixels, rounded down to even numbers (as H.264 needs)."""
+    try:
+        width, height = (int(v) for v in text.lower().split("x"))
+    except ValueError:
+        raise ValueError(f"--size must be WIDTHxHEIGHT in pixels, e.g. 1280x720, got '{text}'") from None
+    if not (320 <= width <= 3840 and 240 <= height <= 2160):
+        raise ValueError(f"--size must be within 320x240 .. 3840x2160, got '{text}'")
+    return width - width % 2, height - height % 2
+
+
+class Progress:
+    """'frame n/N' on stderr: redrawn in place on a terminal, else a line every tenth of the way."""
+
+    def __init__(self, total, quiet):
+        self.total, self.quiet = total, quiet
+        self.tty = sys.stderr.isatty()
+        self.last_line = -1
+
+    def show(self, done, what):
+        if self.quiet:
+            return
+        if self.tty:
+            sys.stderr.write(f"\rplot_run.py: {what} frame {done}/{self.total}")
+            if done == self.total:
+                sys.stderr.write("\n")
+            sys.stderr.flush()
+        elif done * 10 // self.total > self.last_line or done == self.total:
+            self.last_line = done * 10 // self.total
+            print(f"plot_run.py: {what} frame {done}/{self.total}", file=sys.stderr, flush=True)
+
+
+HTML_PAGE = """<!DOCTYPE html>
+<!-- {title}: written by wsntrack's plot_run.py --animate; every frame is embedded, nothing is loaded. -->
+<html lang="en"><head><meta charset="utf-8"><title>{title}</title>
+<style>
+body {{ font-family: sans-serif; margin: 1em; color: #222; }}
+#frame {{ max-width: 100%; height: auto; border: 1px solid #ccc; display: block; }}
+.bar {{ display: flex; align-items: center; gap: 0.5em; margin: 0.5em 0; max-width: {width}px; }}
+.bar button {{ font-size: 1.1em; min-width: 2.4em; }}
+#slider {{ flex: 1; }}
+#label {{ font-variant-numeric: tabular-nums; min-width: 9em; }}
+.hint {{ color: #777; font-size: 0.85em; }}
+</style></head><body>
+<img id="frame" width="{width}" height="{height}" alt="{title}">
+<div class="bar">
+<button id="first" title="first tick (Home)">&#x23EE;</button>
+<button id="back" title="previous tick (&#x2190;)">&#x25C0;</button>
+<button id="play" title="play / pause (space)">&#x25B6;</button>
+<button id="next" title="next tick (&#x2192;)">&#x25B6;&#xFE0E;|</button>
+<button id="last" title="last tick (End)">&#x23ED;</button>
+<input id="slider" type="range" min="0" max="{last_index}" value="0">
+<span id="label"></span>
+<label>speed <select id="speed"><option value="0.25">&#xBC;&#xD7;</option><option value="0.5">&#xBD;&#xD7;</option>
+<option value="1" selected>1&#xD7;</option><option value="2">2&#xD7;</option><option value="4">4&#xD7;</option></select></label>
+<label><input id="loop" type="checkbox" checked> loop</label>
+</div>
+<div class="hint">{fps} frames per second at 1&#xD7;; keys: space, &#x2190; &#x2192;, Home, End</div>
+<script>
+const ticks = {ticks};
+const frames = [
+{frames}
+];
+const img = document.getElementById("frame"), slider = document.getElementById("slider"),
+      label = document.getElementById("label"), play = document.getElementById("play");
+let index = 0, timer = null;
+function show(i) {{
+  index = Math.max(0, Math.min(frames.length - 1, i));
+  img.src = "data:image/png;base64," + frames[index];
+  slider.value = index;
+  label.textContent = "tick " + ticks[index] + " (" + (index + 1) + "/" + frames.length + ")";
+}}
+function stop() {{ clearInterval(timer); timer = null; play.innerHTML = "&#x25B6;"; }}
+function start() {{
+  if (index >= frames.length - 1) show(0);
+  const speed = parseFloat(document.getElementById("speed").value);
+  timer = setInterval(() => {{
+    if (index < frames.length - 1) show(index + 1);
+    else if (document.getElementById("loop").checked) show(0);
+    else stop();
+  }}, 1000 / ({fps} * speed));
+  play.innerHTML = "&#x23F8;";
+}}
+play.onclick = () => timer ? stop() : start();
+document.getElementById("first").onclick = () => {{ stop(); show(0); }};
+document.getElementById("last").onclick = () => {{ stop(); show(frames.length - 1); }};
+document.getElementById("back").onclick = () => {{ stop(); show(index - 1); }};
+document.getElementById("next").onclick = () => {{ stop(); show(index + 1); }};
+document.getElementById("speed").onchange = () => {{ if (timer) {{ stop(); start(); }} }};
+slider.oninput = () => {{ stop(); show(parseInt(slider.value)); }};
+document.addEventListener("keydown", (e) => {{
+  if (e.target.tagName === "SELECT") return;
+  const keys = {{" ": () => play.onclick(), "ArrowLeft": () => {{ stop(); show(index - 1); }},
+                "ArrowRight": () => {{ stop(); show(index + 1); }}, "Home": () => {{ stop(); show(0); }},
+                "End": () => {{ stop(); show(frames.length - 1); }}}};
+  if (keys[e.key]) {{ keys[e.key](); e.preventDefault(); }}
+}});
+show(0);
+</script>
+</body></html>
+"""
+
+
+def _rgb_image(rgba):
+    """A Pillow RGB image of an (h, w, 4) RGBA array, without an intermediate copy of the array."""
+    from PIL import Image
+    height, width = rgba.shape[:2]
+    return Image.frombuffer("RGBA", (width, height), rgba, "raw", "RGBA", 0, 1).convert("RGB")
+
+
+class PaletteSink:
+    """Frames reduced to one 256-colour palette shared by all, made from sample frames spread over
+    the ticks (animate() draws them first). The frames are flat colours and their anti-aliasing
+    shades, so the palette costs nothing visible; sharing it makes the GIF quick (Pillow compares
+    frames without converting them back to RGB) and the HTML's PNGs a third of RGB ones."""
+
+    SAMPLES = 8
+
+    palette = None
+
+    def set_samples(self, samples):
+        from PIL import Image
+        import numpy as np
+        probe = np.concatenate([sample[:, :, :3] for sample in samples], axis=0)
+        # The octree's 224 most used colours and a ramp of 32 greys: alone, the octree merges light
+        # greys (faint curves, sensors) into tinted neighbours, which shows as beige lines.
+        octree = Image.fromarray(probe).quantize(224, method=Image.Quantize.FASTOCTREE, dither=Image.Dither.NONE)
+        greys = [round(255 * k / 31) for k in range(32)]
+        self.palette = Image.new("P", (1, 1))
+        self.palette.putpalette(octree.getpalette()[:224 * 3] + [v for g in greys for v in (g, g, g)])
+
+    def quantize(self, rgba):
+        # No dithering: it would only speckle the flat areas.
+        from PIL import Image
+        image = _rgb_image(rgba)
+        if self.palette is None:
+            return image.quantize(256, method=Image.Quantize.FASTOCTREE, dither=Image.Dither.NONE)
+        return image.quantize(palette=self.palette, dither=Image.Dither.NONE)
+
+
+class HtmlSink(PaletteSink):
+    """A self-contained HTML page: the frames as base64 PNG in the page, and a small player."""
+
+    def __init__(self, path, fps, size, title):
+        self.path, self.fps, self.size, self.title = path, fps, size, title
+        self.frames, self.ticks = [], []
+
+    def add(self, rgba, tick):
+        import base64
+        import io
+        buffer = io.BytesIO()
+        self.quantize(rgba).save(buffer, format="png")
+        self.frames.append(base64.b64encode(buffer.getvalue()).decode("ascii"))
+        self.ticks.append(tick)
+
+    def finish(self):
+        import html
+        page = HTML_PAGE.format(title=html.escape(self.title), width=self.size[0], height=self.size[1],
+                                last_index=len(self.frames) - 1, fps=self.fps, ticks=json.dumps(self.ticks),
+                                frames=",\n".join(f'"{frame}"' for frame in self.frames))
+        self.path.write_text(page, encoding="utf-8")
+
+
+class GifSink(PaletteSink):
+    """An animated GIF through Pillow, every frame with the shared palette. Pillow keeps every
+    frame until the end: about 1 MB a frame at 1280 x 720."""
+
+    def __init__(self, path, fps, hold_s):
+        self.path, self.fps, self.hold_s = path, fps, hold_s
+        self.frames = []
+
+    def add(self, rgba, tick):
+        self.frames.append(self.quantize(rgba))
+
+    def finish(self):
+        # GIF frames carry their own duration, so the held last frame is one frame.
+        durations = [round(1000 / self.fps)] * len(self.frames)
+        durations[-1] += round(1000 * self.hold_s)
+        self.frames[0].save(self.path, format="GIF", save_all=True, append_images=self.frames[1:],
+                            duration=durations, loop=0, optimize=False, disposal=1)
+
+
+class Mp4Sink:
+    """H.264 in MP4 through ffmpeg, fed raw RGB frames on a pipe (yuv420p, which every player takes)."""
+
+    def __init__(self, path, fps, size, hold_s, ffmpeg):
+        import subprocess
+        import tempfile
+        self.hold_frames = round(hold_s * fps)
+        self.last = None
+        self.log = tempfile.TemporaryFile()
+        self.process = subprocess.Popen(
+            [ffmpeg, "-nostdin", "-y", "-loglevel", "error", "-f", "rawvideo", "-pix_fmt", "rgb24",
+             "-s", f"{size[0]}x{size[1]}", "-r", str(fps), "-i", "pipe:0", "-c:v", "libx264", "-preset", "medium",
+             "-crf", "20", "-pix_fmt", "yuv420p", "-movflags", "+faststart", "-f", "mp4", str(path)],
+            stdin=subprocess.PIPE, stdout=self.log, stderr=subprocess.STDOUT)
+
+    def add(self, rgba, tick):
+        self.last = rgba[:, :, :3].tobytes()
+        self._write(self.last)
+
+    def _write(self, data):
+        try:
+            self.process.stdin.write(data)
+        except BrokenPipeError:
+            self.finish()  # ffmpeg has ended: finish() says why
+
+    def finish(self):
+        if not self.process.stdin.closed:
+            try:
+                for _ in range(self.hold_frames if self.last else 0):
+                    self.process.stdin.write(self.last)
+                self.process.stdin.close()
+            except BrokenPipeError:
+                pass
+        code = self.process.wait()
+        if code != 0:
+            self.log.seek(0)
+            lines = self.log.read().decode("utf-8", "replace").strip().splitlines()
+            raise EncoderError(f"ffmpeg exit {code}: {lines[-1] if lines else 'no message'}")
+
+
+class EncoderError(Exception):
+    """The video encoder failed: exit status 1."""
+
+
+def animate(mpl, scenario, sensors, truth, tracks, observations, per_tick, options):
+    """Writes the animation of ticks options.first..options.last to options.path."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.collections import LineCollection, PatchCollection
+    from matplotlib.colors import to_rgba
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Ellipse, Patch, Polygon
+    import numpy as np
+
+    width_px, height_px = options.size
+    # Laid out in inches on a figure 7.2 in high, whatever the pixels: text keeps its proportions.
+    dpi = height_px / 7.2
+    fig = mpl.figure.Figure(figsize=((width_px + 0.25) / dpi, (height_px + 0.25) / dpi), dpi=dpi)
+    fig.patch.set_facecolor("white")
+    canvas = FigureCanvasAgg(fig)
+    fig_w, fig_h = fig.get_size_inches()
+
+    x0, y0, x1, y1 = scenario["region"]
+    margin = 0.015 * max(x1 - x0, y1 - y0)
+    aspect = (y1 - y0 + 2 * margin) / (x1 - x0 + 2 * margin)
+    left, bottom, top, right = 0.62, 0.5, 0.95, 0.3
+    # The side panel (legend, K and OSPA so far) takes what the map leaves, at least side_min
+    # inches; a frame too narrow for both has the map alone.
+    side_min, side_gap = 4.2, 0.75
+    map_h = fig_h - bottom - top
+    map_w = map_h / aspect
+    side = fig_w - left - right >= 8.0
+    room = fig_w - left - right - (side_min + side_gap if side else 0.0)
+    if map_w > room:
+        map_w, map_h = room, room * aspect
+    map_bottom = bottom + (fig_h - bottom - top - map_h) / 2
+    ax = fig.add_axes([left / fig_w, map_bottom / fig_h, map_w / fig_w, map_h / fig_h])
+    ax.set_xlim(x0 - margin, x1 + margin)
+    ax.set_ylim(y0 - margin, y1 + margin)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.tick_params(labelsize=9)
+    ax.set_xlabel(f"x ({length_unit(scenario)})", fontsize=10, labelpad=2)
+    ax.set_ylabel(f"y ({length_unit(scenario)})", fontsize=10, labelpad=2)
+
+    # Static: tracking groups, the region, sensors, boundaries, supernodes.
+    cells = voronoi_cells(scenario["supernodes"], scenario["region"])
+    for j, polygon in enumerate(cells):
+        if polygon:
+            ax.add_patch(Polygon(polygon, closed=True, facecolor=REGION_COLOURS[j % len(REGION_COLOURS)],
+                                 edgecolor="none", zorder=0))
+    ax.add_patch(Polygon([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], closed=True, fill=False, edgecolor="black",
+                         linewidth=0.8, zorder=1))
+    xs, ys, stride = sensors
+    if xs:
+        pixels_per_sensor = map_w * dpi / math.sqrt(len(xs) * (x1 - x0) / (y1 - y0))
+        size = max(0.8, min(3.0, 0.3 * pixels_per_sensor * 72 / dpi))
+        ax.plot(xs, ys, linestyle="none", marker="o", markersize=size, markerfacecolor=SENSOR_COLOUR,
+                markeredgewidth=0, zorder=1)
+    edges = interior_edges(cells, scenario["region"])
+    for p, q in edges:
+        ax.plot([p[0], q[0]], [p[1], q[1]], color="#555555", linestyle=(0, (6, 4)), linewidth=1.1, zorder=2)
+    for j, (sx, sy) in enumerate(scenario["supernodes"]):
+        ax.plot(sx, sy, marker="*", markersize=15, markerfacecolor="#ffd21f", markeredgecolor="black",
+                markeredgewidth=1.0, zorder=3)
+        ax.annotate(f"S{j}", (sx, sy), xytext=(8, -12), textcoords="offset points", fontsize=9, fontweight="bold",
+                    color="#333333", zorder=3)
+
+    fig.text(left / fig_w, 1 - 0.3 / fig_h, f"{scenario['name']} · seed {scenario['seed']} · engine "
+             f"{scenario['engine']} · {len(scenario['supernodes'])} supernodes", fontsize=10, color="#555555",
+             va="baseline")
+    # The numbers follow the widest headline, so that they stay put from frame to frame.
+    widest = f"tick {scenario['ticks']} / {scenario['ticks']}"
+    headline = fig.text(left / fig_w, 1 - 0.72 / fig_h, widest, fontsize=17, fontweight="bold", va="baseline")
+    headline_w = headline.get_window_extent(canvas.get_renderer()).width / dpi
+    numbers = fig.text((left + headline_w + 0.35) / fig_w, 1 - 0.72 / fig_h, "", fontsize=14, va="baseline")
+
+    # Per-tick indexes.
+    ticks = list(range(options.first, options.last + 1))
+    truth_at = {}
+    for row in truth:
+        truth_at.setdefault(row[0], {})[row[1]] = (row[2], row[3])
+    track_at = {}
+    for row in tracks:
+        track_at.setdefault(row[0], {})[row[1]] = row
+    first_seen = {}
+    for row in tracks:
+        first_seen.setdefault(row[1], row[0])
+    colour_of = {ident: TRACK_COLOURS[n % len(TRACK_COLOURS)]
+                 for n, ident in enumerate(sorted(first_seen, key=lambda i: (first_seen[i], i)))}
+    delivered_at = {}
+    for row in observations:
+        if row[1] is not None:
+            delivered_at.setdefault(row[1], []).append(row)
+    per_ticks, k_true, k, ospa = per_tick
+
+    # Side panel: legend, K and K* so far, OSPA so far.
+    if side:
+        side_left = left + map_w + side_gap
+        side_w = fig_w - side_left - right
+        chart_h, chart_gap = 1.55, 0.5
+        legend_bottom = bottom + 2 * chart_h + chart_gap + 0.4
+        legend_ax = fig.add_axes([side_left / fig_w, legend_bottom / fig_h, side_w / fig_w,
+                                  (fig_h - top - legend_bottom) / fig_h])
+        legend_ax.set_axis_off()
+        handles = [
+            Line2D([], [], linestyle="none", marker="o", markersize=11, markerfacecolor="none",
+                   markeredgecolor="#333333", markeredgewidth=1.5, label="true target"),
+            Line2D([], [], color=TRUTH_COLOUR, linewidth=5, alpha=0.5, solid_capstyle="round",
+                   label=f"its last {options.trail} ticks"),
+            Line2D([], [], color=TRACK_COLOURS[0], linewidth=1.8, marker="o", markersize=6,
+                   markeredgecolor="white", markeredgewidth=0.8, label="track S:N (trail, estimate)"),
+            Patch(facecolor=to_rgba(TRACK_COLOURS[0], 0.15), edgecolor=TRACK_COLOURS[0], linewidth=1.2,
+                  label=f"{ELLIPSE_SIGMAS:g}σ position ellipse"),
+            Line2D([], [], linestyle="none", marker="o", markersize=4, color=OBSERVATION_COLOUR,
+                   label="report delivered in its tick"),
+            Line2D([], [], linestyle="none", marker="o", markersize=5.5, markerfacecolor="none",
+                   markeredgecolor=OBSERVATION_COLOUR, markeredgewidth=1.0, label="report delivered late"),
+            Line2D([], [], linestyle="none", marker="x", markersize=5.5, color=FALSE_ALARM_COLOUR,
+                   markeredgewidth=1.4, label="false alarm"),
+            Line2D([], [], linestyle="none", marker="*", markersize=13, markerfacecolor="#ffd21f",
+                   markeredgecolor="black", label="supernode Sj"),
+            Patch(facecolor=REGION_COLOURS[0], edgecolor="#999999", label="its tracking group"),
+            Line2D([], [], color="#555555", linestyle=(0, (6, 4)), linewidth=1.1, label="group boundary"),
+        ]
+        if xs:
+            handles.append(Line2D([], [], linestyle="none", marker="o", markersize=3, markerfacecolor=SENSOR_COLOUR,
+                                  markeredgewidth=0, label="sensor" if stride == 1 else f"sensor (1 in {stride})"))
+        legend_ax.legend(handles=handles, loc="upper left", ncol=2, fontsize=9.5, frameon=False,
+                         handlelength=2.2, columnspacing=1.2, labelspacing=0.75, borderaxespad=0)
+
+        k_ax = fig.add_axes([side_left / fig_w, (bottom + chart_h + chart_gap) / fig_h, side_w / fig_w,
+                             chart_h / fig_h])
+        o_ax = fig.add_axes([side_left / fig_w, bottom / fig_h, side_w / fig_w, chart_h / fig_h], sharex=k_ax)
+        for chart in (k_ax, o_ax):
+            chart.set_xlim(0.5, scenario["ticks"] + 0.5)
+            chart.grid(True, color="#e0e0e0", linewidth=0.6)
+            chart.tick_params(labelsize=8.5)
+        k_ax.tick_params(labelbottom=False)
+        o_ax.set_xlabel("tick", fontsize=9, labelpad=1)
+        _integer_axis(k_ax)
+        k_ax.set_ylim(0, max([1] + k_true + k) * 1.15 + 0.5)
+        k_ax.step(per_ticks, k_true, where="mid", color="black", linewidth=1.0, alpha=0.2)
+        k_ax.step(per_ticks, k, where="mid", color="#0072B2", linewidth=1.0, alpha=0.25)
+        k_true_line, = k_ax.step([], [], where="mid", color="black", linewidth=2.0, label="K*: targets")
+        k_line, = k_ax.step([], [], where="mid", color="#0072B2", linewidth=1.6, linestyle="--", label="K: tracks")
+        k_ax.legend(loc="lower left", bbox_to_anchor=(0, 1.0), ncol=2, fontsize=9, frameon=False, borderaxespad=0.2)
+        valid = [(t, v) for t, v in zip(per_ticks, ospa) if v is not None]
+        c = scenario["ospa_c"]
+        o_ax.set_ylim(0, max([c if math.isfinite(c) else 0.0] + [v for _, v in valid] + [1.0]) * 1.12)
+        if valid:
+            o_ax.plot([t for t, _ in valid], [v for _, v in valid], color="#0072B2", linewidth=1.0, alpha=0.25)
+        if math.isfinite(c):
+            o_ax.axhline(c, color="#777777", linestyle="--", linewidth=0.9)
+        ospa_line, = o_ax.plot([], [], color="#0072B2", linewidth=1.6,
+                               label="OSPA" + (f" (cut-off c = {c:g})" if math.isfinite(c) else ""))
+        o_ax.legend(loc="lower left", bbox_to_anchor=(0, 1.0), fontsize=9, frameon=False, borderaxespad=0.2)
+        cursors = [chart.axvline(ticks[0], color="#D55E00", linewidth=1.2, alpha=0.8) for chart in (k_ax, o_ax)]
+
+    # Dynamic artists, changed in place every frame.
+    truth_trail = LineCollection([], linewidths=5, capstyle="round", zorder=4)
+    ax.add_collection(truth_trail)
+    truth_now, = ax.plot([], [], linestyle="none", marker="o", markersize=11, markerfacecolor="none",
+                         markeredgecolor="#333333", markeredgewidth=1.5, zorder=5)
+    track_trail = LineCollection([], linewidths=1.8, capstyle="round", zorder=6)
+    ax.add_collection(track_trail)
+    ellipses = PatchCollection([], zorder=6, linewidths=1.2, match_original=False)
+    ax.add_collection(ellipses)
+    track_now = ax.scatter([], [], s=36, edgecolors="white", linewidths=0.8, zorder=8)
+    on_time, = ax.plot([], [], linestyle="none", marker="o", markersize=3.5, color=OBSERVATION_COLOUR, zorder=9)
+    late, = ax.plot([], [], linestyle="none", marker="o", markersize=5, markerfacecolor="none",
+                    markeredgecolor=OBSERVATION_COLOUR, markeredgewidth=0.9, zorder=9)
+    false_alarms, = ax.plot([], [], linestyle="none", marker="x", markersize=5, color=FALSE_ALARM_COLOUR,
+                            markeredgewidth=1.3, zorder=9)
+    labels = []
+    per_tick_index = {t: i for i, t in enumerate(per_ticks)}
+    trail = options.trail
+    truth_rgba = to_rgba(TRUTH_COLOUR)
+
+    def fading(rgba, age, strength):
+        """The colour of a trail segment `age` ticks old: fading out over the trail's length."""
+        return rgba[:3] + (strength * (1.0 - age / (trail + 1)),)
+
+    def trail_segments(positions_at, ident, t, rgba, strength, segments, colours):
+        for age in range(trail):
+            a, b = positions_at.get(t - age - 1, {}).get(ident), positions_at.get(t - age, {}).get(ident)
+            if a is None or b is None:
+                break
+            segments.append(((a[0], a[1]), (b[0], b[1])))
+            colours.append(fading(rgba, age, strength))
+
+    track_xy_at = {tick: {ident: (row[2], row[3]) for ident, row in rows.items()} for tick, rows in track_at.items()}
+
+    def draw(t):
+        segments, colours = [], []
+        now = truth_at.get(t, {})
+        for ident in now:
+            trail_segments(truth_at, ident, t, truth_rgba, 0.55, segments, colours)
+        truth_trail.set_segments(segments)
+        truth_trail.set_color(colours)
+        truth_now.set_data([p[0] for p in now.values()], [p[1] for p in now.values()])
+
+        rows = track_at.get(t, {})
+        segments, colours, patches, edge, face = [], [], [], [], []
+        for ident, row in rows.items():
+            rgba = to_rgba(colour_of[ident])
+            trail_segments(track_xy_at, ident, t, rgba, 1.0, segments, colours)
+            axes = ellipse_axes(row[7], row[8], row[11])
+            if axes:
+                patches.append(Ellipse((row[2], row[3]), axes[0], axes[1], angle=axes[2]))
+                edge.append(rgba)
+                face.append(rgba[:3] + (0.15,))
+        track_trail.set_segments(segments)
+        track_trail.set_color(colours)
+        ellipses.set_paths(patches)
+        ellipses.set_edgecolor(edge)
+        ellipses.set_facecolor(face)
+        if rows:
+            track_now.set_offsets([(row[2], row[3]) for row in rows.values()])
+            track_now.set_facecolor([colour_of[ident] for ident in rows])
+        else:
+            track_now.set_offsets(np.empty((0, 2)))
+        while labels:
+            labels.pop().remove()
+        for ident, row in rows.items():
+            labels.append(ax.annotate(row[6], (row[2], row[3]), xytext=(6, 5), textcoords="offset points",
+                                      fontsize=9, fontweight="bold", color=colour_of[ident], zorder=10,
+                                      bbox=dict(boxstyle="round,pad=0.12", facecolor="white", edgecolor="none",
+                                                alpha=0.75)))
+
+        kinds = ([], [], [])
+        for row in delivered_at.get(t, ()):
+            kinds[2 if row[8] < 0 else 1 if row[0] < t else 0].append((row[6], row[7]))
+        for line, points in zip((on_time, late, false_alarms), kinds):
+            line.set_data([p[0] for p in points], [p[1] for p in points])
+
+        headline.set_text(f"tick {t} / {scenario['ticks']}")
+        i = per_tick_index.get(t)
+        parts = []
+        if i is not None:
+            parts += [f"K* = {k_true[i]}", f"K = {k[i]}"]
+            if ospa[i] is not None:
+                parts.append(f"OSPA = {ospa[i]:.2f}")
+        delivered = delivered_at.get(t, ())
+        details = [f"{len(points)} {what}" for points, what in ((kinds[1], "late"), (kinds[2], "false"))
+                   if points]
+        parts.append(f"reports {len(delivered)}" + (f" ({', '.join(details)})" if details else ""))
+        numbers.set_text("    ".join(parts))
+        if numbers.get_window_extent(canvas.get_renderer()).x1 > (fig_w - 0.1) * dpi:
+            # A narrow frame: the same without spaces and details.
+            numbers.set_text("  ".join(part.replace(" = ", "=").split(" (")[0] for part in parts))
+        if side:
+            upto = per_tick_index.get(t, -1) + 1
+            k_true_line.set_data(per_ticks[:upto], k_true[:upto])
+            k_line.set_data(per_ticks[:upto], k[:upto])
+            shown = [(tt, v) for tt, v in zip(per_ticks[:upto], ospa[:upto]) if v is not None]
+            ospa_line.set_data([tt for tt, _ in shown], [v for _, v in shown])
+            for cursor in cursors:
+                cursor.set_xdata([t, t])
+
+    # Everything drawn so far but the dynamic artists is the background of every frame: draw it
+    # once, then per frame only the artists that change, which is what makes long runs quick.
+    dynamic = [truth_trail, truth_now, track_trail, ellipses, track_now, on_time, late, false_alarms, headline,
+               numbers]
+    if side:
+        dynamic += [k_true_line, k_line, ospa_line] + cursors
+    for artist in dynamic:
+        artist.set_animated(True)
+    canvas.draw()
+    background = canvas.copy_from_bbox(fig.bbox)
+    renderer = canvas.get_renderer()
+
+    def frame(t):
+        draw(t)
+        canvas.restore_region(background)
+        for artist in sorted(dynamic + labels, key=lambda a: a.get_zorder()):
+            artist.draw(renderer)
+        return np.asarray(canvas.buffer_rgba())
+
+    sink = options.make_sink()
+    samples = getattr(sink, "SAMPLES", 0)
+    if samples:
+        picks = sorted({ticks[(len(ticks) - 1) * k // max(1, samples - 1)] for k in range(samples)})
+        sink.set_samples([frame(t).copy() for t in picks])
+    progress = Progress(len(ticks), options.quiet)
+    for n, t in enumerate(ticks, 1):
+        sink.add(frame(t), t)
+        progress.show(n, "drew")
+    if not options.quiet:
+        print(f"plot_run.py: encoding {len(ticks)} frames", file=sys.stderr, flush=True)
+    sink.finish()
+    return len(ticks)
+
+
 def load_matplotlib(dpi, warm_up):
     """(matplotlib, None), or (None, the ImportError) when it cannot be imported."""
     try:
@@ -708,18 +1389,54 @@ def load_matplotlib(dpi, warm_up):
     return matplotlib, None
 
 
+ANIMATION_DEFAULTS = {"fps": 5, "size": "1280x720", "trail": 10, "hold": 1.0}
+
+
 def main(argv):
     parser = argparse.ArgumentParser(prog="plot_run.py", description=DESCRIPTION,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("run_dir", metavar="RUN_DIR", help="a run directory written by 'wsntrack run'")
-    parser.add_argument("--format", choices=("png", "svg"), default="png", help="image format (default png)")
-    parser.add_argument("--out", metavar="DIR", help="where the plots go (default RUN_DIR/plots)")
-    parser.add_argument("--dpi", type=int, default=150, help="resolution of PNG files (default 150)")
+    parser.add_argument("--format", choices=("png", "svg"), help="image format of the plots (default png)")
+    parser.add_argument("--out", metavar="PATH",
+                        help="where the plots go (a directory, default RUN_DIR/plots); with --animate a file "
+                             "ending in .gif, .mp4 or .html, or a directory for replay.FORMAT (default "
+                             "RUN_DIR/plots/replay.FORMAT)")
+    parser.add_argument("--dpi", type=int, help="resolution of PNG files (default 150)")
     parser.add_argument("--wait", action="store_true",
                         help="load matplotlib first, then wait for a line 'go' on stdin before reading RUN_DIR "
                              "(any other line, or the end of stdin: exit 0 without plotting). 'wsntrack run' "
                              "starts the script this way with the cluster, so that loading overlaps the run")
+    group = parser.add_argument_group("animation ('wsntrack replay RUN_DIR [OPTION]...' runs plot_run.py "
+                                      "--animate RUN_DIR [OPTION]...)")
+    group.add_argument("--animate", action="store_true",
+                       help="write an animation of the run instead of the plots: one frame per tick")
+    group.add_argument("--animate-format", choices=ANIMATION_FORMATS,
+                       help="gif (Pillow), mp4 (H.264, needs ffmpeg) or html (one self-contained page with a "
+                            "player); default: the suffix of --out, else gif")
+    group.add_argument("--fps", type=float, help=f"frames (ticks) per second (default {ANIMATION_DEFAULTS['fps']})")
+    group.add_argument("--size", metavar="WxH",
+                       help=f"frame size in pixels, rounded down to even numbers (default {ANIMATION_DEFAULTS['size']})")
+    group.add_argument("--first", type=int, metavar="TICK", help="first tick drawn (default 1)")
+    group.add_argument("--last", type=int, metavar="TICK", help="last tick drawn (default the run's last, T)")
+    group.add_argument("--trail", type=int, metavar="TICKS",
+                       help=f"length of the fading trails of targets and tracks (default {ANIMATION_DEFAULTS['trail']})")
+    group.add_argument("--hold", type=float, metavar="SECONDS",
+                       help=f"how long GIF and MP4 show the last frame before they end or loop "
+                            f"(default {ANIMATION_DEFAULTS['hold']:g})")
+    group.add_argument("--quiet", action="store_true", help="no progress on stderr")
     args = parser.parse_args(argv)
+    animation_options = ("animate_format", "fps", "size", "first", "last", "trail", "hold")
+    if args.animate:
+        for name, instead in (("format", "--animate-format"), ("dpi", "--size"), ("wait", None)):
+            if getattr(args, name):
+                parser.error(f"--{name} draws the still plots, not --animate"
+                             + (f": use {instead}" if instead else ""))
+        return animate_main(parser, args)
+    for name in animation_options + ("quiet",):
+        if getattr(args, name) not in (None, False):
+            parser.error(f"--{name.replace('_', '-')} needs --animate")
+    args.format = args.format or "png"
+    args.dpi = 150 if args.dpi is None else args.dpi
     if not 20 <= args.dpi <= 1200:
         parser.error("--dpi must be in [20, 1200]")
     if args.wait:
@@ -735,8 +1452,7 @@ def main(argv):
         scenario = read_scenario(run_dir)
         truth = read_csv(run_dir / "truth.csv", ["tick", "target", "x", "y", "vx", "vy"],
                          [int, int, float, float, float, float])
-        tracks = read_csv(run_dir / "tracks.csv", ["tick", "track", "x", "y", "vx", "vy"],
-                          [int, int, float, float, float, float])
+        tracks, _, _ = read_tracks(run_dir / "tracks.csv")
         sensors = read_sensors(run_dir, scenario)
         ticks, k_true, k, ospa, source = read_per_tick(run_dir, scenario, truth, tracks)
         summary = read_metrics_summary(run_dir)
@@ -769,6 +1485,104 @@ def main(argv):
             return EXIT_BAD_INPUT
         written.append(str(path))
     print(f"plot_run.py: wrote {', '.join(written)} in {time.monotonic() - started:.2f} s")
+    return 0
+
+
+class AnimationOptions:
+    """What animate() needs besides the run: ticks, trail, frame size, progress and the output."""
+
+    def __init__(self, **fields):
+        self.__dict__.update(fields)
+
+
+def animate_main(parser, args):
+    """plot_run.py --animate: checks, reads, draws and writes; returns the exit status."""
+    started = time.monotonic()
+    for name, value in ANIMATION_DEFAULTS.items():
+        if getattr(args, name) is None:
+            setattr(args, name, value)
+    if not 0.1 <= args.fps <= 60:
+        parser.error(f"--fps must be in [0.1, 60], got {args.fps:g}")
+    if not 0 <= args.trail <= 1000:
+        parser.error(f"--trail must be in [0, 1000], got {args.trail}")
+    if not 0 <= args.hold <= 60:
+        parser.error(f"--hold must be in [0, 60] seconds, got {args.hold:g}")
+    try:
+        size = parse_size(args.size)
+    except ValueError as error:
+        parser.error(str(error))
+    run_dir = Path(args.run_dir)
+    try:
+        path, chosen = animation_target(args.out, run_dir, args.animate_format)
+        if not run_dir.is_dir():
+            raise InputError(f"{run_dir}: not a directory")
+        scenario = read_scenario(run_dir)
+        first = 1 if args.first is None else args.first
+        last = scenario["ticks"] if args.last is None else args.last
+        if not 1 <= first <= last <= scenario["ticks"]:
+            raise InputError(f"--first {first} --last {last}: the ticks drawn must satisfy "
+                             f"1 <= first <= last <= {scenario['ticks']} (the run's ticks)")
+        truth = read_csv(run_dir / "truth.csv", ["tick", "target", "x", "y", "vx", "vy"],
+                         [int, int, float, float, float, float])
+        tracks, _, _ = read_tracks(run_dir / "tracks.csv")
+        observations = read_observations(run_dir / "observations.csv")
+        sensors = read_sensors(run_dir, scenario)
+        ticks, k_true, k, ospa, _ = read_per_tick(run_dir, scenario, truth, tracks)
+    except InputError as error:
+        print(f"plot_run.py: {error}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+
+    matplotlib, import_error = load_matplotlib(100, warm_up=False)
+    if matplotlib is None:
+        print(f"plot_run.py: matplotlib is not available to {sys.executable} ({import_error}); "
+              "on Debian: apt-get install python3-matplotlib", file=sys.stderr)
+        return EXIT_NO_MATPLOTLIB
+    try:
+        import importlib
+        for module in ("numpy", "PIL.Image"):  # matplotlib needs both too, but not at import
+            importlib.import_module(module)
+    except ImportError as error:
+        print(f"plot_run.py: --animate needs numpy and Pillow, which {sys.executable} lacks ({error}); "
+              "on Debian: apt-get install python3-numpy python3-pil", file=sys.stderr)
+        return EXIT_NO_MATPLOTLIB
+    ffmpeg = None
+    if chosen == "mp4":
+        import shutil
+        ffmpeg = shutil.which("ffmpeg")
+        if ffmpeg is None:
+            print("plot_run.py: an MP4 needs ffmpeg, which is not on PATH; on Debian: apt-get install ffmpeg "
+                  "(or write a GIF or an HTML page: --animate-format gif|html)", file=sys.stderr)
+            return EXIT_NO_MATPLOTLIB
+
+    # Written under a temporary name and renamed when complete: a failed or interrupted render
+    # never leaves a truncated animation behind under the real name.
+    partial = path.with_name(f".{path.name}.{os.getpid()}.partial")
+
+    def make_sink():
+        if chosen == "gif":
+            return GifSink(partial, args.fps, args.hold)
+        if chosen == "mp4":
+            return Mp4Sink(partial, args.fps, size, args.hold, ffmpeg)
+        return HtmlSink(partial, args.fps, size, f"{scenario['name']}, seed {scenario['seed']}: ticks {first}-{last}")
+
+    options = AnimationOptions(first=first, last=last, trail=args.trail, size=size, quiet=args.quiet,
+                               make_sink=make_sink)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        frames = animate(matplotlib, scenario, sensors, truth, tracks, observations,
+                         (ticks, k_true, k, ospa), options)
+        os.replace(partial, path)
+    except OSError as error:
+        print(f"plot_run.py: {error.filename or path}: cannot write ({error.strerror})", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except EncoderError as error:
+        print(f"plot_run.py: {path}: {error}", file=sys.stderr)
+        return 1
+    finally:
+        if partial.exists():
+            partial.unlink()
+    print(f"plot_run.py: wrote {path} ({frames} frames, ticks {first}-{last}, {size[0]}x{size[1]}, "
+          f"{args.fps:g} fps) in {time.monotonic() - started:.1f} s")
     return 0
 
 

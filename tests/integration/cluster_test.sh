@@ -82,6 +82,14 @@ lines = open(f"{run_dir}/metrics.json").read().splitlines()
 assert [l for l in lines if '"provenance"' in l] and lines[-2].lstrip().startswith('"timing"'), lines[-3:]
 EOF
     no_leftovers ;;
+  help_examples)
+    # Every KEY=VALUE example in the --help of run and validate is valid on the default scenario.
+    examples=$( { "$wsntrack" run --help; "$wsntrack" validate --help; } | grep -oE '[a-z_]+(\[[0-9]+\])?(\.[a-z_0-9]+(\[[0-9]+\])?)+=[A-Za-z0-9_.]+' | sed 's/\.$//' | sort -u)
+    [ "$(echo "$examples" | wc -l)" -ge 4 ] || fail "found only these --set examples in --help: $examples"
+    for example in $examples; do
+      "$wsntrack" validate "$scenario" --set "$example" >/dev/null 2>validate.err \
+        || { cat validate.err >&2; fail "the --help example --set $example is rejected"; }
+    done ;;
   seed_changes_results)
     run_ok "$PWD/a" --seed 1 --ticks 30
     run_ok "$PWD/b" --seed 2 --ticks 30

@@ -155,10 +155,20 @@ EOF
     no_leftovers ;;
 
   not_a_run)
+    # A missing or empty directory may be where a run is about to start: the watch waits for it
+    # (--timeout), then exits 1 saying why.
+    "$wsntrack" watch "$PWD/does-not-exist" --timeout 1 >out.txt 2>err.txt; rc=$?
+    [ "$rc" -eq 1 ] || fail "watch on a missing directory exited $rc, expected 1 after its timeout"
+    grep -q "no run started in .*does-not-exist within 1 s: .*no such directory" err.txt \
+      || { cat err.txt >&2; fail "unclear message for a missing directory"; }
+    mkdir empty-dir
+    "$wsntrack" watch "$PWD/empty-dir" --timeout 1 >out.txt 2>err.txt; rc=$?
+    [ "$rc" -eq 1 ] || fail "watch on an empty directory exited $rc, expected 1 after its timeout"
+    grep -q "is empty: no run has started there yet" err.txt || { cat err.txt >&2; fail "unclear message for an empty directory"; }
     # Not a run directory: a clear message and exit 2, at once, without touching DDS.
-    "$wsntrack" watch "$PWD/does-not-exist" --timeout 30 >out.txt 2>err.txt; rc=$?
-    [ "$rc" -eq 2 ] || fail "watch on a missing directory exited $rc, expected 2"
-    grep -q "does-not-exist: no such directory" err.txt || { cat err.txt >&2; fail "unclear message for a missing directory"; }
+    : >a-file
+    "$wsntrack" watch "$PWD/a-file" --timeout 30 >out.txt 2>err.txt; rc=$?
+    [ "$rc" -eq 2 ] || fail "watch on a file exited $rc, expected 2"
     mkdir plain-dir; echo hello >plain-dir/notes.txt
     "$wsntrack" watch "$PWD/plain-dir" --timeout 30 >out.txt 2>err.txt; rc=$?
     [ "$rc" -eq 2 ] || fail "watch on a non-run directory exited $rc, expected 2"

@@ -106,6 +106,11 @@ EOF
     "$python" "$plot" run --format svg --out "$PWD/svg2" >/dev/null 2>err.txt || { cat err.txt >&2; fail "per-tick csv"; }
     grep -q "from metrics_per_tick.csv" svg2/ospa.svg || fail "metrics_per_tick.csv was not used"
 
+    # tracks.csv with the label and covariance columns (read by name) draws like the older one.
+    "$python" -B "$src/tests/tools/tiny_run.py" newer || fail "tiny_run.py"
+    "$python" "$plot" newer --out "$PWD/newer-plots" >/dev/null 2>err.txt || { cat err.txt >&2; fail "newer tracks.csv"; }
+    check_pngs newer-plots
+
     # A sensors.csv is drawn whatever the layout says.
     printf 'sensor,x,y\n0,1.5,2.5\n1,17.25,3.75\n' >run/sensors.csv
     "$python" "$plot" run --out "$PWD/withsensors" >/dev/null 2>err.txt || { cat err.txt >&2; fail "with sensors.csv"; }
@@ -138,7 +143,7 @@ EOF
     bad b2; sed -i '3s/.*/2,0,1.0/' b2/truth.csv
     expect_bad b2 "b2/truth.csv:3: expected 6 fields \(tick,target,x,y,vx,vy\), got 3"
     bad b3; sed -i '1s/.*/tick,id,x,y/' b3/tracks.csv
-    expect_bad b3 "b3/tracks.csv:1: expected the header 'tick,track,x,y,vx,vy', got 'tick,id,x,y'"
+    expect_bad b3 "b3/tracks.csv:1: expected the header 'tick,track,label,x,y,.*' \(or the older 'tick,track,x,y,vx,vy'\), got 'tick,id,x,y' \(no column 'track'\)"
     bad b4; rm b4/truth.csv
     expect_bad b4 "b4/truth.csv: missing"
     bad b5; sed -i 's/^  x_max: 20$/  x_max: {oops/' b5/scenario.yaml
