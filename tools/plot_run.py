@@ -568,6 +568,20 @@ def voronoi_cells(supernodes, region):
     return cells
 
 
+
+def draw_groups_and_region(ax, Polygon, scenario, bounds):
+    """Tints each supernode's tracking group (its Voronoi cell) and outlines the region; returns the
+    cells, which the callers also draw the boundaries of."""
+    x0, y0, x1, y1 = bounds
+    cells = voronoi_cells(scenario["supernodes"], scenario["region"])
+    for j, polygon in enumerate(cells):
+        if polygon:
+            ax.add_patch(Polygon(polygon, closed=True, facecolor=REGION_COLOURS[j % len(REGION_COLOURS)],
+                                 edgecolor="none", zorder=0))
+    ax.add_patch(Polygon([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], closed=True, fill=False, edgecolor="black",
+                         linewidth=0.8, zorder=1))
+    return cells
+
 def _clip(polygon, a, b):
     def inside(p):
         return a[0] * p[0] + a[1] * p[1] <= b + 1e-12
@@ -673,13 +687,7 @@ def plot_tracks(mpl, scenario, sensors, truth, tracks, summary, out_path):
     ax.set_ylim(y0 - margin, y1 + margin)
     ax.set_aspect("equal")
 
-    cells = voronoi_cells(scenario["supernodes"], scenario["region"])
-    for j, polygon in enumerate(cells):
-        if polygon:
-            ax.add_patch(Polygon(polygon, closed=True, facecolor=REGION_COLOURS[j % len(REGION_COLOURS)],
-                                 edgecolor="none", zorder=0))
-    ax.add_patch(Polygon([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], closed=True, fill=False, edgecolor="black",
-                         linewidth=0.8, zorder=1))
+    cells = draw_groups_and_region(ax, Polygon, scenario, (x0, y0, x1, y1))
 
     xs, ys, stride = sensors
     if xs:
@@ -1122,13 +1130,7 @@ def animate(mpl, scenario, sensors, truth, tracks, observations, per_tick, optio
     ax.set_ylabel(f"y ({length_unit(scenario)})", fontsize=10, labelpad=2)
 
     # Static: tracking groups, the region, sensors, boundaries, supernodes.
-    cells = voronoi_cells(scenario["supernodes"], scenario["region"])
-    for j, polygon in enumerate(cells):
-        if polygon:
-            ax.add_patch(Polygon(polygon, closed=True, facecolor=REGION_COLOURS[j % len(REGION_COLOURS)],
-                                 edgecolor="none", zorder=0))
-    ax.add_patch(Polygon([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], closed=True, fill=False, edgecolor="black",
-                         linewidth=0.8, zorder=1))
+    cells = draw_groups_and_region(ax, Polygon, scenario, (x0, y0, x1, y1))
     xs, ys, stride = sensors
     if xs:
         pixels_per_sensor = map_w * dpi / math.sqrt(len(xs) * (x1 - x0) / (y1 - y0))

@@ -20,7 +20,9 @@ std::atomic<long> g_allocations{0};
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 // ASan and TSan own operator new and malloc, so the program cannot replace them; their allocator
 // reports every allocation to a hook instead, which counts the same thing.
-#include <sanitizer/allocator_interface.h>
+// Declared here, as in compiler-rt's <sanitizer/allocator_interface.h>, which GCC does not install.
+extern "C" int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*, std::size_t),
+                                                         void (*free_hook)(const volatile void*));
 namespace {
 void countAllocation(const volatile void*, std::size_t) { ++g_allocations; }
 void ignoreFree(const volatile void*) {}
