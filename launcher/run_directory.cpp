@@ -37,11 +37,34 @@ std::uint64_t newRunId() {
   return id == 0 ? 1 : id;
 }
 
+std::vector<int> domainsOutsideEphemeralPorts(int ephemeral_first, int ephemeral_last) {
+  std::vector<int> domains;
+  for (int domain = 1; domain <= dds::kMaxDomainId; ++domain) {
+    const int first = dds::cyclonePorts(domain, 0).first - 10;  // 7400 + 250 d
+    const int last = first + 249;
+    if (last < ephemeral_first || first > ephemeral_last) domains.push_back(domain);
+  }
+  return domains;
+}
+
+std::pair<int, int> ephemeralPortRange() {
+  std::ifstream in("/proc/sys/net/ipv4/ip_local_port_range");
+  int first = 0;
+  int last = 0;
+  if (in >> first >> last && 0 < first && first <= last && last < 65536) return {first, last};
+  return {32768, 60999};
+}
+
 int pickFreeDomain(std::uint64_t run_id, int participants) {
-  const int span = dds::kMaxDomainId;  // domains 1..230
-  const int start = static_cast<int>(run_id % static_cast<std::uint64_t>(span));
-  for (int attempt = 0; attempt < span; ++attempt) {
-    const int domain = 1 + (start + attempt) % span;
+  const auto [ephemeral_first, ephemeral_last] = ephemeralPortRange();
+  const std::vector<int> domains = domainsOutsideEphemeralPorts(ephemeral_first, ephemeral_last);
+  if (domains.empty())
+    throw std::runtime_error("every Cyclone DDS domain's ports overlap the ephemeral port range " +
+                             std::to_string(ephemeral_first) + "-" + std::to_string(ephemeral_last) +
+                             " (/proc/sys/net/ipv4/ip_local_port_range)");
+  const std::size_t start = static_cast<std::size_t>(run_id % domains.size());
+  for (std::size_t attempt = 0; attempt < domains.size(); ++attempt) {
+    const int domain = domains[(start + attempt) % domains.size()];
     bool free = true;
     // Every index up to MaxAutoParticipantIndex, both the discovery and the data port.
     for (int index = 0; index <= participants + dds::kViewerSlots + 1 && free; ++index)

@@ -4,6 +4,8 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "common/scenario.hpp"
 
@@ -18,8 +20,19 @@ struct RunIdentity {
 /// A fresh run id (time, pid and a counter mixed), never 0.
 std::uint64_t newRunId();
 
-/// Picks a domain id whose Cyclone unicast ports for `participants` indices are free on
-/// 127.0.0.1, starting from a run-id-dependent position so that concurrent runs spread out.
+/// The domain ids 1 .. dds::kMaxDomainId whose whole Cyclone port block (7400 + 250 d ..
+/// + 249) lies outside the kernel's ephemeral port range [ephemeral_first, ephemeral_last]:
+/// a port in that range can be taken by any socket the OS numbers itself (another run's, a
+/// browser's) between the launcher's check and the roles' bind.
+std::vector<int> domainsOutsideEphemeralPorts(int ephemeral_first, int ephemeral_last);
+
+/// The kernel's ephemeral port range (/proc/sys/net/ipv4/ip_local_port_range); Linux's default
+/// 32768-60999 when it cannot be read.
+std::pair<int, int> ephemeralPortRange();
+
+/// Picks a domain id outside the ephemeral ports whose Cyclone unicast ports for `participants`
+/// indices are free on 127.0.0.1, starting from a run-id-dependent position so that
+/// concurrent runs spread out.
 int pickFreeDomain(std::uint64_t run_id, int participants);
 
 /// Default run directory: runs/<scenario name>-seed<seed>-<UTC timestamp>-<pid>.
