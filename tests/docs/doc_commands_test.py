@@ -1,31 +1,49 @@
 #!/usr/bin/python3
-"""Executable documentation: extracts every `wsntrack ...`, `build/bin/...` and `tools/...` command from
-the shell code blocks of the docs and runs it, short and into a temporary directory.
+"""Executable documentation: runs every command of the shell code blocks, and every python block,
+of the docs, short and in a temporary copy of the tree, and checks the exit status the text implies.
 
-Usage (BIN_DIR: the built executables; SOURCE_DIR: the repository):
+Usage (BIN_DIR: the built executables; SOURCE_DIR: the repository; --build-dir: the CMake build
+directory, by default BIN_DIR's parent):
 
-  doc_commands_test.py BIN_DIR SOURCE_DIR --list             one line per test: ID LABELS (for CMake)
+  doc_commands_test.py BIN_DIR SOURCE_DIR --list             one line per test: ID LABELS LOCKS (for CMake)
   doc_commands_test.py BIN_DIR SOURCE_DIR --show [DOC...]    the commands, as printed and as run
   doc_commands_test.py BIN_DIR SOURCE_DIR --check-extraction every document yields its commands
   doc_commands_test.py BIN_DIR SOURCE_DIR --run DOC:LINE     runs one test (exit 77: skipped)
   doc_commands_test.py BIN_DIR SOURCE_DIR --all [DOC...]     runs every test of the documents
   doc_commands_test.py BIN_DIR SOURCE_DIR --negative-control proves that a broken command fails
 
-What is extracted. Fenced blocks whose info string is sh, bash, shell or console (in console blocks
-only the lines starting with `$ `). Lines ending in `\\` are joined; a trailing `# comment` is
-dropped. A logical line is a command when its first word (after VAR=value prefixes, or after
-python3) is `wsntrack`, `build/bin/...`, `tools/...` or `./setup.sh`; `./setup.sh` is never run
-(it installs packages and builds). Lines that only assign shell variables are run before the later
-commands of their block; every other line (cmake, ctest, ...) is left alone.
+What is run. A documented command is a tested command: every logical line of the fenced sh, bash
+and shell blocks, and of console blocks the lines starting with `$ `, whatever its first word
+(wsntrack, build/bin/..., tools/..., cmake, cpack, dpkg-deb, python3 -c, false, ...). Lines ending
+in `\\` are joined; a trailing `# comment` is dropped. Lines that only set shell variables or only
+`cd DIR` run before the later commands of their block instead of on their own. A python block
+(python, python3 or py) is one command, run whole by /usr/bin/python3 from the workspace root
+(traceback line numbers are the document's). Never run, but listed as skipped with the reason:
+`./setup.sh` lines (they apt-get and build) and the blocks marked `<!-- doc-test: skip REASON -->`.
+Each command is one ctest test, docs.DOC:LINE (its first line), run with the commands it needs.
 
-How a command is run. In a fresh workspace: a copy of SOURCE_DIR without .git, build* and runs, with
-build/bin a link to BIN_DIR and BIN_DIR first on PATH (so `wsntrack` is the built one), as
-`bash -c` with pipefail. Only these arguments change, and the log shows the command as run:
+How a command is run. In a fresh workspace: a copy of SOURCE_DIR without .git, build* and runs, and
+BIN_DIR first on PATH (so `wsntrack` is the built one), as `bash -c` with pipefail. The workspace's
+`build/` is a directory of links to every entry of the build directory, `build/bin` to BIN_DIR:
+`cmake --install build ...` and `(cd build && cpack ...)` use the real build tree, while what a
+command writes into `build/` itself (cpack's package and _CPack_Packages) stays in the workspace
+and no stale package from the real tree is seen. Only these arguments change, and the log shows
+the command as run (`wsntrack`, `sweep.py` and `plot_run.py` by their basename, so an installed
+copy such as PREFIX/bin/wsntrack is shortened like the repository's):
   wsntrack run       --ticks N (default 20), and --out runs/doc-LINE when it has none;
-  tools/sweep.py     --set run.ticks=N, only the first of --seeds, --out when it has none;
+  sweep.py           only the first of --seeds, --set run.ticks=N unless it sets fewer ticks
+                     already, --out when it has none;
   build/bin/*_bench  --benchmark_repetitions=1 and --benchmark_min_time=0.01.
-A command that names a path an earlier command of the same document wrote with `--out PATH` gets
-that command (and its own such predecessors) run first, in the same workspace.
+An --out outside the workspace becomes runs/doc-abs-NAME, except under /tmp. Paths under /tmp that
+a test's commands name (/tmp/NAME/...) are used as printed and /tmp/NAME is removed before and
+after the test, so a stale one cannot make it pass; tests naming the same /tmp/NAME hold a ctest
+RESOURCE_LOCK of that name (and flock /tmp/.NAME.doc-test-lock, against the suite of another build
+tree run at the same time), and tests that use the build tree beyond build/bin (`build`,
+`build/...`) hold the lock `build_tree` (tests/install's cpack and cmake --install take it too).
+A failing test's workspace is kept with --keep-failed (ctest passes it), for its runs' logs.
+A command (or python block) that names a path an earlier command of the same document wrote with
+`--out PATH` or `--prefix PATH` gets that command (and its own such predecessors) run first, in
+the same workspace.
 
 Exit status. 0 unless the text says otherwise, by a trailing comment on the command line
 (`wsntrack validate bad.yaml   # exit 1`) or by a directive: an HTML comment, invisible when the
@@ -35,6 +53,10 @@ markdown is rendered, right before the block (only blank lines or other directiv
   <!-- doc-test: timeout S -->         per-command limit (default 300 s)
   <!-- doc-test: ticks N -->           run length of the block's runs and sweeps instead of --ticks
                                        (for output that names a later tick)
+  <!-- doc-test: sequence -->          the block's commands are one test (the first one's id), run
+                                       in order in one workspace, up to the first failure (for
+                                       commands that read what an earlier one wrote, other than
+                                       by --out/--prefix: cpack, then dpkg-deb on its package)
   <!-- doc-test: background [wait-for=PATH] -->
         the block's first command (a paced `wsntrack run`, say) runs in the background while the
         block's other commands run -- or, when it is alone in its block, the next shell block's
@@ -43,6 +65,7 @@ markdown is rendered, right before the block (only blank lines or other directiv
 """
 
 import argparse
+import fcntl
 import os
 import re
 import shlex
@@ -55,10 +78,11 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-# Documents that must yield at least this many commands: an extractor that silently finds
-# nothing (a renamed fence, a changed prompt) must fail, not pass. Any other docs/*.md: 0.
+# Documents that must yield at least this many commands (python blocks included): an extractor
+# that silently finds nothing (a renamed fence, a changed prompt) must fail, not pass. Any other
+# docs/*.md: 0.
 EXPECTED_MIN_COMMANDS = {
-    "README.md": 12,
+    "README.md": 24,
     "scenarios/README.md": 2,
     "examples/README.md": 2,
     "docs/AGGREGATION.md": 2,
@@ -66,17 +90,29 @@ EXPECTED_MIN_COMMANDS = {
     "docs/NETWORK.md": 2,
     "docs/RULEBASED.md": 3,
 }
+# ... and at least this many python blocks.
+EXPECTED_MIN_PYTHON_BLOCKS = {"README.md": 1}
 SHELL_LANGUAGES = {"sh", "bash", "shell", "console"}
+PYTHON_LANGUAGES = {"python", "python3", "py"}
+PYTHON = "/usr/bin/python3"  # Debian's, with numpy and matplotlib: what the docs' python needs
+# Installed copies of these are shortened like the repository's (an install prefix's bin/, share/.../tools/).
+WSNTRACK = "wsntrack"
+TOOL_NAMES = {"sweep.py", "plot_run.py"}
 DEFAULT_TICKS = 20
 DEFAULT_TIMEOUT_S = 300.0
 SKIP_EXIT = 77  # ctest SKIP_RETURN_CODE
+BUILD_TREE_LOCK = "build_tree"
 ASSIGNMENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*=")
 # A line that only sets a shell variable (NAME=word, NAME="...", NAME='...' or NAME=$(...)): the
 # block's later commands may use it, so it runs before them.
 ONLY_ASSIGNMENT = re.compile(r"""^(export\s+)?[A-Za-z_][A-Za-z0-9_]*=(\$\(.*\)|"[^"]*"|'[^']*'|[^\s;&|]*)$""")
+# Likewise a line that only changes directory: alone it would test nothing.
+ONLY_CD = re.compile(r"^cd\s+[^\s;&|()<>]+$")
 DIRECTIVE = re.compile(r"^\s*<!--\s*doc-test:\s*(.*?)\s*-->\s*$")
 FENCE = re.compile(r"^(\s*)(`{3,}|~{3,})\s*([^\s`]*)")
 SHELL_SPECIAL = re.compile(r"[$`|;&<>()]")
+# A top-level entry of /tmp that a command names: written as printed, removed before and after.
+TMP_PATH = re.compile(r"(?<![\w./-])/tmp/([A-Za-z0-9_+-][A-Za-z0-9_.+-]*)")
 
 
 class DocError(Exception):
@@ -87,10 +123,10 @@ class DocError(Exception):
 class Command:
     doc: str
     line: int
-    text: str  # as printed: continuation lines joined, trailing comment dropped
-    kind: str  # wsntrack, bin, tool, setup
+    text: str  # as printed: continuation lines joined, trailing comment dropped; a python block whole
+    kind: str  # wsntrack, bin, tool, setup, shell or python
     expected_exit: int = 0
-    prelude: list = field(default_factory=list)  # the block's variable assignments before it
+    prelude: list = field(default_factory=list)  # the block's assignments and cd lines before it
     skip_reason: str = ""
     timeout_s: float = DEFAULT_TIMEOUT_S
     ticks: int = 0  # the block's own run length (doc-test: ticks), 0: the runner's
@@ -98,6 +134,15 @@ class Command:
     @property
     def id(self):
         return f"{self.doc}:{self.line}"
+
+    @property
+    def summary(self):
+        """One line for logs: the command, or what a python block is."""
+        if self.kind != "python":
+            return self.text
+        lines = self.text.splitlines()
+        return (f"python block of {len(lines)} line{'' if len(lines) == 1 else 's'}, run by {PYTHON}: "
+                f"{lines[0].strip()} ...")
 
 
 @dataclass
@@ -110,7 +155,8 @@ class Block:
 
 @dataclass
 class Unit:
-    """What one ctest test runs: one command, or a background command with the ones that follow it."""
+    """What one ctest test runs: one command, a sequence block, or a background command with the
+    commands that run beside it."""
     main: Command
     foreground: list  # commands run in order (for a background unit: while main runs)
     background: bool = False
@@ -157,29 +203,35 @@ def split_words(text):
         return text.split()
 
 
-def classify(text):
-    """The kind of a logical line: wsntrack, bin, tool, setup, assignment or None (not ours)."""
-    if ONLY_ASSIGNMENT.match(text):
-        return "assignment"
-    words = split_words(text)
+def program_words(words):
+    """The words from the program on: VAR=value prefixes dropped, and `python3 SCRIPT` read as SCRIPT."""
     i = 0
     while i < len(words) and ASSIGNMENT.match(words[i]):
         i += 1
-    if i == len(words):
-        return None
-    first = words[i]
-    if first in ("python3", "python", "/usr/bin/python3") and i + 1 < len(words):
-        first = words[i + 1]
-    first = first[2:] if first.startswith("./") else first
-    if first in ("wsntrack", "build/bin/wsntrack"):
+    rest = words[i:]
+    if rest and Path(rest[0]).name in ("python3", "python") and len(rest) > 1 and not rest[1].startswith("-"):
+        rest = rest[1:]
+    return rest
+
+
+def classify(text):
+    """The kind of a logical line: wsntrack, bin, tool, setup, shell, or prelude (assignment, cd)."""
+    if ONLY_ASSIGNMENT.match(text) or ONLY_CD.match(text):
+        return "prelude"
+    words = program_words(split_words(text))
+    if not words:
+        return "shell"
+    first = words[0][2:] if words[0].startswith("./") else words[0]
+    name = Path(first).name
+    if name == WSNTRACK:
         return "wsntrack"
     if first.startswith("build/bin/"):
         return "bin"
-    if first.startswith("tools/"):
+    if first.startswith("tools/") or name in TOOL_NAMES:
         return "tool"
     if first == "setup.sh":
         return "setup"
-    return None
+    return "shell"
 
 
 def parse_directives(lines):
@@ -204,6 +256,10 @@ def parse_directives(lines):
                 result["timeout"] = float(rest)
             except ValueError:
                 raise DocError(f"{number}: 'doc-test: timeout' needs seconds, got '{rest}'") from None
+        elif key == "sequence":
+            if rest:
+                raise DocError(f"{number}: 'doc-test: sequence' takes no argument, got '{rest}'")
+            result["sequence"] = True
         elif key == "background":
             result["background"] = True
             for option in rest.split():
@@ -213,12 +269,14 @@ def parse_directives(lines):
                     raise DocError(f"{number}: unknown option '{option}' of 'doc-test: background'")
         else:
             raise DocError(f"{number}: unknown directive 'doc-test: {text}' "
-                           "(expected skip, exit, ticks, timeout or background)")
+                           "(expected skip, exit, ticks, timeout, sequence or background)")
+    if result.get("sequence") and result.get("background"):
+        raise DocError(f"{lines[0][0]}: 'doc-test: sequence' and 'doc-test: background' exclude each other")
     return result
 
 
 def extract_blocks(doc, text):
-    """Every shell block of a document with its commands, in document order."""
+    """Every shell and python block of a document with its commands, in document order."""
     lines = text.splitlines()
     blocks = []
     pending = []  # (line, directive text) waiting for the next block
@@ -250,16 +308,37 @@ def extract_blocks(doc, text):
             directives = parse_directives(pending)
         except DocError as error:
             raise DocError(f"{doc}:{error}") from None
-        if pending and language not in SHELL_LANGUAGES:
+        runnable = language in SHELL_LANGUAGES or language in PYTHON_LANGUAGES
+        if pending and not runnable:
             raise DocError(f"{doc}:{pending[0][0]}: doc-test directive before a '{language or 'plain'}' "
-                           "block (only sh, bash, shell and console blocks are run)")
+                           "block (only sh, bash, shell, console and python blocks are run)")
+        if language in PYTHON_LANGUAGES and (directives.get("background") or directives.get("sequence")):
+            raise DocError(f"{doc}:{pending[0][0]}: a python block runs whole; 'background' and "
+                           "'sequence' are for shell blocks")
         pending = []
         if language in SHELL_LANGUAGES:
             commands = block_commands(doc, body, language == "console", directives)
-            blocks.append(Block(len(blocks), number, commands, directives))
+        elif language in PYTHON_LANGUAGES:
+            commands = python_commands(doc, body, directives)
+        else:
+            continue
+        if directives.get("sequence") and any(c.kind == "setup" for c in commands):
+            raise DocError(f"{doc}:{number}: a 'doc-test: sequence' block cannot hold ./setup.sh (never run)")
+        blocks.append(Block(len(blocks), number, commands, directives))
     if pending:
         raise DocError(f"{doc}:{pending[0][0]}: a doc-test directive must come right before a code block")
     return blocks
+
+
+def new_command(doc, number, text, kind, expected, prelude, directives):
+    command = Command(doc, number, text, kind, expected, list(prelude),
+                      timeout_s=directives.get("timeout", DEFAULT_TIMEOUT_S), ticks=directives.get("ticks", 0))
+    if "skip" in directives:
+        command.skip_reason = directives["skip"]
+    elif kind == "setup":
+        command.skip_reason = ("./setup.sh installs packages with apt-get and builds the tree; "
+                               "the suite runs inside that build")
+    return command
 
 
 def block_commands(doc, body, console, directives):
@@ -287,24 +366,23 @@ def block_commands(doc, body, console, directives):
         if not code:
             continue
         kind = classify(code)
-        if kind == "assignment":
+        if kind == "prelude":
             prelude.append(code)
-            continue
-        if kind is None:
             continue
         expected = directives.get("exit", 0)
         status = re.search(r"\bexit\s+(\d+)\b", comment)
         if status:
             expected = int(status.group(1))
-        command = Command(doc, number, code, kind, expected, list(prelude),
-                          timeout_s=directives.get("timeout", DEFAULT_TIMEOUT_S), ticks=directives.get("ticks", 0))
-        if "skip" in directives:
-            command.skip_reason = directives["skip"]
-        elif kind == "setup":
-            command.skip_reason = ("./setup.sh installs packages with apt-get and builds the tree; "
-                                   "the suite runs inside that build")
-        commands.append(command)
+        commands.append(new_command(doc, number, code, kind, expected, prelude, directives))
     return commands
+
+
+def python_commands(doc, body, directives):
+    """A python block is one command: its source, first line numbered as in the document."""
+    source = "\n".join(raw for _, raw in body)
+    if not source.strip():
+        return []
+    return [new_command(doc, body[0][0], source + "\n", "python", directives.get("exit", 0), [], directives)]
 
 
 def documents(source, chosen=None):
@@ -318,10 +396,14 @@ def documents(source, chosen=None):
 
 
 def units_of(doc, blocks):
-    """One unit per command, except that a background block takes the commands that follow it."""
+    """One unit per command, except that a background block takes the commands that follow it and
+    a sequence block is one unit."""
     units = []
     taken = set()
     for block in blocks:
+        if block.directives.get("sequence") and block.commands:
+            units.append(Unit(block.commands[0], list(block.commands)))
+            taken.update(c.id for c in block.commands)
         if not block.directives.get("background"):
             continue
         if not block.commands:
@@ -331,6 +413,9 @@ def units_of(doc, blocks):
             following = [b for b in blocks if b.index > block.index and b.commands]
             if not following:
                 raise DocError(f"{doc}:{block.line}: 'doc-test: background' needs commands to run beside it")
+            if following[0].directives.get("sequence"):
+                raise DocError(f"{doc}:{following[0].line}: a 'doc-test: sequence' block cannot run beside "
+                               f"the background command of {doc}:{block.line}")
             rest = following[0].commands
         units.append(Unit(main, rest, True, block.directives.get("wait_for", "")))
         taken.update(c.id for c in [main] + rest)
@@ -380,37 +465,53 @@ def set_option(words, name, value):
     return words
 
 
-def out_of(command):
-    """The directory a command writes with --out, as printed (relative to the repository)."""
-    if command.kind not in ("wsntrack", "tool"):
-        return None
-    value, _ = option_value(split_words(command.text), "--out")
-    return value
+def outs_of(command):
+    """The paths a command writes by --out or --prefix, as printed: what later commands may name."""
+    if command.kind == "python":
+        return []
+    words = split_words(command.text)
+    return [value for value in (option_value(words, name)[0] for name in ("--out", "--prefix")) if value]
+
+
+def set_ticks_of(words):
+    """The run lengths a sweep already fixes with --set run.ticks=N."""
+    values = []
+    for i, word in enumerate(words):
+        value = words[i + 1] if word == "--set" and i + 1 < len(words) else \
+            word[len("--set="):] if word.startswith("--set=") else None
+        if value and value.startswith("run.ticks="):
+            number = value[len("run.ticks="):]
+            values.append(int(number) if number.isdigit() else None)
+    return values
 
 
 def rewrite(command, ticks):
-    """The command as the test runs it: short, and writing only inside the workspace."""
+    """The command as the test runs it: short, and writing only inside the workspace or /tmp."""
+    if command.kind == "python":
+        return command.text
     ticks = command.ticks or ticks
     words = split_words(command.text)
     prefix_len = 0
     while prefix_len < len(words) and ASSIGNMENT.match(words[prefix_len]):
         prefix_len += 1
     prefix, words = words[:prefix_len], words[prefix_len:]
-    program = Path(words[0]).name if words else ""
-    if program in ("python3", "python") and len(words) > 1:
-        program = Path(words[1]).name
+    program = program_words(words)
+    name = Path(program[0]).name if program else ""
     changed = list(words)
-    if command.kind == "wsntrack" and len(words) > 1 and words[1] == "run":
+    if command.kind == "wsntrack" and len(program) > 1 and program[1] == "run":
         value, _ = option_value(words, "--ticks")
         changed = set_option(changed, "--ticks", str(min(int(value), ticks) if value and value.isdigit() else ticks))
         changed = with_local_out(changed, f"runs/doc-{command.line}")
-    elif command.kind == "tool" and program == "sweep.py":
+    elif command.kind == "tool" and name == "sweep.py":
         seeds, _ = option_value(words, "--seeds")
         if seeds:
             changed = set_option(changed, "--seeds", re.split(r"[-,]", seeds)[0])
-        changed = changed + ["--set", f"run.ticks={ticks}"]
+        fixed = set_ticks_of(words)
+        # The last --set wins in sweep.py: a sweep already shorter than N keeps its own length.
+        if not fixed or fixed[-1] is None or fixed[-1] > ticks:
+            changed = changed + ["--set", f"run.ticks={ticks}"]
         changed = with_local_out(changed, f"runs/doc-sweep-{command.line}")
-    elif command.kind == "bin" and program.endswith("_bench"):
+    elif command.kind == "bin" and name.endswith("_bench"):
         changed = [w for w in changed if not w.startswith(("--benchmark_repetitions", "--benchmark_min_time"))]
         changed += ["--benchmark_repetitions=1", "--benchmark_min_time=0.01"]
     if changed == words:
@@ -425,23 +526,29 @@ def with_local_out(words, default):
     value, _ = option_value(words, "--out")
     if value is None:
         return words + ["--out", default]
+    if value.startswith("/tmp/") and TMP_PATH.match(value):
+        return words  # named /tmp paths are the test's own: removed before and after, locked by name
     if os.path.isabs(value) or value.startswith(".."):
-        # Never outside the workspace: an absolute --out keeps its last component only.
+        # Never elsewhere outside the workspace: an absolute --out keeps its last component only.
         return set_option(words, "--out", "runs/doc-abs-" + Path(value).name)
     return words
 
 
+def command_text(command):
+    return "\n".join(command.prelude + [command.text])
+
+
 def dependencies(unit, units):
-    """Units whose --out directory this unit's commands name, nearest first producer each, in order."""
-    own_outs = {out_of(c) for c in unit.commands} - {None}
-    text = "\n".join("\n".join(c.prelude + [c.text]) for c in unit.commands)
+    """Units whose --out/--prefix path this unit's commands name, nearest first producer each, in order."""
+    own_outs = {o for c in unit.commands for o in outs_of(c)}
+    text = "\n".join(command_text(c) for c in unit.commands)
     needed = []
-    for out in {o for u in units for o in (out_of(c) for c in u.commands)} - {None} - own_outs:
+    for out in {o for u in units for c in u.commands for o in outs_of(c)} - own_outs:
         pattern = r"(?<![\w./-])" + re.escape(out.rstrip("/")) + r"(?![\w.-])"
         if not re.search(pattern, text):
             continue
         producers = [u for u in units if u.main.line < unit.main.line and u is not unit
-                     and any(out_of(c) == out for c in u.commands)]
+                     and any(out in outs_of(c) for c in u.commands)]
         if producers:
             needed.append(producers[-1])
     chain = []
@@ -452,17 +559,49 @@ def dependencies(unit, units):
     return chain
 
 
+def test_commands(unit, units):
+    """Every command one test runs: its dependencies' and its own."""
+    return [c for u in dependencies(unit, units) + [unit] for c in u.commands]
+
+
 def labels_of(unit, units):
-    commands = [c for u in dependencies(unit, units) + [unit] for c in u.commands]
     labels = ["docs"]
-    for c in commands:
-        words = split_words(c.text)
+    for c in test_commands(unit, units):
+        words = program_words(split_words(c.text)) if c.kind != "python" else []
         # Every wsntrack run, sweep and live viewer starts or joins a cluster on loopback.
-        if (c.kind == "wsntrack" and any(w in ("run", "watch") for w in words[:3])) or \
+        if (c.kind == "wsntrack" and any(w in ("run", "watch") for w in words[1:3])) or \
                 (c.kind == "tool" and "sweep.py" in c.text) or "watch_tracks" in c.text:
             labels.append("cluster")
             break
     return labels
+
+
+def uses_build_tree(command):
+    """Whether a command reaches into the build tree beyond build/bin (install, cpack, its package)."""
+    if command.kind == "python":
+        return False
+    for line in command.prelude + [command.text]:
+        for word in split_words(line):
+            word = word.strip("()")
+            if word == "build" or (word.startswith("build/") and word != "build/bin"
+                                   and not word.startswith("build/bin/")):
+                return True
+    return False
+
+
+def tmp_paths(commands):
+    """The top-level /tmp entries the commands name: the test owns them while it runs."""
+    names = {m.group(1) for c in commands for m in TMP_PATH.finditer(command_text(c))}
+    return sorted(Path("/tmp") / name for name in names if name not in (".", ".."))
+
+
+def locks_of(unit, units):
+    """The ctest RESOURCE_LOCKs of a test: what it shares with tests that may run beside it."""
+    commands = test_commands(unit, units)
+    locks = [str(path) for path in tmp_paths(commands)]
+    if any(uses_build_tree(c) for c in commands):
+        locks.insert(0, BUILD_TREE_LOCK)
+    return locks
 
 
 # ---------------------------------------------------------------------------------------------
@@ -472,7 +611,7 @@ def labels_of(unit, units):
 class Workspace:
     """A throw-away copy of the repository: runs write here, never into the source tree."""
 
-    def __init__(self, bin_dir, source, keep):
+    def __init__(self, bin_dir, build_dir, source, keep):
         self.path = Path(tempfile.mkdtemp(prefix="wsntrack-doc-"))
         self.keep = keep
         for entry in source.iterdir():
@@ -484,26 +623,67 @@ class Workspace:
                 shutil.copytree(entry, target, symlinks=True)
             else:
                 shutil.copy2(entry, target)
-        (self.path / "build").mkdir()
-        (self.path / "build" / "bin").symlink_to(bin_dir)
+        build = self.path / "build"
+        build.mkdir()
+        # Links to the real tree's entries rather than one link to the tree: what a command creates
+        # in build/ (cpack's package, _CPack_Packages) lands here, beside no stale package of the
+        # real tree, and goes with the workspace. The build tree's own files keep absolute paths,
+        # so cmake --install and cpack through these links act on the real tree.
+        if build_dir and (build_dir / "CMakeCache.txt").is_file():
+            for entry in build_dir.iterdir():
+                if entry.name in ("bin", "Testing", "_CPack_Packages") or entry.name.endswith((".deb", ".ddeb")):
+                    continue
+                (build / entry.name).symlink_to(entry)
+        (build / "bin").symlink_to(bin_dir)
         self.env = dict(os.environ)
         self.env["PATH"] = f"{bin_dir}{os.pathsep}{self.env.get('PATH', '')}"
         # A run writes its own loopback-only Cyclone configuration; an inherited one must not leak in.
         self.env.pop("CYCLONEDDS_URI", None)
 
-    def close(self, ok):
-        if self.keep:
-            print(f"    workspace kept: {self.path}")
+    def close(self, ok, keep_failed=False):
+        if self.keep or (keep_failed and not ok):
+            print(f"    workspace kept{'' if ok else ' for its logs (remove it when done)'}: {self.path}")
             return
         shutil.rmtree(self.path, ignore_errors=True)
         if not ok:
             print("    (--keep keeps the workspace with the run directories and each command's log)")
 
 
+def remove_paths(paths):
+    for path in paths:
+        if path.is_symlink() or path.is_file():
+            path.unlink()
+        elif path.is_dir():
+            shutil.rmtree(path)
+
+
+def lock_paths(paths):
+    """Exclusive locks on the test's /tmp paths, held until the process ends. ctest's RESOURCE_LOCK
+    keeps one ctest run from running two such tests at once; this also keeps apart the suites of two
+    build trees (build/ and build-asan/, say) run side by side, which name the same paths."""
+    held = []
+    for path in paths:
+        lock = open(path.parent / f".{path.name}.doc-test-lock", "a")
+        try:
+            fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            print(f"    waiting for {path}: another doc test uses it")
+            sys.stdout.flush()
+            fcntl.flock(lock, fcntl.LOCK_EX)
+        held.append(lock)
+    return held
+
+
 def start(command, script, workspace, log_path):
     log = open(log_path, "wb")
-    process = subprocess.Popen(["bash", "-c", "set -o pipefail\n" + "\n".join(command.prelude + [script])],
-                               cwd=workspace.path, env=workspace.env, stdout=log, stderr=subprocess.STDOUT,
+    if command.kind == "python":
+        # Blank lines first, so that a traceback's line numbers are the document's.
+        source = workspace.path / f"doc-test-{command.line}.py"
+        source.write_text("\n" * (command.line - 1) + script, encoding="utf-8")
+        argv = [PYTHON, source.name]
+    else:
+        argv = ["bash", "-c", "set -o pipefail\n" + "\n".join(command.prelude + [script])]
+    process = subprocess.Popen(argv, cwd=workspace.path, env=workspace.env, stdout=log, stderr=subprocess.STDOUT,
                                stdin=subprocess.DEVNULL, start_new_session=True)
     log.close()
     return process
@@ -538,7 +718,7 @@ def report(command, script, status, timed_out, elapsed, log_path, role=""):
     expected = f", expected {command.expected_exit}" if not ok else ""
     result = "timed out" if timed_out else f"exit {status}{expected}"
     print(f"[{tag}] {command.id}{what}: {result}, {elapsed:.1f} s")
-    print(f"    as printed: {command.text}")
+    print(f"    as printed: {command.summary}")
     if script != command.text:
         print(f"    as run:     {script}")
     if not ok:
@@ -561,7 +741,13 @@ def run_command(command, workspace, ticks, role=""):
 def run_unit(unit, workspace, ticks, role=""):
     """Runs one unit in the workspace; True when every command exits as the document says."""
     if not unit.background:
-        return run_command(unit.main, workspace, ticks, role)
+        # A sequence stops at its first failure: the commands after it read what it should have made.
+        for i, command in enumerate(unit.foreground):
+            if not run_command(command, workspace, ticks, role):
+                for rest in unit.foreground[i + 1:]:
+                    print(f"[FAIL] {rest.id}: not run, {command.id} before it in its sequence failed")
+                return False
+        return True
     main = unit.main
     script = rewrite(main, ticks)
     log_path = workspace.path / f"doc-test-{main.line}.log"
@@ -585,12 +771,18 @@ def run_unit(unit, workspace, ticks, role=""):
                   role or "background") and ok
 
 
-def run_test(unit, units, bin_dir, source, ticks, keep):
-    """One test: its --out predecessors, then the unit itself, in one fresh workspace."""
+def run_test(unit, units, paths, ticks, keep, keep_failed=False):
+    """One test: its --out/--prefix predecessors, then the unit itself, in one fresh workspace."""
+    bin_dir, build_dir, source = paths
     if unit.main.skip_reason:
-        print(f"[skip] {unit.id}: {unit.main.text}\n    reason: {unit.main.skip_reason}")
+        print(f"[skip] {unit.id}: {unit.main.summary}\n    reason: {unit.main.skip_reason}")
         return None
-    workspace = Workspace(bin_dir, source, keep)
+    owned = tmp_paths(test_commands(unit, units))
+    if owned:
+        print(f"    /tmp paths of this test, removed before and after it: {' '.join(map(str, owned))}")
+    locks = lock_paths(owned)
+    remove_paths(owned)
+    workspace = Workspace(bin_dir, build_dir, source, keep)
     ok = True
     try:
         for setup in dependencies(unit, units):
@@ -605,7 +797,14 @@ def run_test(unit, units, bin_dir, source, ticks, keep):
         if ok:
             ok = run_unit(unit, workspace, ticks)
     finally:
-        workspace.close(ok)
+        workspace.close(ok, keep_failed)
+        if keep:
+            if owned:
+                print(f"    kept too: {' '.join(map(str, owned))}")
+        else:
+            remove_paths(owned)
+        for lock in locks:
+            lock.close()
     return ok
 
 
@@ -624,12 +823,15 @@ def check_extraction(doc_root, docs, ticks, minimum=None):
     for doc, units in extracted.items():
         commands = [c for u in units for c in u.commands]
         skipped = [c for c in commands if c.skip_reason]
+        python = [c for c in commands if c.kind == "python"]
         want = EXPECTED_MIN_COMMANDS.get(doc, 0) if minimum is None else minimum
-        status = "ok  " if len(commands) >= want else "FAIL"
-        if len(commands) < want:
-            failures += 1
-        print(f"[{status}] {doc}: {len(commands)} commands in {len(units)} tests "
-              f"({len(skipped)} skipped), expected at least {want}")
+        want_python = EXPECTED_MIN_PYTHON_BLOCKS.get(doc, 0) if minimum is None else 0
+        good = len(commands) >= want and len(python) >= want_python
+        failures += not good
+        print(f"[{'ok  ' if good else 'FAIL'}] {doc}: {len(commands)} commands in {len(units)} tests "
+              f"({len(skipped)} skipped, {len(python)} python block{'' if len(python) == 1 else 's'}), "
+              f"expected at least {want}"
+              + (f" ({want_python} python)" if want_python else ""))
         for command in commands:
             try:
                 rewrite(command, ticks)
@@ -644,11 +846,11 @@ def all_units(doc_root, docs):
     return [(doc, unit, units) for doc, units in extracted.items() for unit in units]
 
 
-def run_all(bin_dir, source, doc_root, docs, ticks, keep):
+def run_all(paths, doc_root, docs, ticks, keep):
     results = {"passed": [], "failed": [], "skipped": []}
     began = time.monotonic()
     for _, unit, units in all_units(doc_root, docs):
-        ok = run_test(unit, units, bin_dir, source, ticks, keep)
+        ok = run_test(unit, units, paths, ticks, keep)
         results["skipped" if ok is None else "passed" if ok else "failed"].append(unit.id)
     print(f"\n{len(results['passed'])} passed, {len(results['failed'])} failed, "
           f"{len(results['skipped'])} skipped in {time.monotonic() - began:.0f} s")
@@ -657,8 +859,13 @@ def run_all(bin_dir, source, doc_root, docs, ticks, keep):
     return 1 if results["failed"] else 0
 
 
-def negative_control(bin_dir, source, ticks):
+# broken.md names this path; the negative control leaves a stale copy there first.
+STALE_FIXTURE_PATH = Path("/tmp/wsntrack-doc-fixture-stale")
+
+
+def negative_control(paths, ticks):
     """Runs the runner on fixture documents that are broken on purpose; passes only if it says so."""
+    bin_dir, build_dir, source = paths
     here = Path(__file__).resolve()
     fixture_dir = here.parent / "fixtures"
     checks = [
@@ -670,10 +877,23 @@ def negative_control(bin_dir, source, ticks):
           "[ok  ] broken.md:13: exit 2",  # a right '# exit 2'
           "[ok  ] broken.md:21: exit 0",
           "[skip] broken.md:28:",
-          "2 passed, 2 failed, 1 skipped"]),
+          "[FAIL] broken.md:35: exit 1, expected 0",  # false: not a wsntrack command, run all the same
+          "[FAIL] broken.md:36: exit 1, expected 0",  # cmake --install nonexistent-dir
+          "[ok  ] broken.md:37: exit 0",
+          "[skip] broken.md:38:",  # ./setup.sh, never run
+          "[FAIL] broken.md:44: exit 1, expected 0",  # it would pass on a stale /tmp path
+          "[FAIL] broken.md:50: exit 1, expected 0",  # a python block is run too
+          "line 50, in <module>",  # and its traceback's line numbers are the document's
+          "[ok  ] broken.md:54: exit 0",  # from the workspace root
+          "[ok  ] broken.md:60: exit 0",  # a sequence: the second command reads what the first wrote
+          "[ok  ] broken.md:61: exit 0",
+          "5 passed, 6 failed, 2 skipped"]),
         ("the ctest test of the broken command fails on its own",
          ["--run", "broken.md:9", "--source-docs", str(fixture_dir)], 1,
          ["[FAIL] broken.md:9: exit 2, expected 0"]),
+        ("the ctest test of a failing non-wsntrack line fails on its own",
+         ["--run", "broken.md:36", "--source-docs", str(fixture_dir)], 1,
+         ["[FAIL] broken.md:36: exit 1, expected 0"]),
         ("a document without commands fails extraction",
          ["--check-extraction", "--minimum", "1", "--source-docs", str(fixture_dir), "no_commands.md"], 1,
          ["[FAIL] no_commands.md: 0 commands"]),
@@ -683,17 +903,43 @@ def negative_control(bin_dir, source, ticks):
     ]
     failures = 0
     for what, arguments, want_status, want_lines in checks:
-        result = subprocess.run([sys.executable, str(here), str(bin_dir), str(source), "--ticks", str(ticks)]
-                                + arguments, capture_output=True, text=True, timeout=600)
+        if "--all" in arguments:
+            # A stale result of an earlier run must not make broken.md:44 pass: the runner removes it.
+            STALE_FIXTURE_PATH.mkdir(exist_ok=True)
+            (STALE_FIXTURE_PATH / "left-by-an-earlier-run").write_text("stale\n")
+        result = subprocess.run([sys.executable, str(here), str(bin_dir), str(source), "--build-dir", str(build_dir),
+                                 "--ticks", str(ticks)] + arguments, capture_output=True, text=True, timeout=600)
         missing = [line for line in want_lines if line not in result.stdout]
         ok = result.returncode == want_status and not missing
+        if "--all" in arguments and STALE_FIXTURE_PATH.exists():
+            print(f"    {STALE_FIXTURE_PATH} is still there: the runner must remove a test's /tmp paths after it")
+            ok = False
         failures += not ok
         print(f"[{'ok  ' if ok else 'FAIL'}] {what}: exit {result.returncode} (expected {want_status})")
         for line in missing:
             print(f"    missing from the output: {line}")
         if not ok:
             print("    output:\n" + "\n".join("    | " + line for line in (result.stdout + result.stderr).splitlines()))
+    remove_paths([STALE_FIXTURE_PATH])
     return 1 if failures else 0
+
+
+def show(doc_root, docs, ticks):
+    for doc, unit, units in all_units(doc_root, docs):
+        for command in unit.commands:
+            print(f"{command.id} [{'background ' if unit.background and command is unit.main else ''}"
+                  f"exit {command.expected_exit}] "
+                  + (command.text if command.kind != "python" else command.summary))
+            shown = rewrite(command, ticks)
+            if shown != command.text:
+                print(f"    as run: {shown}")
+            if command.skip_reason:
+                print(f"    skipped: {command.skip_reason}")
+        for setup in dependencies(unit, units):
+            print(f"    after: {setup.id}")
+        locks = locks_of(unit, units)
+        if locks:
+            print(f"    locks: {' '.join(locks)}")
 
 
 def main(argv):
@@ -709,13 +955,19 @@ def main(argv):
     mode.add_argument("--all", action="store_true")
     mode.add_argument("--negative-control", action="store_true")
     parser.add_argument("docs", nargs="*", help="documents relative to SOURCE_DIR (default: all)")
+    parser.add_argument("--build-dir", type=Path, default=None,
+                        help="the CMake build directory behind the workspace's build/ (default: BIN_DIR/..)")
     parser.add_argument("--ticks", type=int, default=DEFAULT_TICKS)
     parser.add_argument("--minimum", type=int, default=None, help="commands every document must yield")
     parser.add_argument("--source-docs", type=Path, default=None,
                         help="read the documents from here instead of SOURCE_DIR (the fixtures)")
-    parser.add_argument("--keep", action="store_true", help="keep every workspace")
+    parser.add_argument("--keep", action="store_true", help="keep every workspace (and the /tmp paths)")
+    parser.add_argument("--keep-failed", action="store_true",
+                        help="keep the workspace of a failing test, for the logs of its runs (ctest passes it)")
     args = parser.parse_intermixed_args(argv)
     bin_dir, source = args.bin_dir.resolve(), args.source_dir.resolve()
+    build_dir = (args.build_dir or args.bin_dir.parent).resolve()
+    paths = (bin_dir, build_dir, source)
     doc_root = args.source_docs.resolve() if args.source_docs else source
     # Fixture documents are read from their own directory, but run in a copy of the repository.
     docs = documents(doc_root, args.docs)
@@ -727,22 +979,12 @@ def main(argv):
             for doc in docs:
                 try:
                     for _, unit, units in all_units(doc_root, [doc]):
-                        print(unit.id, ",".join(labels_of(unit, units)))
+                        print(unit.id, ",".join(labels_of(unit, units)), ",".join(locks_of(unit, units)) or "-")
                 except DocError as error:
                     print(f"not listed: {error}", file=sys.stderr)
             return 0
         if args.show:
-            for doc, unit, units in all_units(doc_root, docs):
-                for command in unit.commands:
-                    print(f"{command.id} [{'background ' if unit.background and command is unit.main else ''}"
-                          f"exit {command.expected_exit}] {command.text}")
-                    shown = rewrite(command, args.ticks)
-                    if shown != command.text:
-                        print(f"    as run: {shown}")
-                    if command.skip_reason:
-                        print(f"    skipped: {command.skip_reason}")
-                for setup in dependencies(unit, units):
-                    print(f"    after: {setup.id}")
+            show(doc_root, docs, args.ticks)
             return 0
         if args.check_extraction:
             return check_extraction(doc_root, docs, args.ticks, args.minimum)
@@ -750,15 +992,15 @@ def main(argv):
             doc = args.run.rsplit(":", 1)[0]
             for _, unit, units in all_units(doc_root, [doc]):
                 if unit.id == args.run:
-                    ok = run_test(unit, units, bin_dir, source, args.ticks, args.keep)
+                    ok = run_test(unit, units, paths, args.ticks, args.keep, args.keep_failed)
                     return SKIP_EXIT if ok is None else 0 if ok else 1
             print(f"no command starts at {args.run}; the document changed since CMake listed its tests "
                   "(re-run cmake)")
             return 1
         if args.all:
-            return run_all(bin_dir, source, doc_root, docs, args.ticks, args.keep)
+            return run_all(paths, doc_root, docs, args.ticks, args.keep)
         if args.negative_control:
-            return negative_control(bin_dir, source, args.ticks)
+            return negative_control(paths, args.ticks)
     except DocError as error:
         print(f"FAIL extraction: {error}")
         return 1
