@@ -28,7 +28,7 @@ std::string trackFields(const common::TrackEstimate& track) {
   std::string row = std::to_string(track.track) + "," + common::trackLabel(track.track);
   for (const double value : {track.x, track.y, track.vx, track.vy}) row += "," + common::fixed6(value);
   for (int i = 0; i < 4; ++i)
-    for (int j = i; j < 4; ++j) row += "," + common::fixed6(track.covariance[static_cast<std::size_t>(4 * i + j)]);
+    for (int j = i; j < 4; ++j) row += "," + common::significant9(track.covariance[static_cast<std::size_t>(4 * i + j)]);
   return row;
 }
 
@@ -41,6 +41,8 @@ void runAggregatorRole(const dds::RoleContext& context) {
     const auto& scenario = context.scenario;
     const common::Truth truth(scenario);
     const auto associator = makeAssociator(scenario);
+    // Read now, not after the run: a malformed run.json must not cost the run's metrics.json.
+    const std::string provenance = common::readRunProvenance(context.run_dir + "/run.json");
     RunScorer scorer(scenario.metrics, scenario.supernodes);
 
     Reader track_reader(participant, topics.track_batch, Qos::reliableKeepAll());
@@ -122,8 +124,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
 
     // Everything but the "timing" line is a pure function of (scenario, seed).
     const RunInfo info{scenario.name, scenario.run.seed, ticks, scenario.tracker.engine, truth.targetCount(),
-                       dropped_stale_total, scenario.aggregator.association,
-                       common::readRunProvenance(context.run_dir + "/run.json")};
+                       dropped_stale_total, scenario.aggregator.association, provenance};
     common::writeTextFile(context.run_dir + "/metrics.json", metricsJson(info, run_scores, wall_s, ticks_per_s));
     status.done(ticks);
     global_writer.waitForAcknowledgements(std::chrono::seconds(10));

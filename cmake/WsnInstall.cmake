@@ -8,10 +8,8 @@ install(TARGETS wsntrack wsntrack-network-calibrate RUNTIME DESTINATION ${CMAKE_
 install(TARGETS wsntrack-node wsntrack-network wsntrack-supernode wsntrack-aggregator
         RUNTIME DESTINATION ${WSN_INSTALL_ROLE_DIR})
 
-install(PROGRAMS tools/plot_run.py tools/sweep.py DESTINATION ${WSN_INSTALL_TOOLS_DIR})
-# The run loader is imported rather than run; OPTIONAL because it is younger than this file and a
-# tree without it must still install.
-install(FILES tools/wsntrack_run.py DESTINATION ${WSN_INSTALL_TOOLS_DIR} OPTIONAL)
+# The run loader is imported, and run alone it prints what a run directory holds.
+install(PROGRAMS tools/plot_run.py tools/sweep.py tools/wsntrack_run.py DESTINATION ${WSN_INSTALL_TOOLS_DIR})
 
 install(DIRECTORY scenarios/ DESTINATION ${WSN_INSTALL_SCENARIO_DIR} FILES_MATCHING PATTERN "*.yaml")
 install(DIRECTORY idl/ DESTINATION ${WSN_INSTALL_IDL_DIR} FILES_MATCHING PATTERN "*.idl")

@@ -7,10 +7,13 @@ find_package(Git QUIET)
 if(GIT_FOUND AND EXISTS "${SOURCE_DIR}/.git")
   execute_process(COMMAND "${GIT_EXECUTABLE}" -C "${SOURCE_DIR}" rev-parse HEAD
                   OUTPUT_VARIABLE head RESULT_VARIABLE head_rc OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
-  if(head_rc EQUAL 0)
+  if(NOT head_rc EQUAL 0)
+    message(STATUS "wsntrack: git cannot read ${SOURCE_DIR} (e.g. a checkout owned by another user); commit recorded as unknown")
+  else()
     set(commit "${head}")
     # Tracked files only: an untracked scratch file does not change what was built.
-    execute_process(COMMAND "${GIT_EXECUTABLE}" -C "${SOURCE_DIR}" status --porcelain --untracked-files=no
+    # --no-optional-locks: a build must not take .git/index.lock from under a concurrent commit.
+    execute_process(COMMAND "${GIT_EXECUTABLE}" --no-optional-locks -C "${SOURCE_DIR}" status --porcelain --untracked-files=no
                     OUTPUT_VARIABLE changes RESULT_VARIABLE status_rc ERROR_QUIET)
     if(NOT status_rc EQUAL 0 OR NOT changes STREQUAL "")
       set(dirty "true")

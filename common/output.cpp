@@ -6,6 +6,12 @@
 
 namespace wsn::common {
 
+std::string significant9(double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.9g", value == 0.0 ? 0.0 : value);  // no "-0"
+  return buffer;
+}
+
 std::string fixed6(double value) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.6f", value == 0.0 ? 0.0 : value);  // no "-0.000000"

@@ -9,6 +9,9 @@ namespace wsn::common {
 
 /// Formats a double with 6 decimals ("%.6f"): the fixed format of every CSV number.
 std::string fixed6(double value);
+/// value with 9 significant digits ("%.9g"): for quantities, such as covariances, whose scale
+/// varies too much for a fixed number of decimals.
+std::string significant9(double value);
 
 /// A CSV file written row by row; throws std::runtime_error naming the path on I/O failure.
 class CsvFile {

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <memory>
@@ -62,6 +63,8 @@ Provenance captureProvenance(const std::vector<std::string>& command_line, const
   p.commit = version::commitWithState();
   p.cyclone_dds = std::string(version::cycloneDdsVersion());
   p.command_line = command_line;
+  std::error_code error;
+  p.cwd = std::filesystem::current_path(error).string();
   p.started_utc = utcNow();
   p.host = hostName();
   p.scenario_file = scenario_file;
@@ -76,6 +79,7 @@ std::string provenanceJson(const Provenance& p) {
   json["commit"] = p.commit;
   json["cyclone_dds"] = p.cyclone_dds;
   json["command_line"] = p.command_line;
+  json["cwd"] = p.cwd;
   json["started_utc"] = p.started_utc;
   json["host"] = p.host;
   json["scenario_file"] = p.scenario_file;
@@ -101,6 +105,7 @@ Provenance parseProvenanceJson(const std::string& text) {
     if (!arg.is_string()) throw std::runtime_error("provenance: \"command_line\" holds a non-string");
     p.command_line.push_back(arg.get<std::string>());
   }
+  p.cwd = string("cwd");
   p.started_utc = string("started_utc");
   p.host = string("host");
   p.scenario_file = string("scenario_file");

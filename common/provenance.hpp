@@ -13,6 +13,7 @@ struct Provenance {
   std::string commit;                     ///< full git hash, "+dirty" when the tree was modified
   std::string cyclone_dds;                ///< Cyclone DDS version built against
   std::vector<std::string> command_line;  ///< argv as given, argv[0] first
+  std::string cwd;                        ///< the working directory the command line is relative to
   std::string started_utc;                ///< ISO 8601, e.g. "2026-11-25T12:01:02Z"
   std::string host;                       ///< gethostname()
   std::string scenario_file;              ///< the scenario path as given on the command line

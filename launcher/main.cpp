@@ -194,6 +194,10 @@ int commandReplay(const std::vector<std::string>& args) {
   const std::string python = "/usr/bin/python3";
   const std::string script = launcher::locateInstall(executableDirectory()).plot_script;
   const bool help = args.empty() || args.front() == "--help" || args.front() == "-h";
+  if (args.empty()) {
+    std::cerr << "Usage: wsntrack replay RUN_DIR [options]   ('wsntrack replay --help' lists them)\n";
+    return 2;
+  }
   if (::access(python.c_str(), X_OK) != 0 || ::access(script.c_str(), R_OK) != 0) {
     std::cerr << "wsntrack replay: needs " << python << " (Debian's python3-matplotlib) and " << script << "\n";
     return 2;

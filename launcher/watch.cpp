@@ -482,7 +482,7 @@ constexpr const char* kWatchHelp =
     "it joins the run's DDS domain as a viewer and, every tick, shows the run's progress (tick\n"
     "t/T), the aggregator's per-tick metrics (K* truth targets, K tracks, OSPA, GOSPA, running\n"
     "epsK and mean OSPA; 'n/a' when the aggregator does not publish TickMetrics) and its global\n"
-    "tracks (id as supernode:serial, x, y, vx, vy, speed). To follow a run at a human pace,\n"
+    "tracks (id as supernode:serial or S:tTsK, x, y, vx, vy, speed). To follow a run at a human pace,\n"
     "start it with --tick-interval, e.g. 'wsntrack run SCENARIO --out runs/demo --tick-interval\n"
     "0.2' and then 'wsntrack watch runs/demo'.\n\n"
     "On a terminal the view is redrawn in place (ANSI); otherwise, or with --plain, every frame is\n"

@@ -342,10 +342,15 @@ TRACK_ID_SHIFT = 48
 
 def track_label(track):
     """The readable id of a numeric track id, as 'wsntrack watch' shows it and newer tracks.csv
-    files write it: S:N for serial N of supernode S (ids are (S + 1) << 48 | N), gN for an id the
-    aggregator minted (below 1 << 48)."""
+    files write it (common/messages.hpp trackLabel): S:N for serial N of supernode S (ids are
+    (S + 1) << 48 | N); S:tTsK when the serial is a birth id T << 24 | K (tick T, sensor K: the GNN
+    and rule-based engines); gN for an id the aggregator minted (below 1 << 48)."""
     owner, serial = track >> TRACK_ID_SHIFT, track & ((1 << TRACK_ID_SHIFT) - 1)
-    return f"{owner - 1}:{serial}" if owner > 0 else f"g{track}"
+    if owner == 0:
+        return f"g{track}"
+    if serial < 1 << 24:
+        return f"{owner - 1}:{serial}"
+    return f"{owner - 1}:t{serial >> 24}s{serial & ((1 << 24) - 1)}"
 
 
 def read_tracks(path, supernode=False):

@@ -1,5 +1,7 @@
 // The provenance block of a run: SHA-256 against the FIPS 180-2 test vectors, capture from a real
 // file, and the JSON round trip through run.json that the aggregator relies on.
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -10,8 +12,14 @@
 namespace wsn::common {
 namespace {
 
+/// A file in a directory of this process's own, so that two suites running at once do not share it.
 std::string tempFile(const std::string& name, const std::string& content) {
-  const auto path = std::filesystem::temp_directory_path() / ("wsn_provenance_test_" + name);
+  static const auto dir = [] {
+    auto d = std::filesystem::temp_directory_path() / ("wsn_provenance_test_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(d);
+    return d;
+  }();
+  const auto path = dir / name;
   std::ofstream(path, std::ios::binary) << content;
   return path.string();
 }
@@ -33,6 +41,7 @@ TEST_CASE("captured provenance names the build, the command line, the time and t
   CHECK(p.commit.rfind(std::string(version::gitCommit()), 0) == 0);
   CHECK(p.cyclone_dds == version::cycloneDdsVersion());
   CHECK(p.command_line.size() == 5);
+  CHECK(p.cwd == std::filesystem::current_path().string());
   CHECK(p.scenario_file == scenario);
   CHECK(p.scenario_sha256 == sha256Hex("run: {ticks: 5}\n"));
   CHECK(!p.host.empty());
@@ -48,6 +57,7 @@ TEST_CASE("provenance is one JSON line and reads back equal, also from run.json"
   p.commit = "0123abcd+dirty";
   p.cyclone_dds = "0.10.2";
   p.command_line = {"wsntrack", "run", "a \"quoted\" path\\x.yaml"};
+  p.cwd = "/home/someone";
   p.started_utc = "2026-11-25T12:01:02Z";
   p.host = "h";
   p.scenario_file = "a \"quoted\" path\\x.yaml";

@@ -33,9 +33,7 @@ check_tree() {
   for name in plot_run.py sweep.py; do
     [ -x "$root/$WSN_DATA_DIR/tools/$name" ] || fail "$root/$WSN_DATA_DIR/tools/$name missing or not executable"
   done
-  if [ -f "$src/tools/wsntrack_run.py" ]; then
-    [ -f "$root/$WSN_DATA_DIR/tools/wsntrack_run.py" ] || fail "$root/$WSN_DATA_DIR/tools/wsntrack_run.py missing"
-  fi
+  [ -x "$root/$WSN_DATA_DIR/tools/wsntrack_run.py" ] || fail "$root/$WSN_DATA_DIR/tools/wsntrack_run.py missing or not executable"
   for name in "$src"/scenarios/*.yaml; do
     cmp -s "$name" "$root/$WSN_DATA_DIR/scenarios/$(basename "$name")" ||
       fail "$root/$WSN_DATA_DIR/scenarios/$(basename "$name") missing or different"
@@ -91,17 +89,13 @@ case "$case_name" in
     [ ! -e "$tmp/run-broken" ] || fail "a run directory was made although the roles are missing"
     # The tools from their installed place.
     "$python" "$prefix/$WSN_DATA_DIR/tools/sweep.py" --help >/dev/null || fail "installed sweep.py --help"
-    if "$wsntrack" --help | grep -q "replay"; then
-      (cd / && "$wsntrack" replay --help) >/dev/null 2>&1 || fail "installed wsntrack replay --help (plot script not found?)"
-    fi
-    if [ -f "$prefix/$WSN_DATA_DIR/tools/wsntrack_run.py" ] && "$python" -c "import numpy" 2>/dev/null; then
-      (cd / && PYTHONPATH="$prefix/$WSN_DATA_DIR/tools" "$python" -c "
+    (cd / && "$wsntrack" replay --help) >/dev/null 2>&1 || fail "installed wsntrack replay --help (plot script not found?)"
+    (cd / && PYTHONPATH="$prefix/$WSN_DATA_DIR/tools" "$python" -c "
 import sys, wsntrack_run
-if hasattr(wsntrack_run, 'load_run'):
-    run = wsntrack_run.load_run(sys.argv[1])
-    assert run.ticks == 10, run.ticks
+run = wsntrack_run.load_run(sys.argv[1])
+assert run.ticks == 10, run.ticks
 " "$tmp/run") || fail "the installed loader cannot load the run"
-    fi
+    (cd / && "$prefix/$WSN_DATA_DIR/tools/wsntrack_run.py" "$tmp/run") >/dev/null || fail "the installed loader does not run alone"
     ;;
   deb)
     command -v cpack >/dev/null && command -v dpkg-deb >/dev/null || { echo "SKIP: no cpack or dpkg-deb"; exit 77; }

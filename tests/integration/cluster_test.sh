@@ -63,7 +63,7 @@ case "$case_name" in
     timeout 300 "$wsntrack" run "$PWD/my scenario.yaml" --quiet --no-plot --out "$PWD/p" --ticks 5 --set network.pte=0.1 \
       >p.stdout 2>p.stderr || { cat p.stderr >&2; fail "run"; }
     /usr/bin/python3 - "$PWD/p" "$PWD/my scenario.yaml" "$wsntrack" "$version_line" <<'EOF' || fail "provenance (above)"
-import hashlib, json, re, socket, sys
+import hashlib, json, os, re, socket, sys
 run_dir, scenario, wsntrack, version_line = sys.argv[1:5]
 run = json.load(open(f"{run_dir}/run.json"))
 metrics = json.load(open(f"{run_dir}/metrics.json"))
@@ -72,6 +72,7 @@ assert metrics["provenance"] == p, f"metrics.json provenance {metrics['provenanc
 assert p["command_line"] == [wsntrack, "run", scenario, "--quiet", "--no-plot", "--out", run_dir,
                              "--ticks", "5", "--set", "network.pte=0.1"], p["command_line"]
 assert p["scenario_file"] == scenario
+assert p["cwd"] == os.getcwd(), (p["cwd"], os.getcwd())
 assert p["scenario_sha256"] == hashlib.sha256(open(scenario, "rb").read()).hexdigest()
 assert p["host"] == socket.gethostname(), p["host"]
 assert re.fullmatch(r"\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ", p["started_utc"]), p["started_utc"]

@@ -73,10 +73,12 @@ problems = []
 def expect(ok, what):
     if not ok: problems.append(what)
 
-def decode(compact):  # supernode:serial or g<serial>, as wsntrack watch shows ids
+def decode(compact):  # S:N, S:tTsK or gN, as wsntrack watch shows ids (common/messages.hpp)
     if compact.startswith("g"): return int(compact[1:])
     supernode, serial = compact.split(":")
-    return ((int(supernode) + 1) << 48) | int(serial)
+    birth = re.fullmatch(r"t(\d+)s(\d+)", serial)
+    serial = (int(birth[1]) << 24 | int(birth[2])) if birth else int(serial)
+    return ((int(supernode) + 1) << 48) | serial
 
 truth = {}  # tick -> targets
 for row in csv.DictReader(open(f"{run_dir}/truth.csv")):

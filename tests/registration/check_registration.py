@@ -23,9 +23,10 @@ NO_TESTS_FLAG = ["--warn", "NoTests"]
 
 
 def ctest_tests(ctest, build_dir):
-    """The tests ctest would run in build_dir, as (name, command) pairs."""
+    """The tests ctest would run in build_dir, as (name, command, properties)."""
     out = subprocess.run([ctest, "--show-only=json-v1"], cwd=build_dir, check=True, capture_output=True, text=True)
-    return [(t["name"], t.get("command", [])) for t in json.loads(out.stdout).get("tests", [])]
+    return [(t["name"], t.get("command", []), {p["name"]: p.get("value") for p in t.get("properties", [])})
+            for t in json.loads(out.stdout).get("tests", [])]
 
 
 def list_cases(binary, spec=None):
@@ -50,7 +51,7 @@ def check(ctest, build_dir, binaries):
     known = {os.path.realpath(b): b for b in binaries}
     by_binary = {real: [] for real in known}
     build_root = os.path.realpath(build_dir)
-    for name, command in tests:
+    for name, command, properties in tests:
         if len(name) > MAX_NAME_LENGTH:
             problems.append(f"ctest test name of {len(name)} characters (at most {MAX_NAME_LENGTH}): {name[:120]}...")
         if not command:
@@ -59,6 +60,10 @@ def check(ctest, build_dir, binaries):
         exe = os.path.realpath(command[0])
         if exe in by_binary:
             by_binary[exe].append((name, command))
+            # A Catch2 case that ctest may skip, invert or not run at all is not a case that ran.
+            for hiding in ("DISABLED", "WILL_FAIL", "SKIP_RETURN_CODE", "SKIP_REGULAR_EXPRESSION"):
+                if properties.get(hiding) not in (None, False, "OFF", "0"):
+                    problems.append(f"ctest test '{name[:120]}' has {hiding}={properties[hiding]}")
         elif exe.startswith(build_root + os.sep) and is_elf(exe):
             problems.append(f"ctest test '{name[:120]}' runs {command[0]}, a binary of this build the guard does not "
                             "know: register Catch2 binaries with wsn_catch_tests() (tests/CMakeLists.txt)")

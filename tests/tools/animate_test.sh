@@ -4,11 +4,10 @@
 # Usage: animate_test.sh BIN_DIR SOURCE_DIR WORK_DIR CASE
 #   script   GIF and HTML of a hand-made run (tests/tools/tiny_run.py, new and old tracks.csv), options,
 #            default output, bad input, no matplotlib, no ffmpeg, a failing encoder (no DDS)
-#   mp4      MP4 of the hand-made run; exit 77 (skipped) without ffmpeg
-#   run      a real 20-tick cluster run: the loader's invariants, GIF and HTML (MP4 with ffmpeg), and
+#   mp4      MP4 of the hand-made run
+#   run      a real 20-tick cluster run: the loader's invariants, GIF and HTML and MP4, and
 #            'wsntrack replay' handing over to plot_run.py
-# matplotlib, numpy and Pillow are required (Debian's python3-matplotlib brings all three); ffmpeg is
-# optional, so only the mp4 case is skipped (exit 77) without it.
+# matplotlib, numpy, Pillow and ffmpeg are required (./setup.sh installs them): a missing one fails.
 set -uo pipefail
 bin="$1"; src="$2"; work="$3"; case_name="$4"
 python=/usr/bin/python3
@@ -167,7 +166,7 @@ EOF
 
   mp4)
     command -v ffmpeg >/dev/null && command -v ffprobe >/dev/null \
-      || { echo "SKIP: no ffmpeg on PATH (Debian: apt-get install ffmpeg): the MP4 output is not tested"; exit 77; }
+      || fail "no ffmpeg/ffprobe on PATH (./setup.sh installs Debian's ffmpeg)"
     "$python" -B "$src/tests/tools/tiny_run.py" tiny || fail "tiny_run.py"
     "$python" "$plot" --animate tiny --animate-format mp4 --quiet >out.txt 2>&1 || { cat out.txt >&2; fail "mp4"; }
     # 10 ticks and the last frame held 1 s at 5 fps: 15 frames.
@@ -196,24 +195,21 @@ EOF
     check_animation real/plots/replay.gif gif 20 1280 720
     "$python" "$plot" --animate real --animate-format html --quiet >out.txt 2>&1 || { cat out.txt >&2; fail "html"; }
     check_animation real/plots/replay.html html 20 1280 720
-    if command -v ffmpeg >/dev/null && command -v ffprobe >/dev/null; then
-      "$python" "$plot" --animate real --out "$PWD/real.mp4" --quiet >out.txt 2>&1 || { cat out.txt >&2; fail "mp4"; }
-      check_animation real.mp4 mp4 20 1280 720
-    else
-      echo "NOTE: no ffmpeg: the MP4 of the real run is not tested"
-    fi
+    # ./setup.sh installs ffmpeg: its absence here is a failure, not a skip.
+    command -v ffmpeg >/dev/null && command -v ffprobe >/dev/null || fail "no ffmpeg/ffprobe (./setup.sh installs them)"
+    "$python" "$plot" --animate real --out "$PWD/real.mp4" --quiet >out.txt 2>&1 || { cat out.txt >&2; fail "mp4"; }
+    check_animation real.mp4 mp4 20 1280 720
 
     # 'wsntrack replay RUN_DIR ARGS' is plot_run.py --animate RUN_DIR ARGS.
-    if "$wsntrack" replay --help >replay-help.txt 2>&1; then
-      grep -q -- "--animate-format" replay-help.txt || { cat replay-help.txt >&2; fail "replay --help"; }
-      "$wsntrack" replay real --out "$PWD/replayed.html" --first 5 --last 9 --quiet >out.txt 2>&1 \
-        || { cat out.txt >&2; fail "wsntrack replay"; }
-      check_animation replayed.html html 5 1280 720
-      "$wsntrack" replay real --first 0 >out.txt 2>&1
-      [ $? -eq 2 ] || { cat out.txt >&2; fail "wsntrack replay with a bad option: not exit 2"; }
-    else
-      echo "NOTE: this wsntrack has no replay command yet"
-    fi
+    "$wsntrack" replay --help >replay-help.txt 2>&1 || { cat replay-help.txt >&2; fail "wsntrack replay --help"; }
+    grep -q -- "--animate-format" replay-help.txt || { cat replay-help.txt >&2; fail "replay --help"; }
+    "$wsntrack" replay real --out "$PWD/replayed.html" --first 5 --last 9 --quiet >out.txt 2>&1 \
+      || { cat out.txt >&2; fail "wsntrack replay"; }
+    check_animation replayed.html html 5 1280 720
+    "$wsntrack" replay real --first 0 >out.txt 2>&1
+    [ $? -eq 2 ] || { cat out.txt >&2; fail "wsntrack replay with a bad option: not exit 2"; }
+    "$wsntrack" replay >out.txt 2>&1
+    [ $? -eq 2 ] || { cat out.txt >&2; fail "wsntrack replay without RUN_DIR: not exit 2"; }
     echo "ok" ;;
 
   *) fail "unknown case $case_name" ;;

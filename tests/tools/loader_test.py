@@ -118,6 +118,8 @@ class TinyRun(unittest.TestCase):
         self.assertEqual(track_label((1 << 48) | 1), "0:1")
         self.assertEqual(track_label((4 << 48) | 12), "3:12")
         self.assertEqual(track_label(7), "g7")
+        # A GNN / rule-based birth id: supernode 2, tick 3, sensor 5.
+        self.assertEqual(track_label((3 << 48) | (3 << 24) | 5), "2:t3s5")
 
     def test_doctests(self):
         import doctest

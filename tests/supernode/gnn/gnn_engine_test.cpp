@@ -44,6 +44,10 @@ TEST_CASE("a track id encodes supernode, birth tick and sensor", "[gnn]") {
   CHECK(birthTrackId(2, 0, 0) == (std::uint64_t{3} << 48));
   CHECK(birthSupernode(birthTrackId(2, 77, 9)) == 2);
   CHECK(birthTick(birthTrackId(2, 77, 9)) == 77);
+  // Read as "started by supernode 2 at tick 77 from sensor 9"; counters (MCMCDA) stay S:N.
+  CHECK(common::trackLabel(birthTrackId(2, 77, 9)) == "2:t77s9");
+  CHECK(common::trackLabel((std::uint64_t{1} << 48) | 1) == "0:1");
+  CHECK(common::trackLabel(5) == "g5");
   CHECK_THROWS_AS(birthTrackId(0, 1, 1u << 24), std::out_of_range);
   CHECK_THROWS_AS(birthTrackId(0, 1 << 24, 0), std::out_of_range);
 }
