@@ -24,7 +24,7 @@ def main():
     for test in json.loads(shown.stdout).get("tests", []):
         found = [p["value"] for p in test.get("properties", []) if p.get("name") == "LABELS"]
         labels[test["name"]] = found[0] if found else ["(none)"]
-    totals = collections.defaultdict(lambda: collections.Counter())
+    totals = collections.defaultdict(collections.Counter)
     skipped = []
     cases = [c for junit in junits for c in ElementTree.parse(junit).getroot().iter("testcase")]
     for case in cases:

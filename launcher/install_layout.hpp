@@ -9,6 +9,10 @@
 
 namespace wsn::launcher {
 
+/// The python that runs plot_run.py (plots, replay): Debian's, which has python3-matplotlib; the
+/// python3 first on PATH may be a pyenv or venv build without it.
+inline constexpr const char* kPlotPython = "/usr/bin/python3";
+
 /// How a build lays itself out. The installed directories are relative to the directory wsntrack is
 /// installed in (CMAKE_INSTALL_BINDIR), so that an installed tree works wherever its prefix is.
 struct InstallPaths {

@@ -191,9 +191,8 @@ std::string executableDirectory() {
 /// `wsntrack replay RUN_DIR [options]`: the animation is drawn by plot_run.py --animate (matplotlib),
 /// so this only finds the script and hands over; its options and exit status are the script's.
 int commandReplay(const std::vector<std::string>& args) {
-  const std::string python = "/usr/bin/python3";
+  const std::string python = launcher::kPlotPython;
   const std::string script = launcher::locateInstall(executableDirectory()).plot_script;
-  const bool help = args.empty() || args.front() == "--help" || args.front() == "-h";
   if (args.empty()) {
     std::cerr << "Usage: wsntrack replay RUN_DIR [options]   ('wsntrack replay --help' lists them)\n";
     return 2;
@@ -203,7 +202,7 @@ int commandReplay(const std::vector<std::string>& args) {
     return 2;
   }
   std::vector<std::string> exec_args{python, script, "--animate"};
-  if (help) {
+  if (args.front() == "--help" || args.front() == "-h") {
     std::cout << "Usage: wsntrack replay RUN_DIR [plot_run.py --animate options]\n\n"
                  "Writes an animation of a finished run: the sensor field, the observations delivered at\n"
                  "each tick, the true targets and the tracks with their ids and covariance ellipses.\n"
@@ -351,7 +350,9 @@ int commandRun(const std::vector<std::string>& command_line) {
     std::cerr << "wsntrack run: " << error.what() << "\n";
     return 2;
   }
-  cluster.bin_dir = launcher::locateInstall(executableDirectory()).requireRoleDir();
+  // Located once: the role executables for the cluster, the plot script for the plots.
+  const launcher::InstallLayout install = launcher::locateInstall(executableDirectory());
+  cluster.bin_dir = install.requireRoleDir();
   cluster.run_dir = out_dir.empty() ? launcher::defaultRunDirectory(scenario) : out_dir;
   try {
     launcher::createRunDirectory(cluster.run_dir, vm.count("overwrite") != 0);
@@ -376,7 +377,7 @@ int commandRun(const std::vector<std::string>& command_line) {
             << (cluster.in_process ? ", in-process" : "") << "\n";
   // Started before the cluster so that python and matplotlib load while it runs.
   std::optional<launcher::PlotJob> plot_job;
-  if (!vm.count("no-plot")) plot_job.emplace(executableDirectory(), cluster.run_dir, plot_format);
+  if (!vm.count("no-plot")) plot_job.emplace(install.plot_script, cluster.run_dir, plot_format);
   const auto result = launcher::runCluster(cluster);
   if (!result.ok) {
     std::cerr << "wsntrack run: FAILED: " << result.failure << "\n";

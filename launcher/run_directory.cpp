@@ -144,16 +144,16 @@ std::string lastLine(const std::string& path) {
 
 }  // namespace
 
-PlotJob::PlotJob(const std::string& bin_dir, const std::string& run_dir, const std::string& format)
+PlotJob::PlotJob(const std::string& plot_script, const std::string& run_dir, const std::string& format)
     : log_(run_dir + "/logs/plot.log"), files_(run_dir + "/plots/{tracks,cardinality,ospa}." + format) {
-  const std::string python = "/usr/bin/python3";
-  const std::string script = locateInstall(bin_dir).plot_script;
+  const std::string python = kPlotPython;
+  const std::string& script = plot_script;
   if (::access(python.c_str(), X_OK) != 0) {
     outcome_.message = python + " not found (plots need Debian's python3-matplotlib)";
     return;
   }
   if (::access(script.c_str(), R_OK) != 0) {
-    outcome_.message = script + " not found (it is copied there by the build)";
+    outcome_.message = script + " not found (the build copies it beside wsntrack; an install puts it in share/wsntrack/tools)";
     return;
   }
   // Close-on-exec, so that no process of the cluster holds the pipe open.

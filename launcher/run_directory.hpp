@@ -55,14 +55,14 @@ struct PlotOutcome {
   double seconds = 0;
 };
 
-/// `bin_dir`/plot_run.py run by Debian's /usr/bin/python3 (the one with python3-matplotlib) on a run
+/// plot_run.py (located by install_layout) run by kPlotPython (the one with python3-matplotlib) on a run
 /// directory, output to logs/plot.log. It is started before the cluster and waits on a pipe for the
 /// word to go: python's start-up and matplotlib's import, most of the plotting time, overlap the
 /// run instead of following it. A missing python, script or matplotlib gives kSkipped, any other
 /// failure kFailed: neither undoes a run that succeeded.
 class PlotJob {
  public:
-  PlotJob(const std::string& bin_dir, const std::string& run_dir, const std::string& format);
+  PlotJob(const std::string& plot_script, const std::string& run_dir, const std::string& format);
   PlotJob(const PlotJob&) = delete;
   PlotJob& operator=(const PlotJob&) = delete;
   /// A job never told to go is told to stop, and reaped.
