@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Golden outputs: every shipped scenario, seed 1, with every tracker engine and aggregator
+# association that accepts it, run in-process; the sha256 of each output file is compared with
+# tests/golden/outputs.sha256 (recorded before a refactor that must not change behaviour).
+#
+#   golden_outputs.sh BIN_DIR SOURCE_DIR WORK_DIR check     compare with the recorded sums
+#   golden_outputs.sh BIN_DIR SOURCE_DIR WORK_DIR record    rewrite the recorded sums
+#
+# metrics.json is compared without its "timing" and "provenance" lines, which describe the run
+# (wall time, host, command line) rather than its results. A difference prints the run directory
+# of the first disagreeing file, so it can be compared with a run of the previous commit.
+set -euo pipefail
+bin_dir=$1 source_dir=$2 work=$3 mode=$4
+manifest=$source_dir/tests/golden/outputs.sha256
+wsntrack=$bin_dir/wsntrack
+rm -rf "$work" && mkdir -p "$work"
+actual=$work/outputs.sha256
+: >"$actual"
+files=(scenario.yaml truth.csv observations.csv tracks_supernode.csv tracks.csv network.json metrics.json)
+for scenario in "$source_dir"/scenarios/*.yaml; do
+  name=$(basename "$scenario" .yaml)
+  for engine in mcmcda gnn rulebased; do
+    for association in mcmcda gated; do
+      case_name=$name.$engine.$association
+      # A pairing the scenario check rejects is not a case (validate says so, with a reason).
+      if ! "$wsntrack" validate "$scenario" --set tracker.engine=$engine \
+           --set aggregator.association=$association >/dev/null 2>&1; then
+        echo "$case_name: rejected by validate, not a case"
+        continue
+      fi
+      out=$work/$case_name
+      "$wsntrack" run "$scenario" --seed 1 --in-process --quiet --no-plot --out "$out" \
+        --set tracker.engine=$engine --set aggregator.association=$association >"$out.log" 2>&1 ||
+        { echo "FAIL: $case_name did not run:"; cat "$out.log"; exit 1; }
+      grep -v -e '"timing"' -e '"provenance"' "$out/metrics.json" >"$out/metrics.json.results"
+      for f in "${files[@]}"; do
+        src=$out/$f
+        [[ $f == metrics.json ]] && src=$out/metrics.json.results
+        [[ -f $src ]] || { echo "FAIL: $case_name has no $f"; exit 1; }
+        echo "$(sha256sum <"$src" | cut -d' ' -f1)  $case_name/$f" >>"$actual"
+      done
+      echo "$case_name: ran"
+    done
+  done
+done
+cases=$(cut -d' ' -f3 "$actual" | cut -d/ -f1 | sort -u | wc -l)
+if [[ $mode == record ]]; then
+  cp "$actual" "$manifest"
+  echo "recorded $(wc -l <"$actual") files of $cases cases in $manifest"
+  exit 0
+fi
+if diff <(sort -k2 "$manifest") <(sort -k2 "$actual") >"$work/diff"; then
+  echo "OK: $(wc -l <"$actual") files of $cases cases byte-identical to the recorded outputs"
+  exit 0
+fi
+echo "FAIL: outputs differ from $manifest (< recorded, > now):"
+cat "$work/diff"
+echo "run directories: $work"
+exit 1
