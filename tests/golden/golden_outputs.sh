@@ -6,9 +6,11 @@
 #   golden_outputs.sh BIN_DIR SOURCE_DIR WORK_DIR check     compare with the recorded sums
 #   golden_outputs.sh BIN_DIR SOURCE_DIR WORK_DIR record    rewrite the recorded sums
 #
-# metrics.json is compared without its "timing" and "provenance" lines, which describe the run
-# (wall time, host, command line) rather than its results. A difference prints the run directory
-# of the first disagreeing file, so it can be compared with a run of the previous commit.
+# CSV and YAML files are compared byte for byte. JSON files are compared by content: parsed,
+# without "timing" and "provenance" (they describe the run, not its results), every real number
+# written with 6 decimals (the precision the files had when the sums were recorded), keys sorted.
+# A difference prints the work directory, whose run directories can be compared with a run of
+# the previous commit.
 set -euo pipefail
 bin_dir=$1 source_dir=$2 work=$3 mode=$4
 manifest=$source_dir/tests/golden/outputs.sha256
@@ -16,7 +18,21 @@ wsntrack=$bin_dir/wsntrack
 rm -rf "$work" && mkdir -p "$work"
 actual=$work/outputs.sha256
 : >"$actual"
-files=(scenario.yaml truth.csv observations.csv tracks_supernode.csv tracks.csv network.json metrics.json)
+files=(scenario.yaml truth.csv observations.csv tracks_supernode.csv tracks.csv metrics_per_tick.csv network.json
+       metrics.json)
+normalise_json() {
+  /usr/bin/python3 -c '
+import json, sys
+def norm(v):
+    if isinstance(v, dict):
+        return {k: norm(x) for k, x in v.items() if k not in ("timing", "provenance")}
+    if isinstance(v, list):
+        return [norm(x) for x in v]
+    if isinstance(v, float):
+        return "%.6f" % v
+    return v
+print(json.dumps(norm(json.load(open(sys.argv[1]))), sort_keys=True, indent=1))' "$1"
+}
 for scenario in "$source_dir"/scenarios/*.yaml; do
   name=$(basename "$scenario" .yaml)
   for engine in mcmcda gnn rulebased; do
@@ -32,11 +48,13 @@ for scenario in "$source_dir"/scenarios/*.yaml; do
       "$wsntrack" run "$scenario" --seed 1 --in-process --quiet --no-plot --out "$out" \
         --set tracker.engine=$engine --set aggregator.association=$association >"$out.log" 2>&1 ||
         { echo "FAIL: $case_name did not run:"; cat "$out.log"; exit 1; }
-      grep -v -e '"timing"' -e '"provenance"' "$out/metrics.json" >"$out/metrics.json.results"
       for f in "${files[@]}"; do
         src=$out/$f
-        [[ $f == metrics.json ]] && src=$out/metrics.json.results
         [[ -f $src ]] || { echo "FAIL: $case_name has no $f"; exit 1; }
+        if [[ $f == *.json ]]; then
+          normalise_json "$src" >"$src.normalised" || { echo "FAIL: $case_name/$f is not JSON"; exit 1; }
+          src=$src.normalised
+        fi
         echo "$(sha256sum <"$src" | cut -d' ' -f1)  $case_name/$f" >>"$actual"
       done
       echo "$case_name: ran"
