@@ -10,6 +10,7 @@
 
 #include "common/messages.hpp"
 #include "common/param_spec.hpp"
+#include "common/registry.hpp"
 #include "common/scenario.hpp"
 
 namespace wsn::aggregator {
@@ -41,7 +42,7 @@ struct AssociationSpec {
 };
 
 /// All methods, in registration order.
-const std::vector<AssociationSpec>& associationRegistry();
+const common::Registry<AssociationSpec>& associationRegistry();
 
 /// Checks scenario.aggregator.association and .params against the registry and fills in
 /// defaults; throws common::ScenarioError "file:line: ..." on an unknown method or parameter or

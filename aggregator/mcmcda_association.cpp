@@ -9,22 +9,33 @@ namespace {
 
 using supernode::mcmcda::McmcdaEngine;
 
-constexpr std::int32_t kDefaultWindow = 10;
+}  // namespace
 
-/// Track-level defaults that differ from the supernode engine's, and why.
-double trackLevelDefault(const common::ParamSpec& p) {
+supernode::mcmcda::McmcdaParams trackLevelEngineDefaults() {
+  supernode::mcmcda::McmcdaParams p;
   // A supernode reports a track only once it holds confirm_observations (3) reports; the
   // aggregator's elements are already those established tracks, so two of them suffice, and a
   // third would only delay every global track by another tick.
-  if (p.name == "confirm_observations") return 2;
+  p.confirm_observations = 2;
   // A false element is a supernode track confirmed on clutter, far rarer than a false report
   // (lambda_f = 6e-4 at the supernodes). On oh_quadrants, seeds 1-5, mean epsilon_K is flat in it:
   // 0.1355 / 0.1325 / 0.1355 at 1e-4 / 1e-5 / 1e-6.
-  if (p.name == "false_alarm_density") return 1e-5;
-  return p.default_value;
+  p.model.false_alarm_density = 1e-5;
+  return p;
 }
 
-}  // namespace
+const common::config::FieldTable<McmcdaAssociationParams>& mcmcdaAssociationParamTable() {
+  using P = McmcdaAssociationParams;
+  static const common::config::FieldTable<P> table = [] {
+    common::config::FieldTable<P> t{"aggregator.params (mcmcda)", {}};
+    t.fields.push_back(common::config::integer<P>(
+        "window_size", &P::window_size, 1, 1000, "ticks",
+        "ws of the aggregator's sliding window; an element older than that is dropped"));
+    for (auto& f : common::config::lift<P>(supernode::mcmcda::paramTable(), &P::engine)) t.fields.push_back(f);
+    return t;
+  }();
+  return table;
+}
 
 AssociationSpec mcmcdaAssociationSpec() {
   AssociationSpec spec;
@@ -32,39 +43,26 @@ AssociationSpec mcmcdaAssociationSpec() {
   spec.description =
       "track-level MCMCDA (Oh et al. §VI): the supernodes' tracks at the ticks they were observed form Yc, "
       "a sliding-window MCMCDA over the whole region links them into global tracks";
-  spec.params.push_back({"window_size", kDefaultWindow, 1, 1000,
-                         "ws of the aggregator's sliding window (ticks); an element older than that is dropped", true});
-  for (auto p : supernode::mcmcda::engineSpec().params) {
-    p.default_value = trackLevelDefault(p);
-    spec.params.push_back(p);
-  }
+  spec.params = common::paramSpecs(mcmcdaAssociationParamTable());
   spec.create = [](const common::Scenario& scenario) -> std::unique_ptr<TrackAssociator> {
     return std::make_unique<McmcdaAssociator>(scenario);
   };
   return spec;
 }
 
-namespace {
-
-/// The scenario the engine is built from: the aggregator's parameters as its tracker parameters.
-common::Scenario engineScenario(const common::Scenario& scenario) {
-  common::Scenario s = scenario;
-  s.tracker.engine = "mcmcda";
-  s.tracker.params = scenario.aggregator.params;
-  s.tracker.params.erase("window_size");
-  return s;
-}
-
-std::int32_t windowSize(const common::Scenario& scenario) {
-  return static_cast<std::int32_t>(std::lround(common::paramOr(scenario.aggregator.params, "window_size", kDefaultWindow)));
-}
-
-}  // namespace
-
 McmcdaAssociator::McmcdaAssociator(const common::Scenario& scenario)
-    : engine_(std::make_unique<McmcdaEngine>(
-          supernode::EngineContext{engineScenario(scenario), static_cast<std::uint32_t>(scenario.supernodes.size())})),
-      window_(windowSize(scenario)) {
+    : McmcdaAssociator(
+          [&] {
+            auto p = common::decodeParams(mcmcdaAssociationParamTable(), scenario.aggregator.params);
+            p.engine.model.process_noise_sigma = scenario.dynamics.process_noise_sigma;
+            p.engine.model.delta = scenario.dynamics.delta;
+            return p;
+          }(),
+          scenario.region, scenario.run.seed, static_cast<std::uint32_t>(scenario.supernodes.size())) {}
+
+McmcdaAssociator::McmcdaAssociator(const McmcdaAssociationParams& params, const common::Rect& region,
+                                   std::uint64_t seed, std::uint32_t id_space)
+    : engine_(std::make_unique<McmcdaEngine>(params.engine, region, seed, id_space)), window_(params.window_size) {
   const auto source_of = [this](const McmcdaEngine::ObservationKey& key) -> common::TrackId {
     const auto it = source_.find(key.sensor);
     return it == source_.end() ? 0 : it->second;

@@ -48,6 +48,18 @@ class ReportedIds {
   std::set<common::TrackId> previous_;                // ids reported at the previous tick
 };
 
+/// The MCMCDA engine's defaults for track-level association (why each differs: the .cpp).
+supernode::mcmcda::McmcdaParams trackLevelEngineDefaults();
+
+/// The "mcmcda" association's parameters: its own window and every MCMCDA engine parameter.
+struct McmcdaAssociationParams {
+  std::int32_t window_size = 10;  ///< ws of the aggregator's window (ticks)
+  supernode::mcmcda::McmcdaParams engine = trackLevelEngineDefaults();
+};
+
+/// aggregator.params of "mcmcda", described once.
+const common::config::FieldTable<McmcdaAssociationParams>& mcmcdaAssociationParamTable();
+
 /// Yc and ω_init as Oh §VI forms them, online:
 ///  - An element of Yc is one supernode track at a tick where it was *observed*: a supernode's
 ///    estimate carries the tick of its latest observation (last_seen_tick), and since its state is
@@ -79,8 +91,12 @@ class ReportedIds {
 ///    passed-through track's is the supernode's.
 class McmcdaAssociator final : public TrackAssociator {
  public:
-  /// `scenario.aggregator.params` must be resolved against mcmcdaAssociationSpec().
+  /// `scenario.aggregator.params` must be resolved against mcmcdaAssociationSpec(); the motion
+  /// model is the scenario's dynamics, and ids are minted in the space after the last supernode's.
   explicit McmcdaAssociator(const common::Scenario& scenario);
+  /// From its own parameters: `id_space` is the supernode index whose id space new global ids use.
+  McmcdaAssociator(const McmcdaAssociationParams& params, const common::Rect& region, std::uint64_t seed,
+                   std::uint32_t id_space);
 
   std::vector<common::TrackEstimate> associate(std::int32_t tick, const std::vector<SupernodeTracks>& inputs) override;
   std::uint64_t droppedNonFinite() const override { return dropped_non_finite_; }

@@ -74,20 +74,26 @@ TrackEstimate meanState(const Cluster& cluster, TrackId id) {
 
 }  // namespace
 
+const common::config::FieldTable<TrackMergerConfig>& gatedMergeParamTable() {
+  using C = TrackMergerConfig;
+  static const common::config::FieldTable<C> table{
+      "aggregator.params (gated)",
+      {
+          common::config::real<C>("gate_distance", &C::gate_distance, common::config::closed(0.0, 1e6), "separations",
+                                  "tracks of different supernodes at most this far apart are one target"),
+          common::config::integer<C>("memory_ticks", &C::memory_ticks, 0, 1e6, "ticks",
+                                     "how long a supernode track's global id is remembered after it was last "
+                                     "reported"),
+      }};
+  return table;
+}
+
 AssociationSpec gatedMergeSpec() {
-  const TrackMergerConfig defaults;
-  return {"gated",
-          "one-scan gated merge of the supernodes' tracks of each tick (complete linkage, ids by memory)",
-          {{"gate_distance", defaults.gate_distance, 0.0, 1e6,
-            "tracks of different supernodes at most this far apart are one target (sensor separations)"},
-           {"memory_ticks", static_cast<double>(defaults.memory_ticks), 0, 1e6,
-            "ticks a supernode track's global id is remembered after it was last reported", true}},
+  return {"gated", "one-scan gated merge of the supernodes' tracks of each tick (complete linkage, ids by memory)",
+          common::paramSpecs(gatedMergeParamTable()),
           [](const common::Scenario& scenario) -> std::unique_ptr<TrackAssociator> {
-            TrackMergerConfig config;
-            config.gate_distance = common::paramOr(scenario.aggregator.params, "gate_distance", config.gate_distance);
-            config.memory_ticks = static_cast<std::int32_t>(
-                common::paramOr(scenario.aggregator.params, "memory_ticks", config.memory_ticks));
-            return std::make_unique<TrackMerger>(config);
+            return std::make_unique<TrackMerger>(
+                common::decodeParams(gatedMergeParamTable(), scenario.aggregator.params));
           }};
 }
 

@@ -30,6 +30,9 @@ struct TrackMergerConfig {
   std::int32_t memory_ticks = 10;
 };
 
+/// The "gated" association's parameters, described once (aggregator.params).
+const common::config::FieldTable<TrackMergerConfig>& gatedMergeParamTable();
+
 /// Gated merge of the supernodes' tracks into global tracks (Oh §VI, track-level association;
 /// a deterministic single-scan simplification instead of rerunning MCMCDA on the tracks).
 ///

@@ -10,7 +10,7 @@
 #include "common/scenario.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
-#include "node/sensor_field.hpp"
+#include "node/signal_strength/sensor_field.hpp"
 #include "node/tiling.hpp"
 
 namespace {

@@ -38,6 +38,7 @@ struct Rect {
   bool contains(Vec2 p) const { return p.x >= x_min && p.x <= x_max && p.y >= y_min && p.y <= y_max; }
   /// Half-open containment, so that tiles partition the region without double counting.
   bool containsHalfOpen(Vec2 p) const { return p.x >= x_min && p.x < x_max && p.y >= y_min && p.y < y_max; }
+  friend bool operator==(const Rect&, const Rect&) = default;
   /// Distance from p to the rectangle (0 inside).
   double distanceTo(Vec2 p) const {
     const double dx = std::max({x_min - p.x, 0.0, p.x - x_max});

@@ -35,9 +35,4 @@ void resolveParams(const std::string& source_path, const std::string& section, c
     if (!params.contains(p.name)) params[p.name] = EngineParam{p.default_value, 0};
 }
 
-double paramOr(const std::map<std::string, EngineParam>& params, const std::string& name, double fallback) {
-  const auto it = params.find(name);
-  return it == params.end() ? fallback : it->second.value;
-}
-
 }  // namespace wsn::common

@@ -53,6 +53,8 @@ class Registry {
   auto begin() const { return specs_.begin(); }
   auto end() const { return specs_.end(); }
   std::size_t size() const { return specs_.size(); }
+  bool empty() const { return specs_.empty(); }
+  const Spec& front() const { return specs_.front(); }
 
  private:
   std::string kind_;

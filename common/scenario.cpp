@@ -4,6 +4,8 @@
 // file's YAML before validating it, and writes a scenario back fully resolved.
 #include "common/scenario.hpp"
 
+#include "common/scenario_schema.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -23,47 +25,16 @@
 namespace wsn::common {
 namespace {
 
-// ---------------------------------------------------------------------------------------------
-// Limits that are not paper values but keep a run finite and the numbers meaningful.
-
-constexpr double kMaxCoordinate = 1e6;      ///< |region bounds| (sensor separations)
-constexpr double kMaxSensors = 1e7;         ///< sensors a layout may create
-constexpr double kMaxBirthsPerTick = 1000;  ///< birth_rate * region area
-constexpr std::size_t kMaxSupernodes = 256;
-constexpr std::size_t kMaxNameLength = 100;
-
-// ---------------------------------------------------------------------------------------------
-// Number formatting.
-
-/// Shortest decimal text that reads back to the same double ("0.3", "9.75", "100", "1e+06").
-std::string shortestNumber(double value) {
-  if (std::isnan(value)) return ".nan";
-  if (std::isinf(value)) return value > 0 ? ".inf" : "-.inf";
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
-}
-
-/// For messages: shortest text with a compact exponent ("1e6" rather than "1e+06").
-std::string compactNumber(double value) {
-  std::string text = shortestNumber(value);
-  const auto e = text.find('e');
-  if (e == std::string::npos) return text;
-  std::string exponent = text.substr(e + 1);
-  const bool negative = !exponent.empty() && exponent.front() == '-';
-  std::size_t i = (!exponent.empty() && (exponent.front() == '-' || exponent.front() == '+')) ? 1 : 0;
-  while (i + 1 < exponent.size() && exponent[i] == '0') ++i;
-  return text.substr(0, e) + "e" + (negative ? "-" : "") + exponent.substr(i);
-}
-
-/// For the resolved file: shortest round-trip text that every YAML reader takes for a float
-/// (YAML 1.1 readers want a dot in the mantissa of an exponent form: "1.0e+06").
-std::string yamlNumber(double value) {
-  std::string text = shortestNumber(value);
-  const auto e = text.find('e');
-  if (e != std::string::npos && text.find('.') == std::string::npos) text.insert(e, ".0");
-  return text;
-}
+using config::compactNumber;
+using config::FieldKind;
+using config::FieldTable;
+using config::Range;
+using config::yamlNumber;
+using schema::kMaxBirthsPerTick;
+using schema::kMaxCoordinate;
+using schema::kMaxNameLength;
+using schema::kMaxSensors;
+using schema::kMaxSupernodes;
 
 // ---------------------------------------------------------------------------------------------
 // Parsing scalars. std::from_chars is exact and locale-independent, unlike streams.
@@ -114,26 +85,6 @@ std::optional<long double> parseWhole(std::string_view text, bool& is_number) {
   if (*value != std::floor(*value)) return std::nullopt;
   return static_cast<long double>(*value);
 }
-
-// ---------------------------------------------------------------------------------------------
-// Ranges.
-
-/// A real interval with open or closed ends, printed as in the messages: "(0, 1e6]".
-struct Range {
-  double lo;
-  double hi;
-  bool lo_open;
-  bool hi_open;
-  bool contains(double v) const { return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi); }
-  std::string text() const {
-    return std::string(lo_open ? "(" : "[") + compactNumber(lo) + ", " + compactNumber(hi) + (hi_open ? ")" : "]");
-  }
-};
-
-constexpr Range kPositive{0.0, 1e6, true, false};
-constexpr Range kNonNegative{0.0, 1e6, false, false};
-constexpr Range kProbability{0.0, 1.0, false, false};
-constexpr Range kCoordinate{-kMaxCoordinate, kMaxCoordinate, false, false};
 
 /// A closed integer interval.
 struct IntRange {
@@ -192,6 +143,11 @@ std::string describe(const YAML::Node& node) {
 
 class Reader {
  public:
+  template <typename C>
+  static std::string pathOf(const FieldTable<C>& table) {
+    return table.section;
+  }
+
   explicit Reader(std::string file) : file_(std::move(file)) {}
 
   [[noreturn]] void fail(int line, const std::string& message) const {
@@ -210,12 +166,10 @@ class Reader {
 
   /// Reads a mapping (an empty value counts as an empty mapping). `allowed` lists the keys it
   /// may hold; an empty list allows any name (tracker.params).
-  Section section(const YAML::Node& node, int line, const std::string& path,
-                  std::initializer_list<const char*> allowed) const {
+  Section section(const YAML::Node& node, int line, const std::string& path, std::vector<std::string> names) const {
     Section s;
     s.path = path;
     s.line = std::max(line, 1);
-    std::vector<std::string> names(allowed.begin(), allowed.end());
     std::sort(names.begin(), names.end());
     if (!node.IsDefined() || node.IsNull()) return s;
     if (!node.IsMap()) {
@@ -240,8 +194,8 @@ class Reader {
     return s;
   }
 
-  Section section(const Entry& entry, const std::string& path, std::initializer_list<const char*> allowed) const {
-    return section(entry.value, lineOf(entry), path, allowed);
+  Section section(const Entry& entry, const std::string& path, std::vector<std::string> allowed) const {
+    return section(entry.value, lineOf(entry), path, std::move(allowed));
   }
 
   /// A real number in `range`; true when the key was given.
@@ -268,66 +222,88 @@ class Reader {
     return *value;
   }
 
-  /// A whole number in `range`, stored in an integer type T.
-  template <typename T>
-  bool integer(const Section& s, std::string_view key, T& out, const IntRange& range) const {
-    const Entry* entry = s.find(key);
-    if (entry == nullptr) return false;
-    const std::string path = s.pathOf(key);
-    const long double value = whole(*entry, path);
+  /// A whole number in `range`.
+  std::int64_t integerValue(const Entry& entry, const std::string& path, const IntRange& range) const {
+    const long double value = whole(entry, path);
     if (value < static_cast<long double>(range.lo) || value > static_cast<long double>(range.hi))
-      fail(lineOf(*entry), "'" + path + "' must be in " + range.text() + ", got " + entry->value.Scalar());
-    out = static_cast<T>(value);
-    return true;
+      fail(lineOf(entry), "'" + path + "' must be in " + range.text() + ", got " + entry.value.Scalar());
+    return static_cast<std::int64_t>(value);
   }
 
   /// A whole number in [0, 2^64 - 1] (seeds), converted exactly.
-  bool unsigned64(const Section& s, std::string_view key, std::uint64_t& out) const {
-    const Entry* entry = s.find(key);
-    if (entry == nullptr) return false;
-    const YAML::Node& node = entry->value;
+  std::uint64_t unsigned64Value(const Entry& entry, const std::string& path) const {
+    const YAML::Node& node = entry.value;
     if (node.IsScalar() && isPlainOrNumericTag(node)) {  // integer text, decimal or hex: exact
       const std::string_view text = withoutPlus(node.Scalar());
       const bool hex = text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X');
       const char* last = text.data() + text.size();
       std::uint64_t value = 0;
       const auto result = std::from_chars(text.data() + (hex ? 2 : 0), last, value, hex ? 16 : 10);
-      if (result.ec == std::errc{} && result.ptr == last) {
-        out = value;
-        return true;
-      }
+      if (result.ec == std::errc{} && result.ptr == last) return value;
     }
     // Anything else: a whole float (1e3), or an error for a non-number, a fraction or a value
     // out of range (negative, or 2^64 and beyond).
-    const std::string path = s.pathOf(key);
-    const long double value = whole(*entry, path);
+    const long double value = whole(entry, path);
     if (value < 0.0L || value >= 18446744073709551616.0L)
-      fail(lineOf(*entry), "'" + path + "' must be in [0, 18446744073709551615], got " + node.Scalar());
-    out = static_cast<std::uint64_t>(value);
-    return true;
+      fail(lineOf(entry), "'" + path + "' must be in [0, 18446744073709551615], got " + node.Scalar());
+    return static_cast<std::uint64_t>(value);
   }
 
   /// A string (any scalar).
-  bool text(const Section& s, std::string_view key, std::string& out) const {
-    const Entry* entry = s.find(key);
-    if (entry == nullptr) return false;
-    if (!entry->value.IsScalar())
-      fail(lineOf(*entry), "'" + s.pathOf(key) + "' must be a string, got " + describe(entry->value));
-    out = entry->value.Scalar();
-    return true;
+  std::string textValue(const Entry& entry, const std::string& path) const {
+    if (!entry.value.IsScalar()) fail(lineOf(entry), "'" + path + "' must be a string, got " + describe(entry.value));
+    return entry.value.Scalar();
   }
 
-  /// One of `choices`; returns its index, or -1 when the key is absent.
-  int choice(const Section& s, std::string_view key, std::initializer_list<const char*> choices) const {
-    const Entry* entry = s.find(key);
-    if (entry == nullptr) return -1;
-    std::vector<std::string> names(choices.begin(), choices.end());
-    const YAML::Node& node = entry->value;
+  /// One of `choices`; returns its index.
+  int choiceIndex(const Entry& entry, const std::string& path, const std::vector<std::string>& choices) const {
+    const YAML::Node& node = entry.value;
     if (node.IsScalar()) {
-      const auto it = std::find(names.begin(), names.end(), node.Scalar());
-      if (it != names.end()) return static_cast<int>(it - names.begin());
+      const auto it = std::find(choices.begin(), choices.end(), node.Scalar());
+      if (it != choices.end()) return static_cast<int>(it - choices.begin());
     }
-    fail(lineOf(*entry), "'" + s.pathOf(key) + "' must be one of: " + join(names) + "; got " + describe(node));
+    fail(lineOf(entry), "'" + path + "' must be one of: " + join(choices) + "; got " + describe(node));
+  }
+
+  /// A mapping whose keys are those of `table`.
+  template <typename C>
+  Section section(const YAML::Node& node, int line, const FieldTable<C>& table) const {
+    return section(node, line, pathOf(table), table.sortedKeys());
+  }
+  template <typename C>
+  Section section(const Entry& entry, const FieldTable<C>& table) const {
+    return section(entry.value, lineOf(entry), pathOf(table), table.sortedKeys());
+  }
+  /// An item of a list, whose keys are those of `table`, at `path` ("supernodes[1]").
+  template <typename C>
+  Section item(const YAML::Node& node, int line, const std::string& path, const FieldTable<C>& table) const {
+    return section(node, line, path, table.sortedKeys());
+  }
+
+  /// Reads every value key of `table` that `s` holds into `out`, in table order, each checked
+  /// against its kind and range. Nested keys (sub-sections, lists) are left to the caller.
+  template <typename C>
+  void fields(const Section& s, const FieldTable<C>& table, C& out) const {
+    for (const auto& field : table.fields) {
+      const Entry* entry = s.find(field.key);
+      if (entry == nullptr) continue;
+      const std::string path = s.pathOf(field.key);
+      switch (field.kind) {
+        case FieldKind::kReal: field.set_number(out, numberValue(*entry, path, field.range)); break;
+        case FieldKind::kInteger:
+          field.set_number(out, static_cast<double>(integerValue(
+                                    *entry, path,
+                                    IntRange{static_cast<std::int64_t>(field.range.lo),
+                                             static_cast<std::int64_t>(field.range.hi)})));
+          break;
+        case FieldKind::kUnsigned64: field.set_unsigned(out, unsigned64Value(*entry, path)); break;
+        case FieldKind::kText: field.set_text(out, textValue(*entry, path)); break;
+        case FieldKind::kChoice:
+          field.set_text(out, field.choices[static_cast<std::size_t>(choiceIndex(*entry, path, field.choices))]);
+          break;
+        case FieldKind::kNested: break;
+      }
+    }
   }
 
   /// Fails naming the missing keys of an item that needs them.
@@ -383,6 +359,146 @@ bool validName(const std::string& name) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Cross-field rules: each says what must hold between values of different keys, and the line to
+// blame when it does not. They run after the keys they involve are read.
+
+/// region: x_min < x_max and y_min < y_max.
+void regionIsOrdered(const Reader& r, const Rect& region, int line) {
+  if (!(region.x_min < region.x_max))
+    r.fail(line, "'region' must have x_min < x_max, got x_min = " + compactNumber(region.x_min) +
+                     ", x_max = " + compactNumber(region.x_max));
+  if (!(region.y_min < region.y_max))
+    r.fail(line, "'region' must have y_min < y_max, got y_min = " + compactNumber(region.y_min) +
+                     ", y_max = " + compactNumber(region.y_max));
+}
+
+/// sensors: a grid holds 1 to kMaxSensors sensors.
+void gridFitsRegion(const Reader& r, const Scenario& s, int line) {
+  if (s.sensors.kind != SensorLayoutConfig::Kind::kGrid) return;
+  const double n = gridSensorCount(s.region, s.sensors.spacing);
+  if (n < 1.0 || n > kMaxSensors)
+    r.fail(line, "'sensors.spacing' " + compactNumber(s.sensors.spacing) + " puts " + compactNumber(n) +
+                     " sensors on the grid over the region " + regionText(s.region) + "; expected 1 to " +
+                     compactNumber(kMaxSensors));
+}
+
+/// sensor_model.beta left out: Oh §VII's beta = 3 (1 + gamma Rs^alpha), a signal three times the
+/// one at the edge of the range.
+void deriveBeta(const Reader& r, SensorModelConfig& m, int line) {
+  m.beta = 3.0 * (1.0 + m.gamma * std::pow(m.sensing_range, m.alpha));
+  if (!(m.beta <= 1e12))
+    r.fail(line, "'sensor_model.beta' left out is 3 (1 + gamma Rs^alpha) = " + compactNumber(m.beta) +
+                     ", outside (0, 1e12]; give beta explicitly");
+}
+
+/// sensor_model.acoustic: a tick is a whole number (at most 100000) of detection steps.
+void tickIsWholeDetectionSteps(const Reader& r, const AcousticConfig& ac, int line) {
+  const double steps = ac.tick_s / ac.detection_step_s;
+  if (std::abs(steps - std::round(steps)) > 1e-6 * steps || std::round(steps) > 100000.0)
+    r.fail(line, "'sensor_model.acoustic.tick_s' " + compactNumber(ac.tick_s) +
+                     " must be a whole number (at most 100000) of detection steps of " +
+                     compactNumber(ac.detection_step_s) + " s");
+}
+
+/// A key that only the acoustic model reads, given with another model.
+void onlyAcoustic(const Reader& r, const Scenario& s, const std::string& path, int line) {
+  if (s.sensor_model.kind != SensorModelConfig::Kind::kAcousticDoppler)
+    r.fail(line, "'" + path + "' applies only with 'sensor_model.kind: acoustic_doppler'");
+}
+
+/// targets.birth_rate: at most kMaxBirthsPerTick expected births per tick over the region.
+void birthsPerTickBounded(const Reader& r, const Scenario& s, int line) {
+  const double births = s.targets.birth_rate * s.region.area();
+  if (births > kMaxBirthsPerTick)
+    r.fail(line, "'targets.birth_rate' " + compactNumber(s.targets.birth_rate) + " gives " + compactNumber(births) +
+                     " expected births per tick over the region (area " + compactNumber(s.region.area()) +
+                     "); expected at most " + compactNumber(kMaxBirthsPerTick));
+}
+
+/// A scripted target: slower than its sound (acoustic), disappearing after it appears, starting
+/// inside the region.
+void scriptedTargetIsValid(const Reader& r, const Scenario& s, const TargetSpec& spec, const Section& t) {
+  const std::string& path = t.path;
+  if (s.sensor_model.kind == SensorModelConfig::Kind::kAcousticDoppler) {
+    // The retarded emission time is unique only while the target is slower than its sound.
+    const auto& ac = s.sensor_model.acoustic;
+    const double target_speed = std::hypot(spec.velocity.x, spec.velocity.y) / ac.tick_s;
+    if (!(target_speed < ac.sound_speed))
+      r.fail(t.line, "'" + path + "' moves at " + compactNumber(target_speed) + " per second, not slower than the " +
+                         "sound speed " + compactNumber(ac.sound_speed) + " of 'sensor_model.acoustic'");
+  }
+  if (spec.disappear_tick != 0 && spec.disappear_tick <= spec.appear_tick)
+    r.fail(Reader::lineOf(*t.find("disappear_tick")),
+           "'" + path + ".disappear_tick' must be 0 (never) or greater than appear_tick " +
+               std::to_string(spec.appear_tick) + ", got " + std::to_string(spec.disappear_tick));
+  if (!s.region.contains(spec.position))
+    r.fail(t.line, "'" + path + "' starts at " + pointText(spec.position) + ", outside the region " +
+                       regionText(s.region));
+}
+
+/// Born targets move at up to the speed class's bound on each axis (common/truth.cpp); with
+/// acoustic sensors they must stay slower than their sound.
+void bornTargetsSlowerThanSound(const Reader& r, const Scenario& s, int line) {
+  if (s.sensor_model.kind != SensorModelConfig::Kind::kAcousticDoppler || !(s.targets.birth_rate > 0.0)) return;
+  const double per_axis = s.targets.speed_class == SpeedClass::kSlow     ? 1.0
+                          : s.targets.speed_class == SpeedClass::kMedium ? 2.0
+                                                                         : 5.0;
+  const double fastest = per_axis * std::sqrt(2.0) / s.sensor_model.acoustic.tick_s;
+  if (!(fastest < s.sensor_model.acoustic.sound_speed))
+    r.fail(line, "'targets.speed_class' lets born targets move at up to " + compactNumber(fastest) +
+                     " per second, not slower than the sound speed " +
+                     compactNumber(s.sensor_model.acoustic.sound_speed) + " of 'sensor_model.acoustic'");
+}
+
+/// A supernode inside the region and apart from every earlier one.
+void supernodeIsPlaced(const Reader& r, const Scenario& s, Vec2 p, const Section& sec) {
+  if (!s.region.contains(p))
+    r.fail(sec.line, "'" + sec.path + "' at " + pointText(p) + " is outside the region " + regionText(s.region));
+  for (std::size_t j = 0; j < s.supernodes.size(); ++j)
+    if (s.supernodes[j] == p)
+      r.fail(sec.line, "'" + sec.path + "' at " + pointText(p) + " is at the same place as 'supernodes[" +
+                           std::to_string(j) + "]'");
+}
+
+/// run.node_processes: at most one tile per cell of side 2 Rs.
+void nodeProcessesFitCells(const Reader& r, const Scenario& s, int line) {
+  const double cells = layoutCellCount(s.region, s.sensor_model.sensing_range);
+  if (static_cast<double>(s.run.node_processes) > cells)
+    r.fail(line, "'run.node_processes' " + std::to_string(s.run.node_processes) + " exceeds the " +
+                     compactNumber(cells) + " cells of side 2 Rs = " + compactNumber(2.0 * s.sensor_model.sensing_range) +
+                     " that node tiles are made of; expected at most " + compactNumber(cells));
+}
+
+/// The items of a list key: each a mapping read by `read(item, line, path)`.
+template <typename F>
+void forEachItem(const Reader& r, const Entry& list, const std::string& path, const std::string& shape, F&& read) {
+  const int list_line = Reader::lineOf(list);
+  std::size_t i = 0;
+  for (const auto& item : list.value) {
+    const std::string item_path = path + "[" + std::to_string(i++) + "]";
+    const int item_line = Reader::lineOf(item) > 0 ? Reader::lineOf(item) : list_line;
+    if (!item.IsMap()) r.fail(item_line, "'" + item_path + "' must be a mapping " + shape + ", got " + describe(item));
+    read(item, item_line, item_path);
+  }
+}
+
+/// The line of key `key` in `s` when given, else `fallback`.
+int lineOr(const Section& s, std::string_view key, int fallback) {
+  const Entry* e = s.find(key);
+  return e == nullptr ? fallback : Reader::lineOf(*e);
+}
+
+/// A params mapping (tracker.params, aggregator.params): any names, numbers only; the owning
+/// component's table checks names and ranges (common/param_spec.hpp).
+std::map<std::string, EngineParam> readParams(const Reader& r, const Entry& entry, const std::string& path) {
+  std::map<std::string, EngineParam> params;
+  const Section p = r.section(entry, path, {});
+  for (const auto& [name, value] : p.entries)
+    params[name] = EngineParam{r.anyNumber(value, p.pathOf(name)), Reader::lineOf(value.key)};
+  return params;
+}
+
+// ---------------------------------------------------------------------------------------------
 // The scenario, section by section. Sections are read in a fixed order (region first) so that
 // checks against the region do not depend on the order of keys in the file.
 
@@ -390,344 +506,164 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
   const Reader r(file);
   Scenario s;
   s.source_path = file;
-  const Section top = r.section(root, 1, "",
-                                {"name", "region", "sensors", "sensor_model", "localisation", "targets", "dynamics",
-                                 "supernodes", "network", "tracker", "aggregator", "metrics", "run"});
+  const Section top = r.section(root, 1, "", schema::sectionNames());
 
   if (const Entry* e = top.find("name")) {
-    r.text(top, "name", s.name);
+    r.fields(top, schema::topLevel(), s);
     if (!validName(s.name))
       r.fail(Reader::lineOf(*e), "'name' must be 1 to " + std::to_string(kMaxNameLength) +
                                      " characters from A-Z a-z 0-9 _ - . (it names the run directory), got '" +
                                      s.name + "'");
   }
 
-  // region
   int region_line = 1;
   if (const Entry* e = top.find("region")) {
-    const Section sec = r.section(*e, "region", {"x_min", "y_min", "x_max", "y_max"});
+    const Section sec = r.section(*e, schema::region());
     region_line = sec.line;
-    r.number(sec, "x_min", s.region.x_min, kCoordinate);
-    r.number(sec, "y_min", s.region.y_min, kCoordinate);
-    r.number(sec, "x_max", s.region.x_max, kCoordinate);
-    r.number(sec, "y_max", s.region.y_max, kCoordinate);
-    if (!(s.region.x_min < s.region.x_max))
-      r.fail(sec.line, "'region' must have x_min < x_max, got x_min = " + compactNumber(s.region.x_min) +
-                           ", x_max = " + compactNumber(s.region.x_max));
-    if (!(s.region.y_min < s.region.y_max))
-      r.fail(sec.line, "'region' must have y_min < y_max, got y_min = " + compactNumber(s.region.y_min) +
-                           ", y_max = " + compactNumber(s.region.y_max));
+    r.fields(sec, schema::region(), s.region);
+    regionIsOrdered(r, s.region, sec.line);
   }
 
-  // sensors
   int layout_line = region_line;  // where a layout that does not fit the region is reported
   if (const Entry* e = top.find("sensors")) {
-    const Section sec = r.section(*e, "sensors", {"layout", "spacing", "count"});
-    const int kind = r.choice(sec, "layout", {"grid", "random"});
-    if (kind >= 0) s.sensors.kind = kind == 0 ? SensorLayoutConfig::Kind::kGrid : SensorLayoutConfig::Kind::kRandom;
-    if (r.number(sec, "spacing", s.sensors.spacing, kPositive)) layout_line = Reader::lineOf(*sec.find("spacing"));
-    r.integer(sec, "count", s.sensors.count, IntRange{1, static_cast<std::int64_t>(kMaxSensors)});
+    const Section sec = r.section(*e, schema::sensors());
+    r.fields(sec, schema::sensors(), s.sensors);
+    layout_line = lineOr(sec, "spacing", layout_line);
   }
-  if (s.sensors.kind == SensorLayoutConfig::Kind::kGrid) {
-    const double n = gridSensorCount(s.region, s.sensors.spacing);
-    if (n < 1.0 || n > kMaxSensors)
-      r.fail(layout_line, "'sensors.spacing' " + compactNumber(s.sensors.spacing) + " puts " + compactNumber(n) +
-                              " sensors on the grid over the region " + regionText(s.region) + "; expected 1 to " +
-                              compactNumber(kMaxSensors));
-  }
+  gridFitsRegion(r, s, layout_line);
 
   // sensor_model (Oh eq. 5, or An et al. 2014 eq. 1-4 for acoustic sensors)
   int sensing_range_line = region_line;
   if (const Entry* e = top.find("sensor_model")) {
-    const Section sec = r.section(*e, "sensor_model",
-                                  {"kind", "alpha", "beta", "gamma", "eta", "sensing_range", "noise_sigma", "acoustic",
-                                   "environmental_noise"});
-    const int kind = r.choice(sec, "kind", {"signal_strength", "acoustic_doppler"});
-    if (kind >= 0) s.sensor_model.kind = static_cast<SensorModelConfig::Kind>(kind);
-    r.number(sec, "alpha", s.sensor_model.alpha, Range{0.0, 100.0, true, false});
-    r.number(sec, "gamma", s.sensor_model.gamma, kNonNegative);
-    r.number(sec, "eta", s.sensor_model.eta, Range{0.0, 1e9, true, false});
-    if (r.number(sec, "sensing_range", s.sensor_model.sensing_range, kPositive))
-      sensing_range_line = Reader::lineOf(*sec.find("sensing_range"));
-    r.number(sec, "noise_sigma", s.sensor_model.noise_sigma, kNonNegative);
-    if (!r.number(sec, "beta", s.sensor_model.beta, Range{0.0, 1e12, true, false})) {
-      // Oh §VII: beta = 3 (1 + gamma Rs^alpha), a signal three times the one at the edge of the range.
-      const auto& m = s.sensor_model;
-      s.sensor_model.beta = 3.0 * (1.0 + m.gamma * std::pow(m.sensing_range, m.alpha));
-      if (!(s.sensor_model.beta <= 1e12))
-        r.fail(sec.line, "'sensor_model.beta' left out is 3 (1 + gamma Rs^alpha) = " +
-                             compactNumber(s.sensor_model.beta) + ", outside (0, 1e12]; give beta explicitly");
-    }
-    const bool acoustic = s.sensor_model.kind == SensorModelConfig::Kind::kAcousticDoppler;
+    const Section sec = r.section(*e, schema::sensorModel());
+    r.fields(sec, schema::sensorModel(), s.sensor_model);
+    sensing_range_line = lineOr(sec, "sensing_range", sensing_range_line);
+    if (sec.find("beta") == nullptr) deriveBeta(r, s.sensor_model, sec.line);
     if (const Entry* a = sec.find("acoustic")) {
-      if (!acoustic)
-        r.fail(Reader::lineOf(a->key), "'sensor_model.acoustic' applies only with 'sensor_model.kind: acoustic_doppler'");
-      const Section asec = r.section(*a, "sensor_model.acoustic",
-                                     {"threshold", "sound_speed", "detection_step_s", "tick_s", "power_fluctuation"});
-      auto& ac = s.sensor_model.acoustic;
-      r.number(asec, "threshold", ac.threshold, Range{0.0, 1e12, true, false});
-      r.number(asec, "sound_speed", ac.sound_speed, kPositive);
-      r.number(asec, "detection_step_s", ac.detection_step_s, Range{0.0, 10.0, true, false});
-      r.number(asec, "tick_s", ac.tick_s, Range{0.0, 1e3, true, false});
-      r.number(asec, "power_fluctuation", ac.power_fluctuation, Range{0.0, 1.0, false, true});
-      const double steps = ac.tick_s / ac.detection_step_s;
-      if (std::abs(steps - std::round(steps)) > 1e-6 * steps || std::round(steps) > 100000.0)
-        r.fail(asec.line, "'sensor_model.acoustic.tick_s' " + compactNumber(ac.tick_s) +
-                              " must be a whole number (at most 100000) of detection steps of " +
-                              compactNumber(ac.detection_step_s) + " s");
+      onlyAcoustic(r, s, "sensor_model.acoustic", Reader::lineOf(a->key));
+      const Section asec = r.section(*a, schema::acoustic());
+      r.fields(asec, schema::acoustic(), s.sensor_model.acoustic);
+      tickIsWholeDetectionSteps(r, s.sensor_model.acoustic, asec.line);
     }
     if (const Entry* n = sec.find("environmental_noise")) {
-      if (!acoustic)
-        r.fail(Reader::lineOf(n->key),
-               "'sensor_model.environmental_noise' applies only with 'sensor_model.kind: acoustic_doppler'");
-      const Section nsec = r.section(*n, "sensor_model.environmental_noise", {"preset", "components"});
+      onlyAcoustic(r, s, "sensor_model.environmental_noise", Reader::lineOf(n->key));
+      const Section nsec = r.section(*n, schema::environmentalNoise());
       auto& noise = s.sensor_model.environmental_noise;
-      const Entry* preset = nsec.find("preset");
       const Entry* components = nsec.find("components");
-      if (preset != nullptr && components != nullptr)
+      if (nsec.find("preset") != nullptr && components != nullptr)
         r.fail(nsec.line, "'sensor_model.environmental_noise' takes either 'preset' or 'components', not both");
-      if (preset != nullptr) {
-        const int which = r.choice(nsec, "preset", {"none", "noise1", "noise2", "noise3"});
-        noise.preset = std::array{"none", "noise1", "noise2", "noise3"}[static_cast<std::size_t>(which)];
-        noise.components = *noisePreset(noise.preset);
-      }
+      r.fields(nsec, schema::environmentalNoise(), noise);
+      noise.components = *noisePreset(noise.preset);
       if (components != nullptr && !components->value.IsNull()) {
+        const std::string path = "sensor_model.environmental_noise.components";
         if (!components->value.IsSequence())
           r.fail(Reader::lineOf(*components),
-                 "'sensor_model.environmental_noise.components' must be a list of {fraction, duration_s}, got " +
-                     describe(components->value));
+                 "'" + path + "' must be a list of {fraction, duration_s}, got " + describe(components->value));
         noise.preset = "custom";
         double total = 0.0;
-        std::size_t i = 0;
-        for (const auto& item : components->value) {
-          const std::string path = "sensor_model.environmental_noise.components[" + std::to_string(i++) + "]";
-          const int item_line = Reader::lineOf(item) > 0 ? Reader::lineOf(item) : Reader::lineOf(*components);
-          if (!item.IsMap()) r.fail(item_line, "'" + path + "' must be a mapping {fraction, duration_s}, got " + describe(item));
-          const Section c = r.section(item, item_line, path, {"fraction", "duration_s"});
+        forEachItem(r, *components, path, "{fraction, duration_s}", [&](const YAML::Node& item, int line, auto& p) {
+          const Section c = r.item(item, line, p, schema::noiseComponent());
           r.require(c, {"fraction", "duration_s"}, "share of the sensors and seconds each hears the noise");
           NoiseComponent component;
-          r.number(c, "fraction", component.fraction, kProbability);
-          r.number(c, "duration_s", component.duration_s, Range{0.0, 1e6, true, false});
+          r.fields(c, schema::noiseComponent(), component);
           total += component.fraction;
           noise.components.push_back(component);
-        }
+        });
         if (total > 1.0)
-          r.fail(Reader::lineOf(*components), "the fractions of 'sensor_model.environmental_noise.components' add up to " +
-                                                  compactNumber(total) + "; expected at most 1");
+          r.fail(Reader::lineOf(*components),
+                 "the fractions of '" + path + "' add up to " + compactNumber(total) + "; expected at most 1");
       }
     }
   }
 
-  if (const Entry* e = top.find("localisation")) {
-    const Section sec = r.section(*e, "localisation", {"sigma"});
-    r.number(sec, "sigma", s.localisation.sigma, Range{0.0, 1e3, false, false});
-  }
+  if (const Entry* e = top.find("localisation"))
+    r.fields(r.section(*e, schema::localisation()), schema::localisation(), s.localisation);
 
-  // targets
   if (const Entry* e = top.find("targets")) {
-    const Section sec = r.section(*e, "targets", {"scripted", "birth_rate", "death_probability", "speed_class"});
-    if (r.number(sec, "birth_rate", s.targets.birth_rate, kNonNegative)) {
-      const double births = s.targets.birth_rate * s.region.area();
-      if (births > kMaxBirthsPerTick)
-        r.fail(Reader::lineOf(*sec.find("birth_rate")),
-               "'targets.birth_rate' " + compactNumber(s.targets.birth_rate) + " gives " + compactNumber(births) +
-                   " expected births per tick over the region (area " + compactNumber(s.region.area()) +
-                   "); expected at most " + compactNumber(kMaxBirthsPerTick));
-    }
-    r.number(sec, "death_probability", s.targets.death_probability, kProbability);
-    const int speed = r.choice(sec, "speed_class", {"slow", "medium", "fast"});
-    if (speed >= 0) s.targets.speed_class = static_cast<SpeedClass>(speed);
-
+    const Section sec = r.section(*e, schema::targets());
+    r.fields(sec, schema::targets(), s.targets);
+    if (sec.find("birth_rate") != nullptr) birthsPerTickBounded(r, s, Reader::lineOf(*sec.find("birth_rate")));
     if (const Entry* scripted = sec.find("scripted"); scripted != nullptr && !scripted->value.IsNull()) {
+      const std::string shape = "{appear_tick, disappear_tick, x, y, vx, vy}";
       if (!scripted->value.IsSequence())
         r.fail(Reader::lineOf(*scripted),
-               "'targets.scripted' must be a list of {appear_tick, disappear_tick, x, y, vx, vy}, got " +
-                   describe(scripted->value));
-      std::size_t i = 0;
-      for (const auto& item : scripted->value) {
-        const std::string path = "targets.scripted[" + std::to_string(i++) + "]";
-        const int item_line = Reader::lineOf(item) > 0 ? Reader::lineOf(item) : Reader::lineOf(*scripted);
-        if (!item.IsMap())
-          r.fail(item_line, "'" + path + "' must be a mapping {appear_tick, disappear_tick, x, y, vx, vy}, got " +
-                                describe(item));
-        const Section t =
-            r.section(item, item_line, path, {"appear_tick", "disappear_tick", "x", "y", "vx", "vy", "sensing_range"});
+               "'targets.scripted' must be a list of " + shape + ", got " + describe(scripted->value));
+      forEachItem(r, *scripted, "targets.scripted", shape, [&](const YAML::Node& item, int line, auto& path) {
+        const Section t = r.item(item, line, path, schema::scriptedTarget());
         r.require(t, {"x", "y"}, "initial position, sensor separations");
         r.require(t, {"vx", "vy"}, "velocity, sensor separations per tick");
         TargetSpec spec;
-        r.integer(t, "appear_tick", spec.appear_tick, IntRange{1, 1000000});
-        r.integer(t, "disappear_tick", spec.disappear_tick, IntRange{0, 1000000});
-        r.number(t, "x", spec.position.x, kCoordinate);
-        r.number(t, "y", spec.position.y, kCoordinate);
-        r.number(t, "vx", spec.velocity.x, kCoordinate);
-        r.number(t, "vy", spec.velocity.y, kCoordinate);
-        if (r.number(t, "sensing_range", spec.sensing_range, kPositive) &&
-            s.sensor_model.kind != SensorModelConfig::Kind::kAcousticDoppler)
-          r.fail(Reader::lineOf(*t.find("sensing_range")),
-                 "'" + path + ".sensing_range' applies only with 'sensor_model.kind: acoustic_doppler'");
-        if (s.sensor_model.kind == SensorModelConfig::Kind::kAcousticDoppler) {
-          // The retarded emission time is unique only while the target is slower than its sound.
-          const auto& ac = s.sensor_model.acoustic;
-          const double target_speed = std::hypot(spec.velocity.x, spec.velocity.y) / ac.tick_s;
-          if (!(target_speed < ac.sound_speed))
-            r.fail(t.line, "'" + path + "' moves at " + compactNumber(target_speed) + " per second, not slower than the " +
-                               "sound speed " + compactNumber(ac.sound_speed) + " of 'sensor_model.acoustic'");
-        }
-        if (spec.disappear_tick != 0 && spec.disappear_tick <= spec.appear_tick)
-          r.fail(Reader::lineOf(*t.find("disappear_tick")),
-                 "'" + path + ".disappear_tick' must be 0 (never) or greater than appear_tick " +
-                     std::to_string(spec.appear_tick) + ", got " + std::to_string(spec.disappear_tick));
-        if (!s.region.contains(spec.position))
-          r.fail(t.line, "'" + path + "' starts at " + pointText(spec.position) + ", outside the region " +
-                             regionText(s.region));
+        r.fields(t, schema::scriptedTarget(), spec);
+        if (const Entry* range = t.find("sensing_range"))
+          onlyAcoustic(r, s, path + ".sensing_range", Reader::lineOf(*range));
+        scriptedTargetIsValid(r, s, spec, t);
         s.targets.scripted.push_back(spec);
-      }
+      });
     }
   }
+  if (const Entry* e = top.find("targets")) bornTargetsSlowerThanSound(r, s, Reader::lineOf(*e));
 
-  if (s.sensor_model.kind == SensorModelConfig::Kind::kAcousticDoppler && s.targets.birth_rate > 0.0) {
-    // Born targets move at up to the speed class's bound on each axis (common/truth.cpp); the
-    // retarded emission time is unique only while they are slower than their sound.
-    const double per_axis = s.targets.speed_class == SpeedClass::kSlow ? 1.0
-                            : s.targets.speed_class == SpeedClass::kMedium ? 2.0 : 5.0;
-    const double fastest = per_axis * std::sqrt(2.0) / s.sensor_model.acoustic.tick_s;
-    if (!(fastest < s.sensor_model.acoustic.sound_speed))
-      r.fail(Reader::lineOf(*top.find("targets")), "'targets.speed_class' lets born targets move at up to " +
-                                                      compactNumber(fastest) + " per second, not slower than the sound speed " +
-                                                      compactNumber(s.sensor_model.acoustic.sound_speed) +
-                                                      " of 'sensor_model.acoustic'");
-  }
-
-  // dynamics (Oh eq. 8)
-  if (const Entry* e = top.find("dynamics")) {
-    const Section sec = r.section(*e, "dynamics", {"delta", "process_noise_sigma"});
-    r.number(sec, "delta", s.dynamics.delta, Range{0.0, 1e3, true, false});
-    r.number(sec, "process_noise_sigma", s.dynamics.process_noise_sigma, Range{0.0, 1e3, false, false});
-  }
+  if (const Entry* e = top.find("dynamics"))
+    r.fields(r.section(*e, schema::dynamics()), schema::dynamics(), s.dynamics);
 
   // supernodes: default one at the centre of the region
   if (const Entry* e = top.find("supernodes"); e != nullptr && !e->value.IsNull()) {
     const int list_line = Reader::lineOf(*e);
-    if (!e->value.IsSequence())
-      r.fail(list_line, "'supernodes' must be a list of {x, y}, got " + describe(e->value));
+    if (!e->value.IsSequence()) r.fail(list_line, "'supernodes' must be a list of {x, y}, got " + describe(e->value));
     if (e->value.size() == 0) r.fail(list_line, "'supernodes' must list at least one supernode");
     if (e->value.size() > kMaxSupernodes)
       r.fail(list_line, "'supernodes' lists " + std::to_string(e->value.size()) + " supernodes; expected at most " +
                             std::to_string(kMaxSupernodes));
-    std::size_t i = 0;
-    for (const auto& item : e->value) {
-      const std::string path = "supernodes[" + std::to_string(i++) + "]";
-      const int item_line = Reader::lineOf(item) > 0 ? Reader::lineOf(item) : list_line;
-      if (!item.IsMap()) r.fail(item_line, "'" + path + "' must be a mapping {x, y}, got " + describe(item));
-      const Section sec = r.section(item, item_line, path, {"x", "y"});
+    forEachItem(r, *e, "supernodes", "{x, y}", [&](const YAML::Node& item, int line, auto& path) {
+      const Section sec = r.item(item, line, path, schema::supernode());
       r.require(sec, {"x", "y"}, "position, sensor separations");
       Vec2 p;
-      r.number(sec, "x", p.x, kCoordinate);
-      r.number(sec, "y", p.y, kCoordinate);
-      if (!s.region.contains(p))
-        r.fail(sec.line, "'" + path + "' at " + pointText(p) + " is outside the region " + regionText(s.region));
-      for (std::size_t j = 0; j < s.supernodes.size(); ++j)
-        if (s.supernodes[j] == p)
-          r.fail(sec.line, "'" + path + "' at " + pointText(p) + " is at the same place as 'supernodes[" +
-                               std::to_string(j) + "]'");
+      r.fields(sec, schema::supernode(), p);
+      supernodeIsPlaced(r, s, p, sec);
       s.supernodes.push_back(p);
-    }
+    });
   } else {
     s.supernodes = {{0.5 * (s.region.x_min + s.region.x_max), 0.5 * (s.region.y_min + s.region.y_max)}};
   }
 
-  // network (Oh §V)
-  if (const Entry* e = top.find("network")) {
-    const Section sec = r.section(*e, "network", {"communication_range", "pte", "pde"});
-    r.number(sec, "communication_range", s.network.communication_range, kPositive);
-    r.number(sec, "pte", s.network.pte, kProbability);
-    r.number(sec, "pde", s.network.pde, kProbability);
-  }
+  if (const Entry* e = top.find("network")) r.fields(r.section(*e, schema::network()), schema::network(), s.network);
 
-  // tracker: parameters are only recorded here; the engine registry checks them.
+  // tracker and aggregator: parameters are only recorded here; the engine and association
+  // registries check them against the chosen component's table.
   if (const Entry* e = top.find("tracker")) {
-    const Section sec = r.section(*e, "tracker", {"engine", "window_size", "params"});
-    if (r.text(sec, "engine", s.tracker.engine)) {
-      s.tracker.engine_line = Reader::lineOf(*sec.find("engine"));
+    const Section sec = r.section(*e, schema::tracker());
+    r.fields(sec, schema::tracker(), s.tracker);
+    if (const Entry* engine = sec.find("engine")) {
+      s.tracker.engine_line = Reader::lineOf(*engine);
       if (s.tracker.engine.empty()) r.fail(s.tracker.engine_line, "'tracker.engine' must name an engine, got ''");
     }
-    r.integer(sec, "window_size", s.tracker.window_size, IntRange{1, 1000});
-    if (const Entry* params = sec.find("params")) {
-      const Section p = r.section(*params, "tracker.params", {});
-      for (const auto& [name, entry] : p.entries)
-        s.tracker.params[name] = EngineParam{r.anyNumber(entry, p.pathOf(name)), Reader::lineOf(entry.key)};
-    }
+    if (const Entry* params = sec.find("params")) s.tracker.params = readParams(r, *params, "tracker.params");
   }
-
-  // aggregator: like tracker, parameters are only recorded here; the association registry checks them.
   if (const Entry* e = top.find("aggregator")) {
-    const Section sec = r.section(*e, "aggregator", {"association", "params"});
-    if (r.text(sec, "association", s.aggregator.association)) {
-      s.aggregator.association_line = Reader::lineOf(*sec.find("association"));
+    const Section sec = r.section(*e, schema::aggregator());
+    r.fields(sec, schema::aggregator(), s.aggregator);
+    if (const Entry* association = sec.find("association")) {
+      s.aggregator.association_line = Reader::lineOf(*association);
       if (s.aggregator.association.empty())
         r.fail(s.aggregator.association_line, "'aggregator.association' must name a method, got ''");
     }
-    if (const Entry* params = sec.find("params")) {
-      const Section p = r.section(*params, "aggregator.params", {});
-      for (const auto& [name, entry] : p.entries)
-        s.aggregator.params[name] = EngineParam{r.anyNumber(entry, p.pathOf(name)), Reader::lineOf(entry.key)};
-    }
+    if (const Entry* params = sec.find("params")) s.aggregator.params = readParams(r, *params, "aggregator.params");
   }
 
-  if (const Entry* e = top.find("metrics")) {
-    const Section sec =
-        r.section(*e, "metrics", {"ospa_c", "ospa_p", "gospa_c", "gospa_p", "mot_threshold", "quality_gate",
-                                    "boundary_band"});
-    const Range order{1.0, 100.0, false, false};
-    r.number(sec, "ospa_c", s.metrics.ospa_c, kPositive);
-    r.number(sec, "ospa_p", s.metrics.ospa_p, order);
-    r.number(sec, "gospa_c", s.metrics.gospa_c, kPositive);
-    r.number(sec, "gospa_p", s.metrics.gospa_p, order);
-    r.number(sec, "mot_threshold", s.metrics.mot_threshold, kPositive);
-    r.number(sec, "quality_gate", s.metrics.quality_gate, kPositive);
-    r.number(sec, "boundary_band", s.metrics.boundary_band, kNonNegative);
-  }
+  if (const Entry* e = top.find("metrics")) r.fields(r.section(*e, schema::metrics()), schema::metrics(), s.metrics);
 
-  // run
   int node_processes_line = sensing_range_line;
   if (const Entry* e = top.find("run")) {
-    const Section sec = r.section(*e, "run", {"ticks", "seed", "node_processes", "max_ticks_in_flight"});
-    r.integer(sec, "ticks", s.run.ticks, IntRange{1, 1000000});
-    r.unsigned64(sec, "seed", s.run.seed);
-    if (r.integer(sec, "node_processes", s.run.node_processes, IntRange{1, 64}))
-      node_processes_line = Reader::lineOf(*sec.find("node_processes"));
-    r.integer(sec, "max_ticks_in_flight", s.run.max_ticks_in_flight, IntRange{1, 64});
+    const Section sec = r.section(*e, schema::run());
+    r.fields(sec, schema::run(), s.run);
+    node_processes_line = lineOr(sec, "node_processes", node_processes_line);
   }
-  const double cells = layoutCellCount(s.region, s.sensor_model.sensing_range);
-  if (static_cast<double>(s.run.node_processes) > cells)
-    r.fail(node_processes_line, "'run.node_processes' " + std::to_string(s.run.node_processes) +
-                                    " exceeds the " + compactNumber(cells) + " cells of side 2 Rs = " +
-                                    compactNumber(2.0 * s.sensor_model.sensing_range) +
-                                    " that node tiles are made of; expected at most " + compactNumber(cells));
+  nodeProcessesFitCells(r, s, node_processes_line);
   return s;
 }
 
 // ---------------------------------------------------------------------------------------------
 // Writing.
-
-/// A double-quoted YAML string (escapes quote, backslash and control characters).
-std::string quoted(const std::string& text) {
-  std::string out = "\"";
-  for (const char c : text) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (byte < 0x20 || byte == 0x7f) {
-      char buffer[8];
-      std::snprintf(buffer, sizeof buffer, "\\x%02x", byte);
-      out += buffer;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
-}
 
 /// A mapping key: plain when it is a simple name, quoted otherwise (and when YAML would read the
 /// plain word as null).
@@ -738,16 +674,51 @@ std::string keyText(const std::string& name) {
                      std::all_of(name.begin(), name.end(), [](char c) {
                        return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
                      });
-  return plain ? name : quoted(name);
+  return plain ? name : config::yamlQuoted(name);
 }
 
-const char* speedClassName(SpeedClass c) {
-  switch (c) {
-    case SpeedClass::kSlow: return "slow";
-    case SpeedClass::kMedium: return "medium";
-    case SpeedClass::kFast: return "fast";
+/// `indent key: value` for every value key of `table` (nested keys are written by the caller).
+template <typename C>
+void writeFields(std::ostringstream& out, const std::string& indent, const FieldTable<C>& table, const C& config) {
+  for (const auto& field : table.fields)
+    if (field.kind != FieldKind::kNested) out << indent << field.key << ": " << field.yamlValue(config) << "\n";
+}
+
+template <typename C>
+void writeSection(std::ostringstream& out, const std::string& name, const FieldTable<C>& table, const C& config) {
+  out << name << ":\n";
+  writeFields(out, "  ", table, config);
+}
+
+/// "{a: 1, b: 2}": a list item on one line; a key whose zero means "not given" is left out at 0.
+template <typename C>
+std::string flowMapping(const FieldTable<C>& table, const C& config) {
+  std::string text;
+  for (const auto& field : table.fields) {
+    if (field.kind == FieldKind::kNested || (field.zero_means_unset && field.get_number(config) == 0.0)) continue;
+    text += (text.empty() ? "{" : ", ") + field.key + ": " + field.yamlValue(config);
   }
-  return "medium";
+  return text + "}";
+}
+
+template <typename C>
+void writeList(std::ostringstream& out, const std::string& indent, const std::string& key, const FieldTable<C>& table,
+               const std::vector<C>& items) {
+  if (items.empty()) {
+    out << indent << key << ": []\n";
+    return;
+  }
+  out << indent << key << ":\n";
+  for (const auto& item : items) out << indent << "  - " << flowMapping(table, item) << "\n";
+}
+
+void writeParams(std::ostringstream& out, const std::map<std::string, EngineParam>& params) {
+  if (params.empty()) {
+    out << "  params: {}\n";
+    return;
+  }
+  out << "  params:\n";
+  for (const auto& [name, param] : params) out << "    " << keyText(name) << ": " << yamlNumber(param.value) << "\n";
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -998,108 +969,36 @@ Scenario loadScenario(const std::string& path, const std::vector<ScenarioOverrid
 
 std::string resolvedScenarioYaml(const Scenario& s) {
   std::ostringstream out;
-  const auto num = [](double v) { return yamlNumber(v); };
   out << "# wsntrack resolved scenario: every parameter written out with defaults filled in.\n"
       << "# Loading this file gives the same scenario.\n";
-  out << "name: " << quoted(s.name) << "\n";
-  out << "region:\n"
-      << "  x_min: " << num(s.region.x_min) << "\n"
-      << "  y_min: " << num(s.region.y_min) << "\n"
-      << "  x_max: " << num(s.region.x_max) << "\n"
-      << "  y_max: " << num(s.region.y_max) << "\n";
-  out << "sensors:\n"
-      << "  layout: " << (s.sensors.kind == SensorLayoutConfig::Kind::kGrid ? "grid" : "random") << "\n"
-      << "  spacing: " << num(s.sensors.spacing) << "\n"
-      << "  count: " << s.sensors.count << "\n";
-  out << "sensor_model:\n"
-      << "  kind: "
-      << (s.sensor_model.kind == SensorModelConfig::Kind::kAcousticDoppler ? "acoustic_doppler" : "signal_strength")
-      << "\n"
-      << "  alpha: " << num(s.sensor_model.alpha) << "\n"
-      << "  beta: " << num(s.sensor_model.beta) << "\n"
-      << "  gamma: " << num(s.sensor_model.gamma) << "\n"
-      << "  eta: " << num(s.sensor_model.eta) << "\n"
-      << "  sensing_range: " << num(s.sensor_model.sensing_range) << "\n"
-      << "  noise_sigma: " << num(s.sensor_model.noise_sigma) << "\n";
+  writeFields(out, "", schema::topLevel(), s);
+  writeSection(out, "region", schema::region(), s.region);
+  writeSection(out, "sensors", schema::sensors(), s.sensors);
+  writeSection(out, "sensor_model", schema::sensorModel(), s.sensor_model);
   if (s.sensor_model.kind == SensorModelConfig::Kind::kAcousticDoppler) {
-    const auto& ac = s.sensor_model.acoustic;
-    out << "  acoustic:\n"
-        << "    threshold: " << num(ac.threshold) << "\n"
-        << "    sound_speed: " << num(ac.sound_speed) << "\n"
-        << "    detection_step_s: " << num(ac.detection_step_s) << "\n"
-        << "    tick_s: " << num(ac.tick_s) << "\n"
-        << "    power_fluctuation: " << num(ac.power_fluctuation) << "\n";
+    out << "  acoustic:\n";
+    writeFields(out, "    ", schema::acoustic(), s.sensor_model.acoustic);
     const auto& noise = s.sensor_model.environmental_noise;
     out << "  environmental_noise:\n";
     if (noise.preset != "custom") {
-      out << "    preset: " << noise.preset << "\n";
+      writeFields(out, "    ", schema::environmentalNoise(), noise);
     } else {
       out << "    components:\n";
-      for (const auto& c : noise.components)
-        out << "      - {fraction: " << num(c.fraction) << ", duration_s: " << num(c.duration_s) << "}\n";
+      for (const auto& c : noise.components) out << "      - " << flowMapping(schema::noiseComponent(), c) << "\n";
     }
   }
-  out << "localisation:\n"
-      << "  sigma: " << num(s.localisation.sigma) << "\n";
-  out << "targets:\n"
-      << "  birth_rate: " << num(s.targets.birth_rate) << "\n"
-      << "  death_probability: " << num(s.targets.death_probability) << "\n"
-      << "  speed_class: " << speedClassName(s.targets.speed_class) << "\n";
-  if (s.targets.scripted.empty()) {
-    out << "  scripted: []\n";
-  } else {
-    out << "  scripted:\n";
-    for (const auto& t : s.targets.scripted)
-      out << "    - {appear_tick: " << t.appear_tick << ", disappear_tick: " << t.disappear_tick
-          << ", x: " << num(t.position.x) << ", y: " << num(t.position.y) << ", vx: " << num(t.velocity.x)
-          << ", vy: " << num(t.velocity.y)
-          << (t.sensing_range > 0.0 ? ", sensing_range: " + num(t.sensing_range) : std::string()) << "}\n";
-  }
-  out << "dynamics:\n"
-      << "  delta: " << num(s.dynamics.delta) << "\n"
-      << "  process_noise_sigma: " << num(s.dynamics.process_noise_sigma) << "\n";
-  if (s.supernodes.empty()) {
-    out << "supernodes: []\n";
-  } else {
-    out << "supernodes:\n";
-    for (const auto& p : s.supernodes) out << "  - {x: " << num(p.x) << ", y: " << num(p.y) << "}\n";
-  }
-  out << "network:\n"
-      << "  communication_range: " << num(s.network.communication_range) << "\n"
-      << "  pte: " << num(s.network.pte) << "\n"
-      << "  pde: " << num(s.network.pde) << "\n";
-  out << "tracker:\n"
-      << "  engine: " << quoted(s.tracker.engine) << "\n"
-      << "  window_size: " << s.tracker.window_size << "\n";
-  if (s.tracker.params.empty()) {
-    out << "  params: {}\n";
-  } else {
-    out << "  params:\n";
-    for (const auto& [name, param] : s.tracker.params)
-      out << "    " << keyText(name) << ": " << num(param.value) << "\n";
-  }
-  out << "aggregator:\n"
-      << "  association: " << quoted(s.aggregator.association) << "\n";
-  if (s.aggregator.params.empty()) {
-    out << "  params: {}\n";
-  } else {
-    out << "  params:\n";
-    for (const auto& [name, param] : s.aggregator.params)
-      out << "    " << keyText(name) << ": " << num(param.value) << "\n";
-  }
-  out << "metrics:\n"
-      << "  ospa_c: " << num(s.metrics.ospa_c) << "\n"
-      << "  ospa_p: " << num(s.metrics.ospa_p) << "\n"
-      << "  gospa_c: " << num(s.metrics.gospa_c) << "\n"
-      << "  gospa_p: " << num(s.metrics.gospa_p) << "\n"
-      << "  mot_threshold: " << num(s.metrics.mot_threshold) << "\n"
-      << "  quality_gate: " << num(s.metrics.quality_gate) << "\n"
-      << "  boundary_band: " << num(s.metrics.boundary_band) << "\n";
-  out << "run:\n"
-      << "  ticks: " << s.run.ticks << "\n"
-      << "  seed: " << s.run.seed << "\n"
-      << "  node_processes: " << s.run.node_processes << "\n"
-      << "  max_ticks_in_flight: " << s.run.max_ticks_in_flight << "\n";
+  writeSection(out, "localisation", schema::localisation(), s.localisation);
+  writeSection(out, "targets", schema::targets(), s.targets);
+  writeList(out, "  ", "scripted", schema::scriptedTarget(), s.targets.scripted);
+  writeSection(out, "dynamics", schema::dynamics(), s.dynamics);
+  writeList(out, "", "supernodes", schema::supernode(), s.supernodes);
+  writeSection(out, "network", schema::network(), s.network);
+  writeSection(out, "tracker", schema::tracker(), s.tracker);
+  writeParams(out, s.tracker.params);
+  writeSection(out, "aggregator", schema::aggregator(), s.aggregator);
+  writeParams(out, s.aggregator.params);
+  writeSection(out, "metrics", schema::metrics(), s.metrics);
+  writeSection(out, "run", schema::run(), s.run);
   return out.str();
 }
 

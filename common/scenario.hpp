@@ -1,7 +1,6 @@
-// The scenario: every parameter of a run, named as in the papers, with the paper's values as
-// defaults. Loaded from YAML by loadScenario() with strict validation, optionally with
-// command-line overrides (`--set KEY=VALUE`); written back fully resolved (every default filled
-// in) by resolvedScenarioYaml().
+// Loading a scenario (the structs of common/scenario_config.hpp): from YAML by loadScenario()
+// with strict validation, optionally with command-line overrides (`--set KEY=VALUE`); written
+// back fully resolved (every default filled in) by resolvedScenarioYaml().
 #pragma once
 
 #include <cstdint>
@@ -13,171 +12,12 @@
 #include <vector>
 
 #include "common/geometry.hpp"
+#include "common/scenario_config.hpp"
 
 namespace wsn::common {
 
-/// Sensor placement over the region.
-struct SensorLayoutConfig {
-  enum class Kind { kGrid, kRandom };
-  Kind kind = Kind::kGrid;
-  /// Grid: separation between neighbouring sensors; sensors sit at cell centres, so a
-  /// 100 x 100 region with spacing 1 holds sensors at 0.5, 1.5, ..., 99.5 (Oh §VII).
-  double spacing = 1.0;
-  /// Random: number of sensors placed uniformly over the region.
-  std::uint32_t count = 10000;
-};
-
-/// Acoustic sensors that hear the targets' sound with the Doppler effect, An et al. 2014 eq. (1)-(4).
-/// A target of sensing range SR emits Pt = threshold * SR^alpha every detection step; a sensor
-/// reports (id, floor(Ps / threshold)) when Ps >= threshold (node/acoustic/).
-struct AcousticConfig {
-  double threshold = 1.0;           ///< cs (gamma_s): the sensor threshold, in power units
-  double sound_speed = 343.0;       ///< Vs, length units per second
-  double detection_step_s = 0.005;  ///< Delta t of the detection model (2014 §3.1)
-  double tick_s = 0.1;              ///< seconds per tick: the fusion centre runs once a tick (2014 §5)
-  /// Each emission's power is Pt (1 + f U(-1, 1)), f = power_fluctuation (2014 §5.2: 0, 0.2, 0.4).
-  double power_fluctuation = 0.0;
-};
-
-/// One kind of sporadic environmental noise, An et al. 2013 §3.1: at any time `fraction` of the
-/// sensors, chosen at random, hear noise of power gamma_s (1 + U(0, 1)) for `duration_s` seconds.
-struct NoiseComponent {
-  double fraction = 0.0;
-  double duration_s = 0.1;
-  friend bool operator==(const NoiseComponent&, const NoiseComponent&) = default;
-};
-
-/// Environmental noise (acoustic sensors only): a named preset of the 2013 paper (noise1: 0.1 s on
-/// 6 %; noise2: 0.1 s on 5 % + 0.5 s on 1 %; noise3: 0.1 s on 5 % + 1 s on 1 %) or explicit components.
-struct EnvironmentalNoiseConfig {
-  std::string preset = "none";  ///< none, noise1, noise2, noise3 or custom (components given)
-  std::vector<NoiseComponent> components;
-};
-
 /// The components of a named preset; nullopt for an unknown name ("none" has none).
 std::optional<std::vector<NoiseComponent>> noisePreset(const std::string& name);
-
-/// Signal-strength sensor model, Oh eq. (5): z = beta / (1 + gamma |s - x|^alpha) + w within
-/// the sensing range Rs, z = w outside, w ~ N(0, noise_sigma^2); detection when z >= eta.
-/// kind = acoustic_doppler selects An et al.'s acoustic sensors instead (alpha, sensing_range,
-/// acoustic and environmental_noise apply; beta, gamma, eta and noise_sigma do not).
-struct SensorModelConfig {
-  enum class Kind { kSignalStrength, kAcousticDoppler };
-  Kind kind = Kind::kSignalStrength;
-  double alpha = 2.0;
-  /// Oh §VII: beta = 3 (1 + gamma Rs^alpha); filled in by the loader when not given.
-  double beta = 9.75;
-  double gamma = 1.0;
-  double eta = 2.0;
-  double sensing_range = 1.5;
-  double noise_sigma = 1.0;
-  AcousticConfig acoustic;
-  EnvironmentalNoiseConfig environmental_noise;
-};
-
-/// Oh §VII-B: a sensor believes it is at s* + N(0, sigma^2 I).
-struct LocalisationConfig {
-  double sigma = 0.0;
-};
-
-/// One explicitly scripted target: alive on ticks [appear_tick, disappear_tick).
-struct TargetSpec {
-  std::int32_t appear_tick = 1;
-  std::int32_t disappear_tick = 0;  ///< 0: until the end of the run (or leaving the region)
-  Vec2 position;
-  Vec2 velocity;  ///< per tick
-  /// Acoustic sensors: this target's sensing range SR (its sound power); 0 = sensor_model.sensing_range.
-  double sensing_range = 0.0;
-};
-
-/// Speed classes of Oh §VII-A: |vx|, |vy| uniform in [min, max] per tick, random signs.
-enum class SpeedClass { kSlow, kMedium, kFast };
-
-struct TargetsConfig {
-  std::vector<TargetSpec> scripted;
-  /// Random births: Poisson(birth_rate * V) new targets per tick, uniform over the region.
-  double birth_rate = 0.0;
-  /// Each randomly born target alive at t-1 disappears at t with this probability (Oh §III-A,
-  /// pz); scripted targets keep their scripted lifetime.
-  double death_probability = 0.0;
-  SpeedClass speed_class = SpeedClass::kMedium;
-};
-
-/// Dynamics, Oh eq. (8): x_{t+delta} = A x_t + G w_t, w ~ N(0, diag(q^2, q^2)).
-struct DynamicsConfig {
-  double delta = 1.0;
-  double process_noise_sigma = 0.15;
-};
-
-/// Network model, Oh §V.
-struct NetworkConfig {
-  /// Radio range defining the communication graph; calibrated so that the default scenario
-  /// reproduces the loss and delay counts of Oh §VII-E (see docs/NETWORK.md).
-  double communication_range = 11.6;
-  double pte = 0.3;  ///< transmission failure rate per edge
-  double pde = 0.3;  ///< per-hop delay rate
-};
-
-/// A numeric engine parameter as written in the file; line 0 when it is a filled-in default.
-struct EngineParam {
-  double value = 0.0;
-  int line = 0;
-};
-
-/// Supernode tracker: which engine and its parameters (validated by the engine registry).
-struct TrackerConfig {
-  std::string engine = "mcmcda";
-  int engine_line = 0;
-  /// Sliding window of ws ticks of delivered observations (Oh §VI, ws = 10).
-  std::int32_t window_size = 10;
-  std::map<std::string, EngineParam> params;
-};
-
-/// Track-level association at the aggregator (Oh §VI): which method and its parameters
-/// (validated by the aggregator's association registry, like tracker.params).
-struct AggregatorConfig {
-  std::string association = "mcmcda";
-  int association_line = 0;
-  std::map<std::string, EngineParam> params;
-};
-
-/// Metric settings. Lengths in region units (sensor separations).
-struct MetricsConfig {
-  double ospa_c = 5.0;  ///< OSPA cut-off c (Schuhmacher, Vo & Vo 2008)
-  double ospa_p = 2.0;  ///< OSPA order p
-  double gospa_c = 5.0;  ///< GOSPA cut-off c (alpha = 2)
-  double gospa_p = 2.0;  ///< GOSPA order p
-  double mot_threshold = 3.0;  ///< CLEAR-MOT match threshold T (Bernardin & Stiefelhagen 2008)
-  double quality_gate = 3.0;  ///< RSE/TLR/<dx>: a track counts for its target only within this distance
-  /// Boundary events: a target this close to the bisector of its two nearest supernodes is at a
-  /// tracking-group boundary (aggregator/boundary.hpp)
-  double boundary_band = 5.0;
-};
-
-/// Run length, seed and process layout.
-struct RunConfig {
-  std::int32_t ticks = 100;  ///< T
-  std::uint64_t seed = 1;
-  std::int32_t node_processes = 2;  ///< one sensor tile per node process
-  std::int32_t max_ticks_in_flight = 4;  ///< back-pressure bound of the lockstep pipeline
-};
-
-struct Scenario {
-  std::string source_path;  ///< the file it was loaded from, for messages
-  std::string name = "unnamed";
-  Rect region{0.0, 0.0, 100.0, 100.0};
-  SensorLayoutConfig sensors;
-  SensorModelConfig sensor_model;
-  LocalisationConfig localisation;
-  TargetsConfig targets;
-  DynamicsConfig dynamics;
-  std::vector<Vec2> supernodes;
-  NetworkConfig network;
-  TrackerConfig tracker;
-  AggregatorConfig aggregator;
-  MetricsConfig metrics;
-  RunConfig run;
-};
 
 /// A scenario that could not be loaded: what() reads "file:line: what was expected".
 class ScenarioError : public std::runtime_error {

@@ -19,6 +19,7 @@
 #include "common/scenario.hpp"
 #include "common/version.hpp"
 #include "launcher/cluster.hpp"
+#include "launcher/components.hpp"
 #include "launcher/install_layout.hpp"
 #include "launcher/run_directory.hpp"
 #include "launcher/watch.hpp"
@@ -37,7 +38,9 @@ constexpr const char* kUsage =
     "  run SCENARIO       start every process of the cluster on this host and write a run directory\n"
     "  watch RUN_DIR      live view of a running cluster's tracks and metrics (from another terminal)\n"
     "  validate FILE...   check scenario files without running them\n"
-    "  engines            list the supernode tracking engines, the aggregator's association methods and their parameters\n"
+    "  components         list every sensor model, tracking engine and track association with its parameters\n"
+    "                     (--markdown: the key tables of scenarios/README.md)\n"
+    "  engines            list the tracking engines and association methods only\n"
     "  replay RUN_DIR     write an animation of a finished run (GIF, MP4 or HTML) with plot_run.py --animate\n"
     "  version            print the version, git commit and Cyclone DDS version (also --version)\n"
     "  help               show this text\n\n"
@@ -61,6 +64,7 @@ std::vector<common::ScenarioOverride> overridesOf(const po::variables_map& vm) {
 void resolveComponentParams(common::Scenario& scenario) {
   supernode::resolveEngineParams(scenario);
   aggregator::resolveAssociationParams(scenario);
+  launcher::checkComponentsFit(scenario);
 }
 
 /// Loads a scenario with its overrides and resolves its component parameters: every check a run
@@ -162,26 +166,6 @@ int commandValidate(const std::vector<std::string>& args) {
     }
   }
   return failures == 0 ? 0 : 1;
-}
-
-void printParams(const std::vector<common::ParamSpec>& params) {
-  for (const auto& p : params)
-    std::cout << "  " << p.name << " (default " << p.default_value << ", range [" << p.min << ", " << p.max
-              << "]): " << p.description << "\n";
-}
-
-int commandEngines() {
-  std::cout << "Supernode tracking engines (tracker.engine, tracker.params):\n";
-  for (const auto& engine : supernode::engineRegistry()) {
-    std::cout << engine.name << ": " << engine.description << "\n";
-    printParams(engine.params);
-  }
-  std::cout << "\nAggregator track association (aggregator.association, aggregator.params):\n";
-  for (const auto& method : aggregator::associationRegistry()) {
-    std::cout << method.name << ": " << method.description << "\n";
-    printParams(method.params);
-  }
-  return 0;
 }
 
 std::string executableDirectory() {
@@ -421,7 +405,18 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (command == "validate") return commandValidate(args);
-    if (command == "engines") return commandEngines();
+    if (command == "components" && args.size() == 1 && args[0] == "--markdown") {
+      std::cout << launcher::componentsMarkdown();
+      return 0;
+    }
+    if ((command == "components" || command == "engines") && !args.empty()) {
+      std::cerr << "Usage: wsntrack " << command << (command == "components" ? " [--markdown]" : "") << "\n";
+      return 2;
+    }
+    if (command == "components" || command == "engines") {
+      std::cout << (command == "components" ? launcher::componentsText() : launcher::enginesText());
+      return 0;
+    }
     if (command == "watch") return launcher::commandWatch(args);
     if (command == "help" || command == "--help" || command == "-h") {
       std::cout << kUsage;

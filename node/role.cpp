@@ -1,12 +1,9 @@
 #include "node/role.hpp"
 
-#include <optional>
-
 #include "common/dds/codec.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
-#include "node/acoustic/acoustic_field.hpp"
-#include "node/sensor_field.hpp"
+#include "node/sensor_model_registry.hpp"
 #include "node/tiling.hpp"
 
 namespace wsn::node {
@@ -18,12 +15,7 @@ void runNodeRole(const dds::RoleContext& context) {
     const common::Truth truth(scenario);
     const common::SensorLayout layout(scenario);
     const auto tiles = makeTiles(layout, context.shape.tiles);
-    const SensorField field(scenario, layout, tiles.at(context.index));
-    // Acoustic sensors report straight to the fusion centre (An et al. 2014 §2): no readings are
-    // exchanged between tiles, each tile publishes its sensors' raw detections.
-    const bool acoustic = scenario.sensor_model.kind == common::SensorModelConfig::Kind::kAcousticDoppler;
-    std::optional<acoustic::AcousticField> acoustic_field;
-    if (acoustic) acoustic_field.emplace(scenario, layout, tiles.at(context.index), truth);
+    const auto sensors = makeTileSensors({scenario, layout, tiles.at(context.index), truth});
 
     Writer boundary_writer(participant, topics.sensor_boundary, Qos::reliableKeepAll());
     Writer report_writer(participant, topics.report_batch, Qos::reliableKeepAll());
@@ -56,14 +48,10 @@ void runNodeRole(const dds::RoleContext& context) {
     for (std::int32_t t = 1; t <= ticks; ++t) {
       progress.paceTick();  // --tick-interval: the sources set the pace, back-pressure the rest
       progress.waitForCompleted(t - in_flight);
-      std::vector<common::Report> tick_reports;
-      if (acoustic_field) {
-        tick_reports = acoustic_field->detect(t);
-      } else {
-        const auto& targets = truth.at(t);
-        const auto own = field.detect(t, targets);
-
-        auto boundary = encode(field.boundaryReadings(own));
+      auto boundary_readings = sensors->sense(t);
+      std::vector<common::SensorReading> foreign;
+      if (sensors->exchangesReadings()) {
+        auto boundary = encode(boundary_readings);
         wsn_msg_SensorBoundary boundary_sample{};
         boundary_sample.run_id = context.run_id;
         boundary_sample.tile = context.index;
@@ -73,11 +61,10 @@ void runNodeRole(const dds::RoleContext& context) {
 
         loop.waitUntil([&] { return boundary_inbox.count(t) >= others; },
                        [&] { return "boundary readings of tick " + std::to_string(t) + " from the other tiles"; });
-        std::vector<common::SensorReading> foreign;
         for (auto& [tile, readings] : boundary_inbox.take(t))
           foreign.insert(foreign.end(), readings.begin(), readings.end());
-        tick_reports = field.fuse(t, own, foreign, targets);
       }
+      const std::vector<common::Report> tick_reports = sensors->report(t, foreign);
 
       auto reports = encode(tick_reports);
       wsn_msg_ReportBatch report_sample{};

@@ -10,6 +10,7 @@
 
 #include "common/messages.hpp"
 #include "common/param_spec.hpp"
+#include "common/registry.hpp"
 #include "common/scenario.hpp"
 #include "supernode/observation_window.hpp"
 
@@ -46,6 +47,7 @@ class Engine {
 };
 
 using common::ParamSpec;
+namespace config = common::config;
 
 /// One registered engine.
 struct EngineSpec {
@@ -53,23 +55,21 @@ struct EngineSpec {
   std::string description;
   std::vector<ParamSpec> params;
   std::function<std::unique_ptr<Engine>(const EngineContext&)> create;
+  /// The measurement kinds its observations may carry (a sensor model's measurement_kinds);
+  /// the scenario check rejects a sensor model whose reports it cannot use.
+  std::vector<std::string> accepts = {"position"};
   /// Optional: checks the resolved parameters against the rest of the scenario; throws
   /// common::ScenarioError "file:line: ..." when they do not fit.
   std::function<void(const common::Scenario&)> check;
 };
 
 /// All engines, in registration order.
-const std::vector<EngineSpec>& engineRegistry();
+const common::Registry<EngineSpec>& engineRegistry();
 
 /// Checks scenario.tracker.engine and .params against the registry and fills in defaults;
 /// throws common::ScenarioError "file:line: ..." on an unknown engine or parameter or a
 /// value out of range.
 void resolveEngineParams(common::Scenario& scenario);
-
-/// scenario.tracker.params[name] (resolved params hold every parameter), else `fallback`.
-inline double engineParam(const common::Scenario& scenario, const std::string& name, double fallback) {
-  return common::paramOr(scenario.tracker.params, name, fallback);
-}
 
 /// Builds the engine named in the (resolved) scenario.
 std::unique_ptr<Engine> makeEngine(const EngineContext& context);

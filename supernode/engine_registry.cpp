@@ -1,4 +1,3 @@
-#include <algorithm>
 #include <string>
 
 #include "supernode/engine.hpp"
@@ -13,45 +12,32 @@ std::string where(const common::Scenario& scenario, int line) {
   return scenario.source_path + ":" + std::to_string(line) + ": ";
 }
 
-const EngineSpec* findEngine(const std::string& name) {
-  const auto& registry = engineRegistry();
-  const auto it = std::find_if(registry.begin(), registry.end(), [&](const EngineSpec& e) { return e.name == name; });
-  return it == registry.end() ? nullptr : &*it;
-}
-
 }  // namespace
 
-const std::vector<EngineSpec>& engineRegistry() {
-  static const std::vector<EngineSpec> registry = {
+const common::Registry<EngineSpec>& engineRegistry() {
+  static const common::Registry<EngineSpec> registry("tracker engine", {
       gnn::engineSpec(),
       mcmcda::engineSpec(),
       rulebased::engineSpec(),
       // A new engine is a sibling folder plus one line here.
-  };
+  });
   return registry;
 }
 
 void resolveEngineParams(common::Scenario& scenario) {
   auto& tracker = scenario.tracker;
-  const EngineSpec* spec = findEngine(tracker.engine);
-  if (spec == nullptr) {
-    std::string names;
-    for (const auto& e : engineRegistry()) names += (names.empty() ? "" : ", ") + e.name;
-    throw common::ScenarioError(where(scenario, tracker.engine_line) + "unknown tracker engine '" + tracker.engine +
-                                "'; expected one of: " + names);
-  }
-
-  common::resolveParams(scenario.source_path, "tracker.params", "engine '" + spec->name + "'", spec->params,
+  const EngineSpec& spec =
+      engineRegistry().at<common::ScenarioError>(tracker.engine, where(scenario, tracker.engine_line));
+  common::resolveParams(scenario.source_path, "tracker.params", "engine '" + spec.name + "'", spec.params,
                         tracker.params);
-  if (spec->check) spec->check(scenario);
+  if (spec.check) spec.check(scenario);
 }
 
 std::unique_ptr<Engine> makeEngine(const EngineContext& context) {
-  const EngineSpec* spec = findEngine(context.scenario.tracker.engine);
-  if (spec == nullptr)
-    throw common::ScenarioError(where(context.scenario, context.scenario.tracker.engine_line) +
-                                "unknown tracker engine '" + context.scenario.tracker.engine + "'");
-  return spec->create(context);
+  const auto& scenario = context.scenario;
+  return engineRegistry()
+      .at<common::ScenarioError>(scenario.tracker.engine, where(scenario, scenario.tracker.engine_line))
+      .create(context);
 }
 
 }  // namespace wsn::supernode

@@ -25,27 +25,37 @@ bool byId(const GnnEngine::Track& a, const GnnEngine::Track& b) { return a.id < 
 
 }  // namespace
 
+const config::FieldTable<GnnParams>& paramTable() {
+  using config::integer;
+  using config::real;
+  static const config::FieldTable<GnnParams> table{
+      "tracker.params (gnn)",
+      {
+          real<GnnParams>("measurement_sigma", &GnnParams::measurement_sigma, config::closed(1e-3, 100.0),
+                          "separations",
+                          "std. deviation of a fused observation's position error, R = sigma^2 I (sensor separations)"),
+          real<GnnParams>("gate_chi2", &GnnParams::gate_chi2, config::closed(0.1, 1000.0), "",
+                          "gate on the squared Mahalanobis distance of an observation (9.21: chi^2, 2 dof, 99%)"),
+          integer<GnnParams>("confirm_hits", &GnnParams::confirm_hits, 1.0, 50.0, "observations",
+                             "M of M-of-N confirmation: hits needed within the first confirm_window ticks of a track"),
+          integer<GnnParams>("confirm_window", &GnnParams::confirm_window, 1.0, 50.0, "ticks",
+                             "N of M-of-N confirmation (ticks); a value below confirm_hits acts as confirm_hits"),
+          integer<GnnParams>("max_misses", &GnnParams::max_misses, 1.0, 1000.0, "ticks",
+                             "consecutive misses after which a confirmed track is deleted (ticks)"),
+          real<GnnParams>("initial_velocity_sigma", &GnnParams::initial_velocity_sigma, config::closed(1e-3, 100.0),
+                          "separations/tick",
+                          "std. deviation of the unknown velocity of a new track (sensor separations per tick)"),
+      }};
+  return table;
+}
+
 EngineSpec engineSpec() {
   EngineSpec spec;
   spec.name = "gnn";
   spec.description =
       "global nearest neighbour: constant-velocity Kalman filters (Oh eq. 8), optimal gated assignment, "
       "M-of-N confirmation; replays the window so delayed observations are used";
-  const GnnParams d;
-  spec.params = {
-      {"measurement_sigma", d.measurement_sigma, 1e-3, 100.0,
-       "std. deviation of a fused observation's position error, R = sigma^2 I (sensor separations)"},
-      {"gate_chi2", d.gate_chi2, 0.1, 1000.0,
-       "gate on the squared Mahalanobis distance of an observation (9.21: chi^2, 2 dof, 99%)"},
-      {"confirm_hits", static_cast<double>(d.confirm_hits), 1.0, 50.0,
-       "M of M-of-N confirmation: hits needed within the first confirm_window ticks of a track", true},
-      {"confirm_window", static_cast<double>(d.confirm_window), 1.0, 50.0,
-       "N of M-of-N confirmation (ticks); a value below confirm_hits acts as confirm_hits", true},
-      {"max_misses", static_cast<double>(d.max_misses), 1.0, 1000.0,
-       "consecutive misses after which a confirmed track is deleted (ticks)", true},
-      {"initial_velocity_sigma", d.initial_velocity_sigma, 1e-3, 100.0,
-       "std. deviation of the unknown velocity of a new track (sensor separations per tick)"},
-  };
+  spec.params = common::paramSpecs(paramTable());;
   spec.create = [](const EngineContext& context) -> std::unique_ptr<Engine> {
     return std::make_unique<GnnEngine>(context);
   };
@@ -53,15 +63,7 @@ EngineSpec engineSpec() {
 }
 
 GnnParams GnnParams::fromScenario(const common::Scenario& scenario) {
-  GnnParams p;
-  p.measurement_sigma = engineParam(scenario, "measurement_sigma", p.measurement_sigma);
-  p.gate_chi2 = engineParam(scenario, "gate_chi2", p.gate_chi2);
-  p.confirm_hits = static_cast<std::int32_t>(std::lround(engineParam(scenario, "confirm_hits", p.confirm_hits)));
-  p.confirm_window =
-      static_cast<std::int32_t>(std::lround(engineParam(scenario, "confirm_window", p.confirm_window)));
-  p.max_misses = static_cast<std::int32_t>(std::lround(engineParam(scenario, "max_misses", p.max_misses)));
-  p.initial_velocity_sigma = engineParam(scenario, "initial_velocity_sigma", p.initial_velocity_sigma);
-  return p;
+  return common::decodeParams(paramTable(), scenario.tracker.params);
 }
 
 common::TrackId birthTrackId(std::uint32_t supernode, std::int32_t tick, common::SensorId sensor) {

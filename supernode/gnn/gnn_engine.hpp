@@ -28,6 +28,9 @@ struct GnnParams {
   static GnnParams fromScenario(const common::Scenario& scenario);
 };
 
+/// The parameters' one description: key, member, unit, range, default (GnnParams{}) and meaning.
+const config::FieldTable<GnnParams>& paramTable();
+
 /// Identity of a track born at supernode j from the observation (tick, sensor):
 /// ((j + 1) << 48) | (tick << 24) | sensor, so that every replay of the window gives it the same id.
 /// Throws std::out_of_range when tick or sensor does not fit in 24 bits.

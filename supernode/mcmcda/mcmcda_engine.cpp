@@ -53,39 +53,66 @@ common::TrackEstimate estimate(common::TrackId id, const TrackState& s, std::int
 
 }  // namespace
 
+const config::FieldTable<McmcdaParams>& paramTable() {
+  using config::integer;
+  using config::real;
+  static const config::FieldTable<McmcdaParams> table{
+      "tracker.params (mcmcda)",
+      {
+          integer<McmcdaParams>("iterations", &McmcdaParams::iterations, 1.0, 1e7, "",
+                                "nmc: chain iterations per tick"),
+          real<McmcdaParams>(
+              "detection_probability", [](McmcdaParams & p) -> auto& { return p.model.detection_probability; },
+              config::closed(1e-3, 0.999), "",
+              "pd of eq. (3): probability that a live target's report reaches the window at a tick (detection "
+              "times delivery)"),
+          real<McmcdaParams>(
+              "termination_probability", [](McmcdaParams & p) -> auto& { return p.model.termination_probability; },
+              config::closed(1e-6, 0.999), "", "pz of eq. (3): probability that a target disappears at a tick"),
+          real<McmcdaParams>(
+              "birth_density", [](McmcdaParams & p) -> auto& { return p.model.birth_density; },
+              config::closed(1e-12, 1.0), "1/(separation² tick)",
+              "lambda_b of eq. (3): new targets per unit area per tick"),
+          real<McmcdaParams>(
+              "false_alarm_density", [](McmcdaParams & p) -> auto& { return p.model.false_alarm_density; },
+              config::closed(1e-12, 1.0), "1/(separation² tick)",
+              "lambda_f of eq. (3): delivered false reports per unit area per tick"),
+          real<McmcdaParams>(
+              "measurement_sigma", [](McmcdaParams & p) -> auto& { return p.model.measurement_sigma; },
+              config::closed(1e-3, 100.0), "separations",
+              "std. deviation of a fused observation's position error per axis, R = sigma^2 I (sensor separations)"),
+          real<McmcdaParams>(
+              "initial_velocity_sigma", [](McmcdaParams & p) -> auto& { return p.model.initial_velocity_sigma; },
+              config::closed(1e-3, 100.0), "separations/tick",
+              "prior std. deviation of a new track's velocity per axis (sensor separations per tick)"),
+          real<McmcdaParams>(
+              "max_speed", [](McmcdaParams & p) -> auto& { return p.model.max_speed; }, config::closed(1e-3, 1000.0),
+              "separations/tick",
+              "v-bar: an observation d ticks after another is a candidate successor within d * v-bar"),
+          integer<McmcdaParams>(
+              "max_gap", [](McmcdaParams & p) -> auto& { return p.model.max_gap; }, 1.0, 50.0, "ticks",
+              "d-bar: largest tick gap inside a track (d-bar - 1 consecutive misses)"),
+          real<McmcdaParams>(
+              "stop_probability", [](McmcdaParams & p) -> auto& { return p.model.stop_probability; },
+              config::closed(1e-3, 0.999), "",
+              "gamma: the extension proposal stops after each step with this probability"),
+          real<McmcdaParams>(
+              "greedy_gate_chi2", &McmcdaParams::greedy_gate_chi2, config::closed(0.1, 1000.0), "",
+              "gate (squared Mahalanobis distance) of the greedy start that joins the newest observations to tracks"),
+          integer<McmcdaParams>(
+              "confirm_observations", &McmcdaParams::confirm_observations, 2.0, 1000.0, "observations",
+              "observations a track needs (in all, before the window included) before it is reported"),
+      }};
+  return table;
+}
+
 EngineSpec engineSpec() {
   EngineSpec spec;
   spec.name = "mcmcda";
   spec.description =
       "sliding-window Markov chain Monte Carlo data association (Oh et al. §VI): samples partitions of the "
       "window's observations into tracks and false alarms under eq. (3), keeps the best";
-  const McmcdaParams d;
-  const ModelParams& m = d.model;
-  spec.params = {
-      {"iterations", static_cast<double>(d.iterations), 1.0, 1e7, "nmc: chain iterations per tick", true},
-      {"detection_probability", m.detection_probability, 1e-3, 0.999,
-       "pd of eq. (3): probability that a live target's report reaches the window at a tick (detection "
-       "times delivery)"},
-      {"termination_probability", m.termination_probability, 1e-6, 0.999,
-       "pz of eq. (3): probability that a target disappears at a tick"},
-      {"birth_density", m.birth_density, 1e-12, 1.0, "lambda_b of eq. (3): new targets per unit area per tick"},
-      {"false_alarm_density", m.false_alarm_density, 1e-12, 1.0,
-       "lambda_f of eq. (3): delivered false reports per unit area per tick"},
-      {"measurement_sigma", m.measurement_sigma, 1e-3, 100.0,
-       "std. deviation of a fused observation's position error per axis, R = sigma^2 I (sensor separations)"},
-      {"initial_velocity_sigma", m.initial_velocity_sigma, 1e-3, 100.0,
-       "prior std. deviation of a new track's velocity per axis (sensor separations per tick)"},
-      {"max_speed", m.max_speed, 1e-3, 1000.0,
-       "v-bar: an observation d ticks after another is a candidate successor within d * v-bar"},
-      {"max_gap", static_cast<double>(m.max_gap), 1.0, 50.0,
-       "d-bar: largest tick gap inside a track (d-bar - 1 consecutive misses)", true},
-      {"stop_probability", m.stop_probability, 1e-3, 0.999,
-       "gamma: the extension proposal stops after each step with this probability"},
-      {"greedy_gate_chi2", d.greedy_gate_chi2, 0.1, 1000.0,
-       "gate (squared Mahalanobis distance) of the greedy start that joins the newest observations to tracks"},
-      {"confirm_observations", static_cast<double>(d.confirm_observations), 2.0, 1000.0,
-       "observations a track needs (in all, before the window included) before it is reported", true},
-  };
+  spec.params = common::paramSpecs(paramTable());;
   spec.create = [](const EngineContext& context) -> std::unique_ptr<Engine> {
     return std::make_unique<McmcdaEngine>(context);
   };
@@ -93,23 +120,9 @@ EngineSpec engineSpec() {
 }
 
 McmcdaParams McmcdaParams::fromScenario(const common::Scenario& scenario) {
-  McmcdaParams p;
-  auto& m = p.model;
-  p.iterations = std::llround(engineParam(scenario, "iterations", static_cast<double>(p.iterations)));
-  m.detection_probability = engineParam(scenario, "detection_probability", m.detection_probability);
-  m.termination_probability = engineParam(scenario, "termination_probability", m.termination_probability);
-  m.birth_density = engineParam(scenario, "birth_density", m.birth_density);
-  m.false_alarm_density = engineParam(scenario, "false_alarm_density", m.false_alarm_density);
-  m.measurement_sigma = engineParam(scenario, "measurement_sigma", m.measurement_sigma);
-  m.initial_velocity_sigma = engineParam(scenario, "initial_velocity_sigma", m.initial_velocity_sigma);
-  m.max_speed = engineParam(scenario, "max_speed", m.max_speed);
-  m.max_gap = static_cast<std::int32_t>(std::lround(engineParam(scenario, "max_gap", m.max_gap)));
-  m.stop_probability = engineParam(scenario, "stop_probability", m.stop_probability);
-  m.process_noise_sigma = scenario.dynamics.process_noise_sigma;
-  m.delta = scenario.dynamics.delta;
-  p.greedy_gate_chi2 = engineParam(scenario, "greedy_gate_chi2", p.greedy_gate_chi2);
-  p.confirm_observations =
-      static_cast<std::int32_t>(std::lround(engineParam(scenario, "confirm_observations", p.confirm_observations)));
+  McmcdaParams p = common::decodeParams(paramTable(), scenario.tracker.params);
+  p.model.process_noise_sigma = scenario.dynamics.process_noise_sigma;
+  p.model.delta = scenario.dynamics.delta;
   return p;
 }
 
@@ -122,11 +135,12 @@ const TrackState& McmcdaEngine::LiveTrack::lastState() const {
 }
 
 McmcdaEngine::McmcdaEngine(const EngineContext& context)
-    : supernode_(context.supernode),
-      seed_(context.scenario.run.seed),
-      region_(context.scenario.region),
-      params_(McmcdaParams::fromScenario(context.scenario)),
-      motion_(params_.model) {}
+    : McmcdaEngine(McmcdaParams::fromScenario(context.scenario), context.scenario.region, context.scenario.run.seed,
+                   context.supernode) {}
+
+McmcdaEngine::McmcdaEngine(const McmcdaParams& params, const common::Rect& region, std::uint64_t seed,
+                           std::uint32_t id_space)
+    : supernode_(id_space), seed_(seed), region_(region), params_(params), motion_(params_.model) {}
 
 common::TrackId McmcdaEngine::mintId() {
   return ((std::uint64_t{supernode_} + 1) << kSupernodeShift) | next_serial_++;

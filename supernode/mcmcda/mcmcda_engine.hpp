@@ -28,6 +28,9 @@ struct McmcdaParams {
   static McmcdaParams fromScenario(const common::Scenario& scenario);
 };
 
+/// The parameters' one description: key, member, unit, range, default (McmcdaParams{}) and meaning.
+const config::FieldTable<McmcdaParams>& paramTable();
+
 /// Online MCMCDA. Association is revised inside the window only: when an observation leaves the
 /// window, its track's filtered state there becomes the track's *anchor* (Problem's prior element),
 /// so the chain continues the track under its id without re-deciding the past. Output is the
@@ -38,6 +41,9 @@ struct McmcdaParams {
 class McmcdaEngine final : public Engine {
  public:
   explicit McmcdaEngine(const EngineContext& context);
+  /// From its own configuration: resolved parameters (with the motion model), the region, the
+  /// run's seed and the supernode index whose id space its new track ids come from.
+  McmcdaEngine(const McmcdaParams& params, const common::Rect& region, std::uint64_t seed, std::uint32_t id_space);
 
   void adopt(const common::TrackHandoff& handoff) override;
   void step(const ObservationWindow& window) override;

@@ -24,11 +24,86 @@ common::Vec2 velocityOf(const GaussianState& s) { return {s.x(kVx), s.x(kVy)}; }
 bool byId(const RulebasedEngine::Identity& a, const RulebasedEngine::Identity& b) { return a.id < b.id; }
 
 
-std::int32_t count(const common::Scenario& scenario, const char* name, std::int32_t fallback) {
-  return static_cast<std::int32_t>(std::lround(engineParam(scenario, name, fallback)));
-}
 
 }  // namespace
+
+const config::FieldTable<RulebasedParams>& paramTable() {
+  using config::integer;
+  using config::real;
+  static const config::FieldTable<RulebasedParams> table{
+      "tracker.params (rulebased)",
+      {
+          real<RulebasedParams>(
+              "link_distance", &RulebasedParams::link_distance, config::closed(0.01, 100.0), "Ds",
+              "two detecting sensors are in one cluster when at most this far apart (Ds); on a grid any value in "
+              "[1.415, 2) is eq. 6's 8-connectivity"),
+          real<RulebasedParams>("measurement_sigma", &RulebasedParams::measurement_sigma, config::closed(1e-3, 100.0),
+                                "Ds", "std. deviation of a centroid's position error, R = sigma^2 I (Ds)"),
+          real<RulebasedParams>(
+              "measurement_lag", &RulebasedParams::measurement_lag, config::closed(0.0, 100.0), "ticks",
+              "ticks by which a centroid lags the target, z = x - lag v: acoustic sensors hear where the target "
+              "was when the sound left it (docs/RULEBASED.md derives it; 0: no lag)"),
+          real<RulebasedParams>(
+              "process_noise", &RulebasedParams::process_noise, config::closed(1e-6, 100.0), "Ds/tick²",
+              "initial std. deviation q of the acceleration noise of a new track (Ds per tick^2); adapted by the NIS"),
+          real<RulebasedParams>("process_noise_min", &RulebasedParams::process_noise_min, config::closed(1e-6, 100.0),
+                                "Ds/tick²", "lower bound of the NIS-adapted q (Ds per tick^2)"),
+          real<RulebasedParams>("process_noise_max", &RulebasedParams::process_noise_max, config::closed(1e-6, 100.0),
+                                "Ds/tick²", "upper bound of the NIS-adapted q (Ds per tick^2)"),
+          real<RulebasedParams>(
+              "claim_gate", &RulebasedParams::claim_gate, config::closed(0.0, 1000.0), "Ds",
+              "a cluster farther than r_a + r_d + claim_gate from every track's cluster is not theirs: a new target "
+              "or noise (Ds)"),
+          real<RulebasedParams>(
+              "max_merge_gap", &RulebasedParams::max_merge_gap, config::closed(-1000.0, 1000.0), "Ds",
+              "Rule 1 merges two clusters only when the gap D of eq. 22 between them is at most this (Ds)"),
+          real<RulebasedParams>(
+              "merged_split_distance", &RulebasedParams::merged_split_distance, config::closed(0.0, 1000.0), "Ds",
+              "merged identities predicted at least this far apart share out their merged cluster by nearest "
+              "prediction, each updated with its share's centroid; 0: the paper's Rule 3 (they coast) (Ds)"),
+          real<RulebasedParams>("merged_measurement_sigma", &RulebasedParams::merged_measurement_sigma,
+                                config::closed(1e-3, 100.0), "Ds",
+                                "std. deviation of the position error of a share of a merged cluster (Ds)"),
+          integer<RulebasedParams>(
+              "decision_lag", &RulebasedParams::decision_lag, 0.0, 100.0, "ticks",
+              "ticks a tick waits before it is processed, so that reports the network delayed by up to this many "
+              "ticks are used; the tracks are predicted to the newest tick (must stay below window_size)"),
+          integer<RulebasedParams>("confirm_ticks", &RulebasedParams::confirm_ticks, 1.0, 100.0, "ticks",
+                                   "consecutive ticks an unclaimed cluster must be seen before it becomes a track"),
+          integer<RulebasedParams>("birth_min_sensors", &RulebasedParams::birth_min_sensors, 1.0, 10000.0, "sensors",
+                                   "a candidate becomes a track only when its cluster has at least this many sensors"),
+          integer<RulebasedParams>(
+              "max_coast_ticks", &RulebasedParams::max_coast_ticks, 1.0, 100000.0, "ticks",
+              "consecutive ticks without a cluster (and not merged) after which a track is deleted"),
+          integer<RulebasedParams>("max_merge_ticks", &RulebasedParams::max_merge_ticks, 1.0, 100000.0, "ticks",
+                                   "consecutive ticks inside a merged cluster after which a track is deleted"),
+          integer<RulebasedParams>(
+              "handoff_ghost_ticks", &RulebasedParams::handoff_ghost_ticks, 0.0, 100000.0, "ticks",
+              "ticks after a handover during which clusters near the handed-over track's extrapolation are left to "
+              "the neighbour (the part of its cluster still on this side of the boundary)"),
+          integer<RulebasedParams>(
+              "denoise", &RulebasedParams::denoise, 0.0, 1.0, "0/1",
+              "1: noise mitigation of An et al. 2013 §3.3 (persistence, spatial test, centroid-jump gate)"),
+          integer<RulebasedParams>("persistence_ticks", &RulebasedParams::persistence_ticks, 1.0, 100.0, "ticks",
+                                   "denoise step 1 (eq. 11): a sensor must detect in this many consecutive ticks"),
+          real<RulebasedParams>("denoise_radius", &RulebasedParams::denoise_radius, config::closed(0.0, 1000.0), "Ds",
+                                "denoise step 2 (eq. 13-14): the 3 Ds neighbourhood (Ds)"),
+          integer<RulebasedParams>(
+              "denoise_min_cluster", &RulebasedParams::denoise_min_cluster, 1.0, 10000.0, "sensors",
+              "denoise step 2 with several targets: a sensor with this many survivors within denoise_radius is kept"),
+          real<RulebasedParams>(
+              "jump_gate", &RulebasedParams::jump_gate, config::closed(0.0, 1000.0), "Ds",
+              "denoise step 3 (eq. 15): a centroid farther than this from the track's previous one is discarded (Ds)"),
+          integer<RulebasedParams>(
+              "noise_cluster_sensors", &RulebasedParams::noise_cluster_sensors, 1.0, 10000.0, "sensors",
+              "with denoise, Noise_find (2014 Algorithm 4.2.1 c): clusters of at most this many sensors that survive "
+              "the denoising steps are residual noise"),
+          integer<RulebasedParams>("quick_solution", &RulebasedParams::quick_solution, 0.0, 1.0, "0/1",
+                                   "1: An et al. 2013 §3.2: a cluster's measurement is its strongest sensor instead of "
+                                   "the weighted centroid"),
+      }};
+  return table;
+}
 
 EngineSpec engineSpec() {
   EngineSpec spec;
@@ -37,61 +112,7 @@ EngineSpec engineSpec() {
       "rule-based centroid tracker (An et al. 2014): 8-connected clusters of detecting sensors, weighted "
       "centroids, match/merge indicators through merging and splitting, nearest-neighbour Kalman tracks with "
       "NIS-adapted process noise; optional noise mitigation (An et al. 2013). Lengths in sensor separations Ds";
-  const RulebasedParams d;
-  spec.params = {
-      {"link_distance", d.link_distance, 0.01, 100.0,
-       "two detecting sensors are in one cluster when at most this far apart (Ds); on a grid any value in "
-       "[1.415, 2) is eq. 6's 8-connectivity"},
-      {"measurement_sigma", d.measurement_sigma, 1e-3, 100.0,
-       "std. deviation of a centroid's position error, R = sigma^2 I (Ds)"},
-      {"measurement_lag", d.measurement_lag, 0.0, 100.0,
-       "ticks by which a centroid lags the target, z = x - lag v: acoustic sensors hear where the target "
-       "was when the sound left it (docs/RULEBASED.md derives it; 0: no lag)"},
-      {"process_noise", d.process_noise, 1e-6, 100.0,
-       "initial std. deviation q of the acceleration noise of a new track (Ds per tick^2); adapted by the NIS"},
-      {"process_noise_min", d.process_noise_min, 1e-6, 100.0, "lower bound of the NIS-adapted q (Ds per tick^2)"},
-      {"process_noise_max", d.process_noise_max, 1e-6, 100.0, "upper bound of the NIS-adapted q (Ds per tick^2)"},
-      {"claim_gate", d.claim_gate, 0.0, 1000.0,
-       "a cluster farther than r_a + r_d + claim_gate from every track's cluster is not theirs: a new target "
-       "or noise (Ds)"},
-      {"max_merge_gap", d.max_merge_gap, -1000.0, 1000.0,
-       "Rule 1 merges two clusters only when the gap D of eq. 22 between them is at most this (Ds)"},
-      {"merged_split_distance", d.merged_split_distance, 0.0, 1000.0,
-       "merged identities predicted at least this far apart share out their merged cluster by nearest "
-       "prediction, each updated with its share's centroid; 0: the paper's Rule 3 (they coast) (Ds)"},
-      {"merged_measurement_sigma", d.merged_measurement_sigma, 1e-3, 100.0,
-       "std. deviation of the position error of a share of a merged cluster (Ds)"},
-      {"decision_lag", static_cast<double>(d.decision_lag), 0.0, 100.0,
-       "ticks a tick waits before it is processed, so that reports the network delayed by up to this many "
-       "ticks are used; the tracks are predicted to the newest tick (must stay below window_size)", true},
-      {"confirm_ticks", static_cast<double>(d.confirm_ticks), 1.0, 100.0,
-       "consecutive ticks an unclaimed cluster must be seen before it becomes a track", true},
-      {"birth_min_sensors", static_cast<double>(d.birth_min_sensors), 1.0, 10000.0,
-       "a candidate becomes a track only when its cluster has at least this many sensors", true},
-      {"max_coast_ticks", static_cast<double>(d.max_coast_ticks), 1.0, 100000.0,
-       "consecutive ticks without a cluster (and not merged) after which a track is deleted", true},
-      {"max_merge_ticks", static_cast<double>(d.max_merge_ticks), 1.0, 100000.0,
-       "consecutive ticks inside a merged cluster after which a track is deleted", true},
-      {"handoff_ghost_ticks", static_cast<double>(d.handoff_ghost_ticks), 0.0, 100000.0,
-       "ticks after a handover during which clusters near the handed-over track's extrapolation are left to "
-       "the neighbour (the part of its cluster still on this side of the boundary)", true},
-      {"denoise", d.denoise ? 1.0 : 0.0, 0.0, 1.0,
-       "1: noise mitigation of An et al. 2013 §3.3 (persistence, spatial test, centroid-jump gate)", true},
-      {"persistence_ticks", static_cast<double>(d.persistence_ticks), 1.0, 100.0,
-       "denoise step 1 (eq. 11): a sensor must detect in this many consecutive ticks", true},
-      {"denoise_radius", d.denoise_radius, 0.0, 1000.0, "denoise step 2 (eq. 13-14): the 3 Ds neighbourhood (Ds)"},
-      {"denoise_min_cluster", static_cast<double>(d.denoise_min_cluster), 1.0, 10000.0,
-       "denoise step 2 with several targets: a sensor with this many survivors within denoise_radius is kept",
-       true},
-      {"jump_gate", d.jump_gate, 0.0, 1000.0,
-       "denoise step 3 (eq. 15): a centroid farther than this from the track's previous one is discarded (Ds)"},
-      {"noise_cluster_sensors", static_cast<double>(d.noise_cluster_sensors), 1.0, 10000.0,
-       "with denoise, Noise_find (2014 Algorithm 4.2.1 c): clusters of at most this many sensors that survive "
-       "the denoising steps are residual noise", true},
-      {"quick_solution", d.quick_solution ? 1.0 : 0.0, 0.0, 1.0,
-       "1: An et al. 2013 §3.2: a cluster's measurement is its strongest sensor instead of the weighted centroid",
-       true},
-  };
+  spec.params = common::paramSpecs(paramTable());;
   spec.create = [](const EngineContext& context) -> std::unique_ptr<Engine> {
     return std::make_unique<RulebasedEngine>(context);
   };
@@ -107,31 +128,7 @@ EngineSpec engineSpec() {
 }
 
 RulebasedParams RulebasedParams::fromScenario(const common::Scenario& scenario) {
-  RulebasedParams p;
-  p.link_distance = engineParam(scenario, "link_distance", p.link_distance);
-  p.measurement_sigma = engineParam(scenario, "measurement_sigma", p.measurement_sigma);
-  p.measurement_lag = engineParam(scenario, "measurement_lag", p.measurement_lag);
-  p.process_noise = engineParam(scenario, "process_noise", p.process_noise);
-  p.process_noise_min = engineParam(scenario, "process_noise_min", p.process_noise_min);
-  p.process_noise_max = engineParam(scenario, "process_noise_max", p.process_noise_max);
-  p.claim_gate = engineParam(scenario, "claim_gate", p.claim_gate);
-  p.max_merge_gap = engineParam(scenario, "max_merge_gap", p.max_merge_gap);
-  p.merged_split_distance = engineParam(scenario, "merged_split_distance", p.merged_split_distance);
-  p.merged_measurement_sigma = engineParam(scenario, "merged_measurement_sigma", p.merged_measurement_sigma);
-  p.decision_lag = count(scenario, "decision_lag", p.decision_lag);
-  p.confirm_ticks = count(scenario, "confirm_ticks", p.confirm_ticks);
-  p.birth_min_sensors = count(scenario, "birth_min_sensors", p.birth_min_sensors);
-  p.max_coast_ticks = count(scenario, "max_coast_ticks", p.max_coast_ticks);
-  p.max_merge_ticks = count(scenario, "max_merge_ticks", p.max_merge_ticks);
-  p.handoff_ghost_ticks = count(scenario, "handoff_ghost_ticks", p.handoff_ghost_ticks);
-  p.denoise = engineParam(scenario, "denoise", p.denoise ? 1.0 : 0.0) != 0.0;
-  p.persistence_ticks = count(scenario, "persistence_ticks", p.persistence_ticks);
-  p.denoise_radius = engineParam(scenario, "denoise_radius", p.denoise_radius);
-  p.denoise_min_cluster = count(scenario, "denoise_min_cluster", p.denoise_min_cluster);
-  p.jump_gate = engineParam(scenario, "jump_gate", p.jump_gate);
-  p.noise_cluster_sensors = count(scenario, "noise_cluster_sensors", p.noise_cluster_sensors);
-  p.quick_solution = engineParam(scenario, "quick_solution", p.quick_solution ? 1.0 : 0.0) != 0.0;
-  return p;
+  return common::decodeParams(paramTable(), scenario.tracker.params);
 }
 
 RulebasedEngine::RulebasedEngine(const EngineContext& context)

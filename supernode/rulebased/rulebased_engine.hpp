@@ -52,6 +52,9 @@ struct RulebasedParams {
   static RulebasedParams fromScenario(const common::Scenario& scenario);
 };
 
+/// The parameters' one description: key, member, unit, range, default (RulebasedParams{}) and meaning.
+const config::FieldTable<RulebasedParams>& paramTable();
+
 /// What the engine did so far, for tests and the docs' tables.
 struct RulebasedStats {
   std::int64_t ticks = 0;

@@ -1,4 +1,4 @@
-#include "node/sensor_field.hpp"
+#include "node/signal_strength/sensor_field.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,4 +1,4 @@
-#include "node/sensor_model.hpp"
+#include "node/signal_strength/sensor_model.hpp"
 
 #include <catch2/catch.hpp>
 

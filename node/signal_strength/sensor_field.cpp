@@ -1,4 +1,4 @@
-#include "node/sensor_field.hpp"
+#include "node/signal_strength/sensor_field.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "common/rng.hpp"
-#include "node/sensor_model.hpp"
+#include "node/signal_strength/sensor_model.hpp"
 
 namespace wsn::node {
 namespace {

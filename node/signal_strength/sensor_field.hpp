@@ -12,7 +12,7 @@
 #include "common/scenario.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
-#include "node/sensor_model.hpp"
+#include "node/signal_strength/sensor_model.hpp"
 #include "node/tiling.hpp"
 
 namespace wsn::node {

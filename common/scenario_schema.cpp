@@ -1,0 +1,334 @@
+#include "common/scenario_schema.hpp"
+
+namespace wsn::common::schema {
+namespace {
+
+using namespace config;
+
+template <typename C>
+Field<C> unsetWhenZero(Field<C> f) {
+  f.zero_means_unset = true;
+  return f;
+}
+
+constexpr Range kPositive = openClosed(0.0, 1e6);
+constexpr Range kNonNegative = closed(0.0, 1e6);
+constexpr Range kProbability = closed(0.0, 1.0);
+constexpr Range kCoordinate = closed(-kMaxCoordinate, kMaxCoordinate);
+
+}  // namespace
+
+const FieldTable<Scenario>& topLevel() {
+  static const FieldTable<Scenario> table{
+      "",
+      {withNotes(text<Scenario>("name", &Scenario::name, "names the run and its run directory"),
+                 "1–100 characters from `A-Z a-z 0-9 _ - .`")}};
+  return table;
+}
+
+const FieldTable<Rect>& region() {
+  static const FieldTable<Rect> table{
+      "region",
+      {
+          real<Rect>("x_min", &Rect::x_min, kCoordinate, "separations", "left edge"),
+          real<Rect>("y_min", &Rect::y_min, kCoordinate, "separations", "bottom edge"),
+          withNotes(real<Rect>("x_max", &Rect::x_max, kCoordinate, "separations", "right edge"),
+                    "[−1e6, 1e6], > `x_min`", "100"),
+          withNotes(real<Rect>("y_max", &Rect::y_max, kCoordinate, "separations", "top edge"),
+                    "[−1e6, 1e6], > `y_min`", "100"),
+      }};
+  // (Rect{} is the empty rectangle; a scenario's region defaults to [0, 100]^2.)
+  return table;
+}
+
+const FieldTable<SensorLayoutConfig>& sensors() {
+  using C = SensorLayoutConfig;
+  static const FieldTable<C> table{
+      "sensors",
+      {
+          choice<C>("layout", &C::kind, {"grid", "random"},
+                    "`grid`: sensors at the cell centres (x_min + (i + ½) spacing, …), as in §VII. `random`: `count` "
+                    "sensors placed uniformly, drawn from the seed"),
+          withNotes(real<C>("spacing", &C::spacing, kPositive, "separations", "grid separation"),
+                    "(0, 1e6]; a grid must hold 1 to 10^7 sensors"),
+          withNotes(integer<C>("count", &C::count, 1, kMaxSensors, "sensors", "number of sensors of a `random` layout"),
+                    "[1, 10^7]"),
+      }};
+  return table;
+}
+
+const FieldTable<SensorModelConfig>& sensorModel() {
+  using C = SensorModelConfig;
+  static const FieldTable<C> table{
+      "sensor_model",
+      {
+          choice<C>("kind", &C::kind, {"signal_strength", "acoustic_doppler"}, "which sensors"),
+          real<C>("alpha", &C::alpha, openClosed(0.0, 100.0), "",
+                  "α, decay exponent (§VII; An et al. eq. 3: Ps = Pt / d^α)"),
+          withNotes(real<C>("beta", &C::beta, openClosed(0.0, 1e12), "signal",
+                            "β, signal at distance 0. When it is left out, the loader computes it from the other "
+                            "values of the file as in §VII"),
+                    "", "3 (1 + γ Rs^α) = 9.75"),
+          real<C>("gamma", &C::gamma, kNonNegative, "1/separation^α", "γ (§VII)"),
+          real<C>("eta", &C::eta, openClosed(0.0, 1e9), "signal", "η, detection threshold (§VII)"),
+          real<C>("sensing_range", &C::sensing_range, kPositive, "separations",
+                  "Rs. §VII-A finds 1.5 best. Acoustic: the default SR of a target, the distance at which one "
+                  "emission of its sound equals cs (Pt = cs SR^α)"),
+          real<C>("noise_sigma", &C::noise_sigma, kNonNegative, "signal",
+                  "standard deviation of w. 0 means no false alarms"),
+          nested<C>("acoustic", "mapping", "see below", "`acoustic_doppler` only", "the acoustic detection model"),
+          nested<C>("environmental_noise", "mapping", "no noise", "`acoustic_doppler` only",
+                    "sporadic noise, An et al. 2013 §3.1"),
+      }};
+  return table;
+}
+
+const FieldTable<AcousticConfig>& acoustic() {
+  using C = AcousticConfig;
+  static const FieldTable<C> table{
+      "sensor_model.acoustic",
+      {
+          real<C>("threshold", &C::threshold, openClosed(0.0, 1e12), "power", "cs (γs), the sensor threshold"),
+          real<C>("sound_speed", &C::sound_speed, kPositive, "length/s",
+                  "Vs. Every target must be slower (the loader checks scripted ones)"),
+          real<C>("detection_step_s", &C::detection_step_s, openClosed(0.0, 10.0), "s", "Δt of the detection model"),
+          withNotes(real<C>("tick_s", &C::tick_s, openClosed(0.0, 1e3), "s",
+                            "the duration of one tick: the fusion centre runs once per tick. Velocities stay per "
+                            "tick"),
+                    "(0, 1000], a whole number of detection steps"),
+          real<C>("power_fluctuation", &C::power_fluctuation, closedOpen(0.0, 1.0), "",
+                  "f: every emission's power is Pt (1 + f U(−1, 1)) (§5.2 studies 0, 0.2, 0.4)"),
+      }};
+  return table;
+}
+
+const FieldTable<EnvironmentalNoiseConfig>& environmentalNoise() {
+  using C = EnvironmentalNoiseConfig;
+  static const FieldTable<C> table{
+      "sensor_model.environmental_noise",
+      {
+          choice<C>("preset", &C::preset, {"none", "noise1", "noise2", "noise3"},
+                    "the paper's noises: Noise 1 = 0.1 s on 6 % of the sensors; Noise 2 = 0.1 s on 5 % + 0.5 s on "
+                    "1 %; Noise 3 = 0.1 s on 5 % + 1 s on 1 %"),
+          nested<C>("components", "list of `{fraction, duration_s}`", "—",
+                    "fractions in [0, 1] adding up to at most 1, durations in (0, 1e6] s",
+                    "at any time `fraction` of the sensors, chosen at random, hear noise of power cs (1 + U(0, 1)) for "
+                    "`duration_s` (rounded to whole ticks, at least one)"),
+      }};
+  return table;
+}
+
+const FieldTable<NoiseComponent>& noiseComponent() {
+  using C = NoiseComponent;
+  static const FieldTable<C> table{
+      "sensor_model.environmental_noise.components[]",
+      {
+          real<C>("fraction", &C::fraction, kProbability, "", "share of the sensors that hear the noise at any time"),
+          real<C>("duration_s", &C::duration_s, openClosed(0.0, 1e6), "s", "how long each of them hears it"),
+      }};
+  return table;
+}
+
+const FieldTable<LocalisationConfig>& localisation() {
+  using C = LocalisationConfig;
+  static const FieldTable<C> table{
+      "localisation",
+      {real<C>("sigma", &C::sigma, closed(0.0, 1e3), "separations", "a sensor believes it is at s* + N(0, σ² I)")}};
+  return table;
+}
+
+const FieldTable<TargetsConfig>& targets() {
+  using C = TargetsConfig;
+  static const FieldTable<C> table{
+      "targets",
+      {
+          withNotes(real<C>("birth_rate", &C::birth_rate, kNonNegative, "1/(tick · separation²)",
+                            "λb: Poisson(λb V) births per tick, where V is the region's area"),
+                    "[0, 1e6]; `birth_rate` × area ≤ 1000"),
+          real<C>("death_probability", &C::death_probability, kProbability, "per tick",
+                  "pz. Applies to randomly born targets only"),
+          choice<C>("speed_class", &C::speed_class, {"slow", "medium", "fast"},
+                    "initial speeds of born targets, §VII-A. Each of \\|vx\\| and \\|vy\\| is uniform in [0, 1], "
+                    "[1, 2] or [2, 5] per tick, with a random sign"),
+          nested<C>("scripted", "list", "`[]`", "see below",
+                    "targets placed explicitly. They get ids 0…n−1 in file order"),
+      }};
+  return table;
+}
+
+const FieldTable<TargetSpec>& scriptedTarget() {
+  using C = TargetSpec;
+  static const FieldTable<C> table{
+      "targets.scripted[]",
+      {
+          integer<C>("appear_tick", &C::appear_tick, 1, 1e6, "tick", "first tick the target exists"),
+          withNotes(integer<C>("disappear_tick", &C::disappear_tick, 0, 1e6, "tick",
+                               "first tick it no longer exists. 0 means it never disappears, though it still "
+                               "vanishes when it leaves R"),
+                    "0, or (`appear_tick`, 10^6]"),
+          withNotes(real<C>("x", [](C& t) -> double& { return t.position.x; }, kCoordinate, "separations",
+                            "position at `appear_tick`"),
+                    "inside the region", "required"),
+          withNotes(real<C>("y", [](C& t) -> double& { return t.position.y; }, kCoordinate, "separations",
+                            "position at `appear_tick`"),
+                    "inside the region", "required"),
+          withNotes(real<C>("vx", [](C& t) -> double& { return t.velocity.x; }, kCoordinate, "separations/tick",
+                            "velocity at `appear_tick`. `speed_class` does not constrain it"),
+                    "", "required"),
+          withNotes(real<C>("vy", [](C& t) -> double& { return t.velocity.y; }, kCoordinate, "separations/tick",
+                            "velocity at `appear_tick`. `speed_class` does not constrain it"),
+                    "", "required"),
+          unsetWhenZero(withNotes(real<C>("sensing_range", &C::sensing_range, kPositive, "separations",
+                                          "the target's sensing range SR, i.e. its sound power Pt = cs SR^α (An "
+                                          "et al. 2014 Table 1)"),
+                                  "(0, 1e6]; `acoustic_doppler` only", "`sensor_model.sensing_range`")),
+      }};
+  return table;
+}
+
+const FieldTable<DynamicsConfig>& dynamics() {
+  using C = DynamicsConfig;
+  static const FieldTable<C> table{
+      "dynamics",
+      {
+          real<C>("delta", &C::delta, openClosed(0.0, 1e3), "ticks", "δ, the sampling interval"),
+          real<C>("process_noise_sigma", &C::process_noise_sigma, closed(0.0, 1e3), "separations/tick²",
+                  "q. §VII gives Q = diag(0.15², 0.15²)"),
+      }};
+  return table;
+}
+
+const FieldTable<Vec2>& supernode() {
+  static const FieldTable<Vec2> table{
+      "supernodes[]",
+      {
+          withNotes(real<Vec2>("x", &Vec2::x, kCoordinate, "separations", "position"), "inside the region", "required"),
+          withNotes(real<Vec2>("y", &Vec2::y, kCoordinate, "separations", "position"), "inside the region", "required"),
+      }};
+  return table;
+}
+
+const FieldTable<NetworkConfig>& network() {
+  using C = NetworkConfig;
+  static const FieldTable<C> table{
+      "network",
+      {
+          real<C>("communication_range", &C::communication_range, kPositive, "separations",
+                  "radio range of the communication graph; the default is calibrated against Oh §VII-E, see "
+                  "`docs/NETWORK.md`"),
+          real<C>("pte", &C::pte, kProbability, "per hop",
+                  "transmission failure rate. A report k hops away arrives with probability 1 − (1 − (1 − "
+                  "pte)^k)^k"),
+          real<C>("pde", &C::pde, kProbability, "per hop", "delay rate. The delay is NegBin(k, pde) ticks, eq. (7)"),
+      }};
+  return table;
+}
+
+const FieldTable<TrackerConfig>& tracker() {
+  using C = TrackerConfig;
+  static const FieldTable<C> table{
+      "tracker",
+      {
+          withNotes(text<C>("engine", &C::engine,
+                            "the engine every supernode runs: `mcmcda` (sliding-window MCMCDA), `gnn` (the "
+                            "baseline) or `rulebased` (An et al.'s centroid tracker, `docs/RULEBASED.md`)"),
+                    "a registered engine (`wsntrack components`)"),
+          integer<C>("window_size", &C::window_size, 1, 1000, "ticks",
+                     "ws, the sliding window of delivered observations (§VI–VII). A report delayed by ws ticks or "
+                     "more cannot be placed"),
+          nested<C>("params", "mapping name → number", "`{}`", "names and ranges per engine",
+                    "engine parameters. A parameter left out takes the engine's default"),
+      }};
+  return table;
+}
+
+const FieldTable<AggregatorConfig>& aggregator() {
+  using C = AggregatorConfig;
+  static const FieldTable<C> table{
+      "aggregator",
+      {
+          withNotes(text<C>("association", &C::association,
+                            "`mcmcda`: the supernodes' tracks at their observed ticks form Yc and sliding-window "
+                            "MCMCDA links them into global tracks; `gated`: the one-scan gated merge of each tick's "
+                            "tracks (`docs/AGGREGATION.md`)"),
+                    "a registered method (`wsntrack components`)"),
+          nested<C>("params", "mapping name → number", "`{}`", "names and ranges per method",
+                    "method parameters; one left out takes its default"),
+      }};
+  return table;
+}
+
+const FieldTable<MetricsConfig>& metrics() {
+  using C = MetricsConfig;
+  constexpr Range kOrder = closed(1.0, 100.0);
+  static const FieldTable<C> table{
+      "metrics",
+      {
+          real<C>("ospa_c", &C::ospa_c, kPositive, "separations",
+                  "OSPA cut-off c (Schuhmacher, Vo & Vo 2008): the error charged for a missed or false target"),
+          real<C>("ospa_p", &C::ospa_p, kOrder, "", "OSPA order p"),
+          real<C>("gospa_c", &C::gospa_c, kPositive, "separations",
+                  "GOSPA cut-off c (α = 2, Rahmathullah et al. 2017): a missed or false target costs c^p / 2"),
+          real<C>("gospa_p", &C::gospa_p, kOrder, "", "GOSPA order p"),
+          real<C>("mot_threshold", &C::mot_threshold, kPositive, "separations",
+                  "CLEAR-MOT match threshold T (Bernardin & Stiefelhagen 2008): a track corresponds to a target "
+                  "only closer than T. Also the distance within which a second track on a tracked target is a "
+                  "duplicate"),
+          real<C>("quality_gate", &C::quality_gate, kPositive, "separations",
+                  "RSE, TLR and ⟨dx⟩: a track is associated with a target only within this distance"),
+          real<C>("boundary_band", &C::boundary_band, kNonNegative, "separations",
+                  "a target at most this far from the bisector between its nearest and second-nearest supernode "
+                  "is at a tracking-group boundary; its duplicates, identity switches and fragmentations are "
+                  "counted apart from the interior ones. With one supernode everything is interior"),
+      }};
+  return table;
+}
+
+const FieldTable<RunConfig>& run() {
+  using C = RunConfig;
+  static const FieldTable<C> table{
+      "run",
+      {
+          withNotes(integer<C>("ticks", &C::ticks, 1, 1e6, "ticks",
+                               "T, the length of the run. `wsntrack run --ticks` overrides it"),
+                    "[1, 10^6]"),
+          unsigned64<C>("seed", &C::seed, "", "the seed of every random stream. `--seed` overrides it"),
+          withNotes(integer<C>("node_processes", &C::node_processes, 1, 64, "processes",
+                               "sensor-node tiles, one process each. The results do not depend on it. `--nodes` "
+                               "overrides it"),
+                    "[1, 64], at most the number of 2 Rs cells over the region"),
+          integer<C>("max_ticks_in_flight", &C::max_ticks_in_flight, 1, 64, "ticks",
+                     "back-pressure bound of the lockstep pipeline"),
+      }};
+  return table;
+}
+
+const std::vector<std::string>& sectionNames() {
+  static const std::vector<std::string> names = {"name",     "region",   "sensors",    "sensor_model", "localisation",
+                                                 "targets",  "dynamics", "supernodes", "network",      "tracker",
+                                                 "aggregator", "metrics", "run"};
+  return names;
+}
+
+std::vector<std::pair<std::string, std::string>> markdownTables() {
+  return {
+      {"name", markdownTable(topLevel())},
+      {"region", markdownTable(region())},
+      {"sensors", markdownTable(sensors())},
+      {"sensor_model", markdownTable(sensorModel())},
+      {"sensor_model.acoustic", markdownTable(acoustic())},
+      {"sensor_model.environmental_noise", markdownTable(environmentalNoise())},
+      {"localisation", markdownTable(localisation())},
+      {"targets", markdownTable(targets())},
+      {"targets.scripted[]", markdownTable(scriptedTarget())},
+      {"dynamics", markdownTable(dynamics())},
+      {"supernodes[]", markdownTable(supernode())},
+      {"network", markdownTable(network())},
+      {"tracker", markdownTable(tracker())},
+      {"aggregator", markdownTable(aggregator())},
+      {"metrics", markdownTable(metrics())},
+      {"run", markdownTable(run())},
+  };
+}
+
+}  // namespace wsn::common::schema

@@ -1,0 +1,96 @@
+#include "launcher/components.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include "aggregator/association.hpp"
+#include "common/config/field_table.hpp"
+#include "common/scenario_schema.hpp"
+#include "node/sensor_model_registry.hpp"
+#include "supernode/engine.hpp"
+
+namespace wsn::launcher {
+namespace {
+
+std::string joined(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
+  return out;
+}
+
+void printParams(std::ostringstream& out, const std::vector<common::ParamSpec>& params) {
+  using common::config::compactNumber;
+  for (const auto& p : params)
+    out << "  " << p.name << (p.unit.empty() ? "" : " [" + p.unit + "]") << " (default " << compactNumber(p.default_value)
+        << ", range [" << compactNumber(p.min) << ", " << compactNumber(p.max) << "]" << (p.integer ? ", whole" : "")
+        << "): " << p.description << "\n";
+}
+
+void printEngines(std::ostringstream& out) {
+  out << "Supernode tracking engines (tracker.engine, tracker.params):\n";
+  for (const auto& engine : supernode::engineRegistry()) {
+    out << engine.name << ": " << engine.description << "\n  accepts: " << joined(engine.accepts) << "\n";
+    printParams(out, engine.params);
+  }
+  out << "\nAggregator track association (aggregator.association, aggregator.params):\n";
+  for (const auto& method : aggregator::associationRegistry()) {
+    out << method.name << ": " << method.description << "\n";
+    printParams(out, method.params);
+  }
+}
+
+std::string markdownParamTable(const std::vector<common::ParamSpec>& params) {
+  using common::config::compactNumber;
+  std::string out = "| parameter | unit | default | range | meaning |\n|-----------|------|---------|-------|---------|\n";
+  for (const auto& p : params)
+    out += "| `" + p.name + "` | " + (p.unit.empty() ? "—" : p.unit) + " | " + compactNumber(p.default_value) + " | [" +
+           compactNumber(p.min) + ", " + compactNumber(p.max) + "]" + (p.integer ? ", whole" : "") + " | " +
+           p.description + " |\n";
+  return out;
+}
+
+void markdownBlock(std::ostringstream& out, const std::string& name, const std::string& table) {
+  out << "<!-- table: " << name << " -->\n" << table << "<!-- end table -->\n\n";
+}
+
+}  // namespace
+
+std::string componentsMarkdown() {
+  std::ostringstream out;
+  for (const auto& [name, table] : common::schema::markdownTables()) markdownBlock(out, name, table);
+  for (const auto& engine : supernode::engineRegistry())
+    markdownBlock(out, "tracker.params " + engine.name, markdownParamTable(engine.params));
+  for (const auto& method : aggregator::associationRegistry())
+    markdownBlock(out, "aggregator.params " + method.name, markdownParamTable(method.params));
+  return out.str();
+}
+
+std::string enginesText() {
+  std::ostringstream out;
+  printEngines(out);
+  return out.str();
+}
+
+std::string componentsText() {
+  std::ostringstream out;
+  out << "Sensor models (sensor_model.kind):\n";
+  for (const auto& model : node::sensorModelRegistry())
+    out << model.name << ": " << model.description << "\n  reads: " << joined(model.config_sections)
+        << "\n  measures: " << joined(model.measurement_kinds) << "\n";
+  out << "\n";
+  printEngines(out);
+  return out.str();
+}
+
+void checkComponentsFit(const common::Scenario& scenario) {
+  const auto& model = node::sensorModelRegistry().at(node::sensorModelName(scenario.sensor_model.kind));
+  const auto& engine = supernode::engineRegistry().at<common::ScenarioError>(
+      scenario.tracker.engine, scenario.source_path + ":" + std::to_string(scenario.tracker.engine_line) + ": ");
+  for (const auto& kind : model.measurement_kinds)
+    if (std::find(engine.accepts.begin(), engine.accepts.end(), kind) == engine.accepts.end())
+      throw common::ScenarioError(scenario.source_path + ":" + std::to_string(std::max(scenario.tracker.engine_line, 1)) +
+                                  ": engine '" + engine.name + "' takes " + joined(engine.accepts) +
+                                  " measurements, but sensor model '" + model.name + "' reports " + kind);
+}
+
+}  // namespace wsn::launcher

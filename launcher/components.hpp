@@ -1,0 +1,26 @@
+// `wsntrack components`: every registered sensor model, tracking engine, track association and
+// metric with its parameters, units and meaning; and the check that a scenario's components fit
+// together (an engine takes the measurements its sensor model makes).
+#pragma once
+
+#include <string>
+
+#include "common/scenario.hpp"
+
+namespace wsn::launcher {
+
+/// The listing of every registry, as `wsntrack components` prints it.
+std::string componentsText();
+
+/// The key tables of scenarios/README.md, each between "<!-- table: NAME -->" and
+/// "<!-- end table -->" (`wsntrack components --markdown`; a test checks the README against it).
+std::string componentsMarkdown();
+
+/// The engines and associations only (`wsntrack engines`, kept for scripts that use it).
+std::string enginesText();
+
+/// Throws common::ScenarioError "file:line: ..." when the scenario's tracker engine does not
+/// accept every measurement kind of its sensor model.
+void checkComponentsFit(const common::Scenario& scenario);
+
+}  // namespace wsn::launcher
