@@ -126,7 +126,7 @@ class StatusObserver {
   /// collects failure messages.
   void poll(std::chrono::milliseconds timeout, std::int32_t& aggregator_tick, std::vector<std::string>& failures) {
     waitset_.wait(timeout);
-    reader_.take<wsn_msg_ProcessStatus>([&](const wsn_msg_ProcessStatus& s) {
+    reader_.take([&](const wsn_msg_ProcessStatus& s) {
       if (s.run_id != run_id_) return;
       if (s.state == wsn_msg_FAILED) failures.push_back(std::string(s.role) + " " + std::to_string(s.index) + ": " + s.message);
       if (std::strcmp(s.role, "aggregator") == 0 && (s.state == wsn_msg_RUNNING || s.state == wsn_msg_DONE))
@@ -138,7 +138,7 @@ class StatusObserver {
   dds::Domain domain_;
   dds::Participant participant_;
   dds::RunTopics topics_;
-  dds::Reader reader_;
+  dds::Reader<wsn_msg_ProcessStatus> reader_;
   dds::ReadCondition condition_;
   dds::WaitSet waitset_;
   std::uint64_t run_id_;

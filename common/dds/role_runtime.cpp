@@ -21,14 +21,14 @@ void throwIfStopped(const RoleContext& context) {
 }  // namespace
 
 RunTopics::RunTopics(const Participant& participant)
-    : sensor_boundary(participant, wsn_msg_SensorBoundary_desc, topic_names::kSensorBoundary),
-      report_batch(participant, wsn_msg_ReportBatch_desc, topic_names::kReportBatch),
-      delivery_batch(participant, wsn_msg_DeliveryBatch_desc, topic_names::kDeliveryBatch),
-      handoff_batch(participant, wsn_msg_HandoffBatch_desc, topic_names::kHandoffBatch),
-      track_batch(participant, wsn_msg_TrackBatch_desc, topic_names::kTrackBatch),
-      global_track_batch(participant, wsn_msg_GlobalTrackBatch_desc, topic_names::kGlobalTrackBatch),
-      tick_metrics(participant, wsn_msg_TickMetrics_desc, topic_names::kTickMetrics),
-      process_status(participant, wsn_msg_ProcessStatus_desc, topic_names::kProcessStatus) {}
+    : sensor_boundary(participant, topic_names::kSensorBoundary),
+      report_batch(participant, topic_names::kReportBatch),
+      delivery_batch(participant, topic_names::kDeliveryBatch),
+      handoff_batch(participant, topic_names::kHandoffBatch),
+      track_batch(participant, topic_names::kTrackBatch),
+      global_track_batch(participant, topic_names::kGlobalTrackBatch),
+      tick_metrics(participant, topic_names::kTickMetrics),
+      process_status(participant, topic_names::kProcessStatus) {}
 
 StatusPublisher::StatusPublisher(const Participant& participant, const RunTopics& topics, const RoleContext& context)
     : writer_(participant, topics.process_status, Qos::lastValueTransientLocal()),
@@ -56,14 +56,14 @@ void StatusPublisher::failed(const std::string& message) { publish(wsn_msg_FAILE
 RoleLoop::RoleLoop(const Participant& participant, const RoleContext& context)
     : context_(context), waitset_(participant) {}
 
-void RoleLoop::watch(Reader& reader, std::function<void()> drain) {
+void RoleLoop::watch(const ReaderBase& reader, std::function<void()> drain) {
   conditions_.emplace_back(reader);
   watched_readers_.push_back(reader.handle());
   drains_.push_back(std::move(drain));
   waitset_.attach(conditions_.back().handle(), static_cast<dds_attach_t>(drains_.size() - 1));
 }
 
-void RoleLoop::unwatch(const Reader& reader) {
+void RoleLoop::unwatch(const ReaderBase& reader) {
   for (std::size_t i = 0; i < conditions_.size(); ++i) {
     if (watched_readers_[i] != reader.handle()) continue;
     // Deleting the condition also detaches it from the waitset; the slot stays (tokens are
@@ -101,8 +101,8 @@ void RoleLoop::waitUntilTime(Clock::time_point deadline) {
   }
 }
 
-void waitForDiscovery(const Participant& participant, const std::vector<std::pair<const Writer*, int>>& writers,
-                      const std::vector<std::pair<const Reader*, int>>& readers, const RoleContext& context,
+void waitForDiscovery(const Participant& participant, const std::vector<std::pair<const WriterBase*, int>>& writers,
+                      const std::vector<std::pair<const ReaderBase*, int>>& readers, const RoleContext& context,
                       std::chrono::milliseconds timeout) {
   WaitSet waitset(participant);
   for (const auto& [writer, expected] : writers) waitset.attach(writer->handle(), 0);
@@ -128,7 +128,7 @@ void waitForDiscovery(const Participant& participant, const std::vector<std::pai
 
 void waitForClusterReady(const Participant& participant, const RunTopics& topics, const RoleContext& context,
                          std::chrono::milliseconds timeout) {
-  Reader reader(participant, topics.process_status, Qos::lastValueTransientLocal());
+  Reader<wsn_msg_ProcessStatus> reader(participant, topics.process_status, Qos::lastValueTransientLocal());
   ReadCondition condition(reader);
   WaitSet waitset(participant);
   waitset.attach(condition.handle(), 0);
@@ -141,7 +141,7 @@ void waitForClusterReady(const Participant& participant, const RunTopics& topics
       throw RoleAborted(context.role + ": only " + std::to_string(ready.size()) + " of " + std::to_string(expected) +
                         " processes became ready");
     waitset.wait(kWakeInterval);
-    reader.take<wsn_msg_ProcessStatus>([&](const wsn_msg_ProcessStatus& s) {
+    reader.take([&](const wsn_msg_ProcessStatus& s) {
       if (s.run_id != context.run_id) return;
       if (s.state == wsn_msg_FAILED) throw RoleAborted(std::string(s.role) + " failed: " + s.message);
       if (s.state != wsn_msg_STARTING) ready.emplace(s.role, s.index);
@@ -157,7 +157,7 @@ PipelineProgress::PipelineProgress(const Participant& participant, const RunTopi
                                    const RoleContext& context, RoleLoop& loop)
     : context_(context), loop_(loop), reader_(participant, topics.global_track_batch, Qos::reliableKeepAll()) {
   loop_.watch(reader_, [this] {
-    reader_.take<wsn_msg_GlobalTrackBatch>([this](const wsn_msg_GlobalTrackBatch& batch) {
+    reader_.take([this](const wsn_msg_GlobalTrackBatch& batch) {
       if (batch.run_id != context_.run_id || batch.tick <= completed_through_) return;
       arrived_.insert(batch.tick);
       while (!arrived_.empty() && *arrived_.begin() == completed_through_ + 1) {

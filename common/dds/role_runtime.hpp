@@ -15,6 +15,7 @@
 
 #include "common/dds/entity.hpp"
 #include "common/scenario.hpp"
+#include "wsntrack.h"
 
 namespace wsn::dds {
 
@@ -30,6 +31,42 @@ inline constexpr const char* kGlobalTrackBatch = "wsn_global_track_batch";
 inline constexpr const char* kTickMetrics = "wsn_tick_metrics";
 inline constexpr const char* kProcessStatus = "wsn_process_status";
 }  // namespace topic_names
+
+/// The one binding of each IDL sample type to its generated descriptor: Topic<S>, Writer<S> and
+/// Reader<S> take the descriptor from here, so a type cannot be paired with another's descriptor
+/// or topic.
+template <>
+struct TopicType<wsn_msg_SensorBoundary> {
+  static constexpr const dds_topic_descriptor_t& descriptor = wsn_msg_SensorBoundary_desc;
+};
+template <>
+struct TopicType<wsn_msg_ReportBatch> {
+  static constexpr const dds_topic_descriptor_t& descriptor = wsn_msg_ReportBatch_desc;
+};
+template <>
+struct TopicType<wsn_msg_DeliveryBatch> {
+  static constexpr const dds_topic_descriptor_t& descriptor = wsn_msg_DeliveryBatch_desc;
+};
+template <>
+struct TopicType<wsn_msg_HandoffBatch> {
+  static constexpr const dds_topic_descriptor_t& descriptor = wsn_msg_HandoffBatch_desc;
+};
+template <>
+struct TopicType<wsn_msg_TrackBatch> {
+  static constexpr const dds_topic_descriptor_t& descriptor = wsn_msg_TrackBatch_desc;
+};
+template <>
+struct TopicType<wsn_msg_GlobalTrackBatch> {
+  static constexpr const dds_topic_descriptor_t& descriptor = wsn_msg_GlobalTrackBatch_desc;
+};
+template <>
+struct TopicType<wsn_msg_TickMetrics> {
+  static constexpr const dds_topic_descriptor_t& descriptor = wsn_msg_TickMetrics_desc;
+};
+template <>
+struct TopicType<wsn_msg_ProcessStatus> {
+  static constexpr const dds_topic_descriptor_t& descriptor = wsn_msg_ProcessStatus_desc;
+};
 
 /// The processes of a cluster: one per tile, the network, one per supernode, the aggregator.
 struct ClusterShape {
@@ -66,14 +103,14 @@ class RoleAborted : public std::runtime_error {
 /// All topics of a run on one participant.
 struct RunTopics {
   explicit RunTopics(const Participant& participant);
-  Topic sensor_boundary;
-  Topic report_batch;
-  Topic delivery_batch;
-  Topic handoff_batch;
-  Topic track_batch;
-  Topic global_track_batch;
-  Topic tick_metrics;
-  Topic process_status;
+  Topic<wsn_msg_SensorBoundary> sensor_boundary;
+  Topic<wsn_msg_ReportBatch> report_batch;
+  Topic<wsn_msg_DeliveryBatch> delivery_batch;
+  Topic<wsn_msg_HandoffBatch> handoff_batch;
+  Topic<wsn_msg_TrackBatch> track_batch;
+  Topic<wsn_msg_GlobalTrackBatch> global_track_batch;
+  Topic<wsn_msg_TickMetrics> tick_metrics;
+  Topic<wsn_msg_ProcessStatus> process_status;
 };
 
 /// Publishes this role's lifecycle on the status topic.
@@ -88,7 +125,7 @@ class StatusPublisher {
 
  private:
   void publish(int state, std::int32_t tick, const std::string& message);
-  Writer writer_;
+  Writer<wsn_msg_ProcessStatus> writer_;
   std::uint64_t run_id_;
   std::string role_;
   std::uint32_t index_;
@@ -135,10 +172,10 @@ class RoleLoop {
  public:
   RoleLoop(const Participant& participant, const RoleContext& context);
   /// Registers a reader and the function that takes its samples.
-  void watch(Reader& reader, std::function<void()> drain);
+  void watch(const ReaderBase& reader, std::function<void()> drain);
   /// Stops watching a reader; a reader that dies before the loop must be unwatched first,
   /// since deleting it deletes its read condition too.
-  void unwatch(const Reader& reader);
+  void unwatch(const ReaderBase& reader);
   /// Blocks until done() holds, draining readers as samples arrive. Throws RoleAborted when
   /// stopped from outside, or when nothing arrives for the stall timeout (describe() says
   /// what was still missing).
@@ -158,8 +195,8 @@ class RoleLoop {
 /// Blocks until every writer matched `expected` role readers (viewers do not count: see
 /// Endpoint) and every reader matched `expected` writers, so that nothing published afterwards
 /// can miss a consumer. Throws on timeout.
-void waitForDiscovery(const Participant& participant, const std::vector<std::pair<const Writer*, int>>& writers,
-                      const std::vector<std::pair<const Reader*, int>>& readers, const RoleContext& context,
+void waitForDiscovery(const Participant& participant, const std::vector<std::pair<const WriterBase*, int>>& writers,
+                      const std::vector<std::pair<const ReaderBase*, int>>& readers, const RoleContext& context,
                       std::chrono::milliseconds timeout);
 
 /// Blocks until every process of the cluster reported READY (or later) on the status topic.
@@ -184,7 +221,7 @@ class PipelineProgress {
   /// one interval after the previous tick's scheduled start, at once when the interval is zero. A
   /// late tick restarts the schedule rather than being made up by a burst.
   void paceTick();
-  Reader& reader() { return reader_; }
+  Reader<wsn_msg_GlobalTrackBatch>& reader() { return reader_; }
   PipelineProgress(const PipelineProgress&) = delete;
   PipelineProgress& operator=(const PipelineProgress&) = delete;
   ~PipelineProgress() { loop_.unwatch(reader_); }
@@ -192,7 +229,7 @@ class PipelineProgress {
  private:
   const RoleContext& context_;
   RoleLoop& loop_;
-  Reader reader_;
+  Reader<wsn_msg_GlobalTrackBatch> reader_;
   std::set<std::int32_t> arrived_;
   std::int32_t completed_through_ = 0;
   std::optional<std::chrono::steady_clock::time_point> paced_at_;
