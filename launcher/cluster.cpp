@@ -16,6 +16,7 @@
 #include <map>
 #include <mutex>
 #include <sstream>
+#include <stop_token>
 #include <thread>
 
 #include "aggregator/role.hpp"
@@ -53,7 +54,7 @@ std::vector<RoleSlot> clusterSlots(const common::Scenario& scenario) {
   return slots;
 }
 
-dds::RoleContext contextFor(const RoleSlot& slot, const ClusterOptions& options, const std::atomic<bool>* stop) {
+dds::RoleContext contextFor(const RoleSlot& slot, const ClusterOptions& options, std::stop_token stop) {
   dds::RoleContext context;
   context.role = slot.role;
   context.index = slot.index;
@@ -64,7 +65,7 @@ dds::RoleContext contextFor(const RoleSlot& slot, const ClusterOptions& options,
   context.shape = {options.scenario.run.node_processes, static_cast<std::int32_t>(options.scenario.supernodes.size())};
   context.stall_timeout = std::chrono::milliseconds(static_cast<long>(options.stall_timeout_s * 1000));
   context.tick_interval = std::chrono::microseconds(std::llround(options.tick_interval_s * 1e6));
-  context.stop = stop;
+  context.stop = std::move(stop);
   return context;
 }
 
@@ -264,18 +265,19 @@ ClusterResult runThreads(const ClusterOptions& options) {
   ClusterResult result;
   const auto slots = clusterSlots(options.scenario);
   const auto started = Clock::now();
-  std::atomic<bool> stop{false};
+  // The first failure stops every role thread: their waits wake at once on the request.
+  std::stop_source stop;
   std::atomic<std::size_t> finished{0};
   std::mutex mutex;
   result.outcomes.resize(slots.size());
 
   std::vector<dds::RoleContext> contexts;
-  for (const auto& slot : slots) contexts.push_back(contextFor(slot, options, &stop));
+  for (const auto& slot : slots) contexts.push_back(contextFor(slot, options, stop.get_token()));
   std::vector<std::thread> threads;
   auto fail = [&](const std::string& why) {
     std::lock_guard lock(mutex);
     if (result.failure.empty()) result.failure = why;
-    stop.store(true);
+    stop.request_stop();
   };
   try {
     // One domain (participant index 0) shared by all role threads; the observer joins it too

@@ -3,13 +3,13 @@
 // consumer handles tick t once it holds tick t from every producer; DESIGN.md principle 3).
 #pragma once
 
-#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <functional>
 #include <map>
 #include <optional>
 #include <set>
+#include <stop_token>
 #include <string>
 #include <vector>
 
@@ -90,8 +90,9 @@ struct RoleContext {
   /// run can be watched in real time; zero runs as fast as the pipeline goes. Timing only: no
   /// output depends on it.
   std::chrono::microseconds tick_interval{0};
-  /// Set from outside (signal handler, launcher) to make the role stop at its next wake-up.
-  const std::atomic<bool>* stop = nullptr;
+  /// Requested from outside (the signal thread of a role process, the in-process launcher) to
+  /// make the role stop: every wait of the role wakes at once through a guard condition.
+  std::stop_token stop;
 };
 
 /// Thrown when a role stops before finishing: stopped from outside or stalled.
@@ -166,6 +167,25 @@ class TickInbox {
   std::uint64_t rejected_ = 0;
 };
 
+/// A guard condition triggered when `stop` is requested (at once if it already was): attached to a
+/// waitset, it wakes the wait on a stop request instead of the wait having to poll for one.
+class StopCondition {
+ public:
+  StopCondition(const Participant& participant, std::stop_token stop);
+  dds_entity_t handle() const { return guard_.handle(); }
+
+ private:
+  // Runs on the requesting thread; std::stop_callback needs it noexcept.
+  struct Trigger {
+    dds_entity_t guard;
+    void operator()() const noexcept;
+  };
+  GuardCondition guard_;
+  // Declared after guard_, so destroyed first: its destructor waits for a trigger running on
+  // another thread, and no trigger can reach a deleted guard.
+  std::stop_callback<Trigger> callback_;
+};
+
 /// A role's event loop: a waitset over its readers; each arrival is drained into inboxes by
 /// the callback registered with the reader.
 class RoleLoop {
@@ -176,17 +196,18 @@ class RoleLoop {
   /// Stops watching a reader; a reader that dies before the loop must be unwatched first,
   /// since deleting it deletes its read condition too.
   void unwatch(const ReaderBase& reader);
-  /// Blocks until done() holds, draining readers as samples arrive. Throws RoleAborted when
-  /// stopped from outside, or when nothing arrives for the stall timeout (describe() says
+  /// Blocks until done() holds, draining readers as samples arrive. Throws RoleAborted as soon
+  /// as a stop is requested, or when nothing arrives for the stall timeout (describe() says
   /// what was still missing).
   void waitUntil(const std::function<bool()>& done, const std::function<std::string()>& describe);
-  /// Blocks until `deadline`, draining readers as samples arrive. Throws RoleAborted when
-  /// stopped from outside; waiting for the clock is never a stall.
+  /// Blocks until `deadline`, draining readers as samples arrive. Throws RoleAborted as soon as
+  /// a stop is requested; waiting for the clock is never a stall.
   void waitUntilTime(std::chrono::steady_clock::time_point deadline);
 
  private:
   const RoleContext& context_;
   WaitSet waitset_;
+  StopCondition stop_;
   std::vector<ReadCondition> conditions_;
   std::vector<dds_entity_t> watched_readers_;  // parallel to conditions_
   std::vector<std::function<void()>> drains_;
