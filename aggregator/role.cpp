@@ -45,15 +45,15 @@ void runAggregatorRole(const dds::RoleContext& context) {
     const std::string provenance = common::readRunProvenance(context.run_dir + "/run.json");
     RunScorer scorer(scenario.metrics, scenario.supernodes);
 
-    Reader track_reader(participant, topics.track_batch, Qos::reliableKeepAll());
-    Writer global_writer(participant, topics.global_track_batch, Qos::reliableKeepAll());
+    Reader<wsn_msg_TrackBatch> track_reader(participant, topics.track_batch, Qos::reliableKeepAll());
+    Writer<wsn_msg_GlobalTrackBatch> global_writer(participant, topics.global_track_batch, Qos::reliableKeepAll());
     // For live views only: not in waitForDiscovery, since nobody need be listening.
-    Writer tick_metrics_writer(participant, topics.tick_metrics, Qos::reliableKeepAll());
+    Writer<wsn_msg_TickMetrics> tick_metrics_writer(participant, topics.tick_metrics, Qos::reliableKeepAll());
     RoleLoop loop(participant, context);
     TickInbox<SupernodeBatch> inbox;
     const auto supernodes = static_cast<std::uint32_t>(context.shape.supernodes);
     loop.watch(track_reader, [&] {
-      track_reader.take<wsn_msg_TrackBatch>([&](const wsn_msg_TrackBatch& batch) {
+      track_reader.take([&](const wsn_msg_TrackBatch& batch) {
         if (batch.run_id != context.run_id || batch.supernode >= supernodes) return;
         inbox.put(batch.tick, batch.supernode,
                   {decode(batch.tracks), batch.observations_in_window, batch.observations_dropped_stale});

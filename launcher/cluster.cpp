@@ -16,6 +16,7 @@
 #include <map>
 #include <mutex>
 #include <sstream>
+#include <stop_token>
 #include <thread>
 
 #include "aggregator/role.hpp"
@@ -53,7 +54,7 @@ std::vector<RoleSlot> clusterSlots(const common::Scenario& scenario) {
   return slots;
 }
 
-dds::RoleContext contextFor(const RoleSlot& slot, const ClusterOptions& options, const std::atomic<bool>* stop) {
+dds::RoleContext contextFor(const RoleSlot& slot, const ClusterOptions& options, std::stop_token stop) {
   dds::RoleContext context;
   context.role = slot.role;
   context.index = slot.index;
@@ -64,7 +65,7 @@ dds::RoleContext contextFor(const RoleSlot& slot, const ClusterOptions& options,
   context.shape = {options.scenario.run.node_processes, static_cast<std::int32_t>(options.scenario.supernodes.size())};
   context.stall_timeout = std::chrono::milliseconds(static_cast<long>(options.stall_timeout_s * 1000));
   context.tick_interval = std::chrono::microseconds(std::llround(options.tick_interval_s * 1e6));
-  context.stop = stop;
+  context.stop = std::move(stop);
   return context;
 }
 
@@ -126,7 +127,7 @@ class StatusObserver {
   /// collects failure messages.
   void poll(std::chrono::milliseconds timeout, std::int32_t& aggregator_tick, std::vector<std::string>& failures) {
     waitset_.wait(timeout);
-    reader_.take<wsn_msg_ProcessStatus>([&](const wsn_msg_ProcessStatus& s) {
+    reader_.take([&](const wsn_msg_ProcessStatus& s) {
       if (s.run_id != run_id_) return;
       if (s.state == wsn_msg_FAILED) failures.push_back(std::string(s.role) + " " + std::to_string(s.index) + ": " + s.message);
       if (std::strcmp(s.role, "aggregator") == 0 && (s.state == wsn_msg_RUNNING || s.state == wsn_msg_DONE))
@@ -138,7 +139,7 @@ class StatusObserver {
   dds::Domain domain_;
   dds::Participant participant_;
   dds::RunTopics topics_;
-  dds::Reader reader_;
+  dds::Reader<wsn_msg_ProcessStatus> reader_;
   dds::ReadCondition condition_;
   dds::WaitSet waitset_;
   std::uint64_t run_id_;
@@ -264,18 +265,19 @@ ClusterResult runThreads(const ClusterOptions& options) {
   ClusterResult result;
   const auto slots = clusterSlots(options.scenario);
   const auto started = Clock::now();
-  std::atomic<bool> stop{false};
+  // The first failure stops every role thread: their waits wake at once on the request.
+  std::stop_source stop;
   std::atomic<std::size_t> finished{0};
   std::mutex mutex;
   result.outcomes.resize(slots.size());
 
   std::vector<dds::RoleContext> contexts;
-  for (const auto& slot : slots) contexts.push_back(contextFor(slot, options, &stop));
+  for (const auto& slot : slots) contexts.push_back(contextFor(slot, options, stop.get_token()));
   std::vector<std::thread> threads;
   auto fail = [&](const std::string& why) {
     std::lock_guard lock(mutex);
     if (result.failure.empty()) result.failure = why;
-    stop.store(true);
+    stop.request_stop();
   };
   try {
     // One domain (participant index 0) shared by all role threads; the observer joins it too

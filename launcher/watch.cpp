@@ -227,10 +227,10 @@ class Watcher {
     dds::RunTopics topics(participant);
     // Reliable readers, so that no tick is skipped for a lost packet; they never hold the run
     // back, since Cyclone acknowledges on arrival, and they are not counted by its start barrier.
-    dds::Reader status_reader(participant, topics.process_status,
+    dds::Reader<wsn_msg_ProcessStatus> status_reader(participant, topics.process_status,
                               dds::Qos::lastValueTransientLocal(dds::Endpoint::kViewer));
-    dds::Reader track_reader(participant, topics.global_track_batch, dds::Qos::reliableKeepAll(dds::Endpoint::kViewer));
-    dds::Reader metrics_reader(participant, topics.tick_metrics, dds::Qos::reliableKeepAll(dds::Endpoint::kViewer));
+    dds::Reader<wsn_msg_GlobalTrackBatch> track_reader(participant, topics.global_track_batch, dds::Qos::reliableKeepAll(dds::Endpoint::kViewer));
+    dds::Reader<wsn_msg_TickMetrics> metrics_reader(participant, topics.tick_metrics, dds::Qos::reliableKeepAll(dds::Endpoint::kViewer));
     dds::ReadCondition status_ready(status_reader), tracks_ready(track_reader), metrics_ready(metrics_reader);
     dds::WaitSet waitset(participant);
     waitset.attach(status_ready.handle(), 0);
@@ -273,7 +273,7 @@ class Watcher {
       waitset.wait(wait);
       const auto now = Clock::now();
 
-      status_reader.take<wsn_msg_ProcessStatus>([&](const wsn_msg_ProcessStatus& s) {
+      status_reader.take([&](const wsn_msg_ProcessStatus& s) {
         if (s.run_id != run_.identity.run_id) return;
         started = true;
         last_progress = now;
@@ -288,7 +288,7 @@ class Watcher {
           done_tick_ = s.tick;
         }
       });
-      track_reader.take<wsn_msg_GlobalTrackBatch>([&](const wsn_msg_GlobalTrackBatch& batch) {
+      track_reader.take([&](const wsn_msg_GlobalTrackBatch& batch) {
         if (batch.run_id != run_.identity.run_id || batch.tick <= drawn_tick_) return;
         started = true;
         last_progress = now;
@@ -296,7 +296,7 @@ class Watcher {
         pending.arrived = now;
         pending.tracks = dds::decode(batch.tracks);
       });
-      metrics_reader.take<wsn_msg_TickMetrics>([&](const wsn_msg_TickMetrics& m) {
+      metrics_reader.take([&](const wsn_msg_TickMetrics& m) {
         if (m.run_id != run_.identity.run_id || m.tick <= drawn_tick_) return;
         scores_[m.tick] = {m.truth_targets, m.ospa, m.gospa, m.eps_k_running, m.ospa_mean_running};
       });

@@ -65,14 +65,14 @@ void runNetworkRole(const dds::RoleContext& context) {
     const Topology topology(scenario, layout);
     Router router(scenario, topology);
 
-    Reader report_reader(participant, topics.report_batch, Qos::reliableKeepAll());
-    Writer delivery_writer(participant, topics.delivery_batch, Qos::reliableKeepAll());
+    Reader<wsn_msg_ReportBatch> report_reader(participant, topics.report_batch, Qos::reliableKeepAll());
+    Writer<wsn_msg_DeliveryBatch> delivery_writer(participant, topics.delivery_batch, Qos::reliableKeepAll());
     RoleLoop loop(participant, context);
     PipelineProgress progress(participant, topics, context, loop);
 
     TickInbox<std::vector<common::Report>> inbox;
     loop.watch(report_reader, [&] {
-      report_reader.take<wsn_msg_ReportBatch>([&](const wsn_msg_ReportBatch& batch) {
+      report_reader.take([&](const wsn_msg_ReportBatch& batch) {
         if (batch.run_id != context.run_id || batch.tile >= static_cast<std::uint32_t>(context.shape.tiles)) return;
         inbox.put(batch.tick, batch.tile, decode(batch.reports, batch.tick));
       });

@@ -17,15 +17,15 @@ void runNodeRole(const dds::RoleContext& context) {
     const auto tiles = makeTiles(layout, context.shape.tiles);
     const auto sensors = makeTileSensors({scenario, layout, tiles.at(context.index), truth});
 
-    Writer boundary_writer(participant, topics.sensor_boundary, Qos::reliableKeepAll());
-    Writer report_writer(participant, topics.report_batch, Qos::reliableKeepAll());
-    Reader boundary_reader(participant, topics.sensor_boundary, Qos::reliableKeepAll());
+    Writer<wsn_msg_SensorBoundary> boundary_writer(participant, topics.sensor_boundary, Qos::reliableKeepAll());
+    Writer<wsn_msg_ReportBatch> report_writer(participant, topics.report_batch, Qos::reliableKeepAll());
+    Reader<wsn_msg_SensorBoundary> boundary_reader(participant, topics.sensor_boundary, Qos::reliableKeepAll());
     RoleLoop loop(participant, context);
     PipelineProgress progress(participant, topics, context, loop);
 
     TickInbox<std::vector<common::SensorReading>> boundary_inbox;
     loop.watch(boundary_reader, [&] {
-      boundary_reader.take<wsn_msg_SensorBoundary>([&](const wsn_msg_SensorBoundary& batch) {
+      boundary_reader.take([&](const wsn_msg_SensorBoundary& batch) {
         if (batch.run_id != context.run_id || batch.tile == context.index ||
             batch.tile >= static_cast<std::uint32_t>(context.shape.tiles))
           return;

@@ -15,23 +15,23 @@ void runSupernodeRole(const dds::RoleContext& context) {
     const auto supernodes = static_cast<std::uint32_t>(context.shape.supernodes);
     SupernodeTracker tracker(scenario, self);
 
-    Reader delivery_reader(participant, topics.delivery_batch, Qos::reliableKeepAll());
-    Reader handoff_reader(participant, topics.handoff_batch, Qos::reliableKeepAll());
-    Writer handoff_writer(participant, topics.handoff_batch, Qos::reliableKeepAll());
-    Writer track_writer(participant, topics.track_batch, Qos::reliableKeepAll());
+    Reader<wsn_msg_DeliveryBatch> delivery_reader(participant, topics.delivery_batch, Qos::reliableKeepAll());
+    Reader<wsn_msg_HandoffBatch> handoff_reader(participant, topics.handoff_batch, Qos::reliableKeepAll());
+    Writer<wsn_msg_HandoffBatch> handoff_writer(participant, topics.handoff_batch, Qos::reliableKeepAll());
+    Writer<wsn_msg_TrackBatch> track_writer(participant, topics.track_batch, Qos::reliableKeepAll());
     RoleLoop loop(participant, context);
     PipelineProgress progress(participant, topics, context, loop);
 
     TickInbox<std::vector<common::Observation>> deliveries;
     TickInbox<std::vector<common::TrackHandoff>> handoffs;
     loop.watch(delivery_reader, [&] {
-      delivery_reader.take<wsn_msg_DeliveryBatch>([&](const wsn_msg_DeliveryBatch& batch) {
+      delivery_reader.take([&](const wsn_msg_DeliveryBatch& batch) {
         if (batch.run_id != context.run_id || batch.supernode != self) return;
         deliveries.put(batch.tick, 0, decode(batch.observations, batch.tick));
       });
     });
     loop.watch(handoff_reader, [&] {
-      handoff_reader.take<wsn_msg_HandoffBatch>([&](const wsn_msg_HandoffBatch& batch) {
+      handoff_reader.take([&](const wsn_msg_HandoffBatch& batch) {
         if (batch.run_id != context.run_id || batch.from_supernode == self || batch.from_supernode >= supernodes) return;
         handoffs.put(batch.tick, batch.from_supernode, decode(batch.handoffs));
       });

@@ -52,22 +52,27 @@ Domain::Domain(dds_domainid_t id, const std::string& config_xml)
 Participant::Participant(dds_domainid_t domain)
     : Entity(check(dds_create_participant(domain, nullptr, nullptr), "dds_create_participant")) {}
 
-Topic::Topic(const Participant& participant, const dds_topic_descriptor_t& descriptor, const std::string& name)
-    : Entity(check(dds_create_topic(participant.handle(), &descriptor, name.c_str(), nullptr, nullptr),
-                   "dds_create_topic " + name)) {}
+dds_entity_t createTopic(const Participant& participant, const dds_topic_descriptor_t& descriptor,
+                         std::size_t sample_size, const std::string& name) {
+  if (descriptor.m_size != sample_size)
+    throw DdsError("dds_create_topic " + name + ": descriptor " + descriptor.m_typename + " is for samples of " +
+                   std::to_string(descriptor.m_size) + " bytes, the bound type has " + std::to_string(sample_size));
+  return check(dds_create_topic(participant.handle(), &descriptor, name.c_str(), nullptr, nullptr),
+               "dds_create_topic " + name);
+}
 
-Writer::Writer(const Participant& participant, const Topic& topic, const Qos& qos)
-    : Entity(check(dds_create_writer(participant.handle(), topic.handle(), qos.get(), nullptr), "dds_create_writer")) {
+WriterBase::WriterBase(const Participant& participant, dds_entity_t topic, const Qos& qos)
+    : Entity(check(dds_create_writer(participant.handle(), topic, qos.get(), nullptr), "dds_create_writer")) {
   check(dds_set_status_mask(handle(), DDS_PUBLICATION_MATCHED_STATUS), "dds_set_status_mask(writer)");
 }
 
-std::int32_t Writer::matchedReaders() const {
+std::int32_t WriterBase::matchedReaders() const {
   dds_publication_matched_status_t status;
   check(dds_get_publication_matched_status(handle(), &status), "dds_get_publication_matched_status");
   return static_cast<std::int32_t>(status.current_count);
 }
 
-std::int32_t Writer::matchedRoleReaders() const {
+std::int32_t WriterBase::matchedRoleReaders() const {
   std::vector<dds_instance_handle_t> readers(16);
   while (true) {
     const auto n = static_cast<std::size_t>(
@@ -90,23 +95,23 @@ std::int32_t Writer::matchedRoleReaders() const {
   return roles;
 }
 
-void Writer::waitForAcknowledgements(std::chrono::milliseconds timeout) const {
+void WriterBase::waitForAcknowledgements(std::chrono::milliseconds timeout) const {
   const dds_return_t rc = dds_wait_for_acks(handle(), DDS_MSECS(timeout.count()));
   if (rc != DDS_RETCODE_TIMEOUT) check(rc, "dds_wait_for_acks");
 }
 
-Reader::Reader(const Participant& participant, const Topic& topic, const Qos& qos)
-    : Entity(check(dds_create_reader(participant.handle(), topic.handle(), qos.get(), nullptr), "dds_create_reader")) {
+ReaderBase::ReaderBase(const Participant& participant, dds_entity_t topic, const Qos& qos)
+    : Entity(check(dds_create_reader(participant.handle(), topic, qos.get(), nullptr), "dds_create_reader")) {
   check(dds_set_status_mask(handle(), DDS_SUBSCRIPTION_MATCHED_STATUS), "dds_set_status_mask(reader)");
 }
 
-std::int32_t Reader::matchedWriters() const {
+std::int32_t ReaderBase::matchedWriters() const {
   dds_subscription_matched_status_t status;
   check(dds_get_subscription_matched_status(handle(), &status), "dds_get_subscription_matched_status");
   return static_cast<std::int32_t>(status.current_count);
 }
 
-ReadCondition::ReadCondition(const Reader& reader)
+ReadCondition::ReadCondition(const ReaderBase& reader)
     : Entity(check(dds_create_readcondition(reader.handle(), DDS_ANY_STATE), "dds_create_readcondition")) {}
 
 GuardCondition::GuardCondition(const Participant& participant)

@@ -1,5 +1,6 @@
 // A small RAII layer over the Cyclone DDS C API: one move-only owner per handle, every return
-// code checked through check(), typed write and loaned take with the loan always returned.
+// code checked through check(), topics bound to their sample type so that a writer or reader of
+// another type does not compile, and loaned take with the loan always returned.
 #pragma once
 
 #include <dds/dds.h>
@@ -8,6 +9,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -95,35 +97,73 @@ class Participant : public Entity {
   explicit Participant(dds_domainid_t domain);
 };
 
-/// A topic of one IDL type.
+/// Binds a generated C sample type to its idlc descriptor. Specialised once per type, with a
+/// `static constexpr const dds_topic_descriptor_t& descriptor` (see role_runtime.hpp), so that
+/// the pairing of type and descriptor is written in one place and a type without one does not
+/// compile as a topic.
+template <typename Sample>
+struct TopicType;
+
+/// Creates the Cyclone topic; a descriptor whose size is not the sample's (a wrong TopicType
+/// binding) is rejected here rather than corrupting memory on the first take.
+dds_entity_t createTopic(const Participant& participant, const dds_topic_descriptor_t& descriptor,
+                         std::size_t sample_size, const std::string& name);
+
+/// A topic of one IDL type: writers and readers are made only from a topic of their own type.
+template <typename Sample>
 class Topic : public Entity {
  public:
-  Topic(const Participant& participant, const dds_topic_descriptor_t& descriptor, const std::string& name);
+  Topic(const Participant& participant, const std::string& name)
+      : Entity(createTopic(participant, TopicType<Sample>::descriptor, sizeof(Sample), name)) {}
 };
 
-class Writer : public Entity {
+/// What every writer has whatever its type: matching and acknowledgements (the start barrier
+/// sees writers of several types through it).
+class WriterBase : public Entity {
  public:
-  Writer(const Participant& participant, const Topic& topic, const Qos& qos);
-  /// Serialises the sample (a generated C struct) and sends it.
-  template <typename Sample>
-  void write(const Sample& sample) {
-    check(dds_write(handle(), &sample), "dds_write");
-  }
   /// Number of readers currently matched.
   std::int32_t matchedReaders() const;
   /// Number of matched readers that belong to cluster roles (Endpoint::kRole), viewers excluded.
   std::int32_t matchedRoleReaders() const;
   /// Blocks until every matched reader acknowledged everything written (used once at exit).
   void waitForAcknowledgements(std::chrono::milliseconds timeout) const;
+
+ protected:
+  WriterBase(const Participant& participant, dds_entity_t topic, const Qos& qos);
 };
 
-class Reader : public Entity {
+/// A writer of one sample type (a generated C struct).
+template <typename Sample>
+class Writer : public WriterBase {
  public:
-  Reader(const Participant& participant, const Topic& topic, const Qos& qos);
+  Writer(const Participant& participant, const Topic<Sample>& topic, const Qos& qos)
+      : WriterBase(participant, topic.handle(), qos) {}
+  /// Serialises the sample and sends it.
+  void write(const Sample& sample) { check(dds_write(handle(), &sample), "dds_write"); }
+};
+
+/// What every reader has whatever its type: matching (the start barrier and the role loop see
+/// readers of several types through it).
+class ReaderBase : public Entity {
+ public:
+  /// Number of writers currently matched.
+  std::int32_t matchedWriters() const;
+
+ protected:
+  ReaderBase(const Participant& participant, dds_entity_t topic, const Qos& qos);
+};
+
+/// A reader of one sample type (a generated C struct).
+template <typename Sample>
+class Reader : public ReaderBase {
+ public:
+  Reader(const Participant& participant, const Topic<Sample>& topic, const Qos& qos)
+      : ReaderBase(participant, topic.handle(), qos) {}
   /// Takes everything available and calls f(const Sample&) for each valid sample, with the
   /// loan returned before this returns (even when f throws). Returns the number of samples.
-  template <typename Sample, typename F>
+  template <typename F>
   std::size_t take(F&& f) {
+    static_assert(std::is_invocable_v<F&, const Sample&>, "take() calls f with the reader's own sample type");
     constexpr std::size_t kBatch = 64;
     std::size_t total = 0;
     while (true) {
@@ -145,14 +185,12 @@ class Reader : public Entity {
       }
     }
   }
-  /// Number of writers currently matched.
-  std::int32_t matchedWriters() const;
 };
 
 /// A read condition that triggers while the reader holds any sample.
 class ReadCondition : public Entity {
  public:
-  explicit ReadCondition(const Reader& reader);
+  explicit ReadCondition(const ReaderBase& reader);
 };
 
 /// A condition set from another thread (or a signal handler) to wake a waitset.

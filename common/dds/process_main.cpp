@@ -1,21 +1,65 @@
 #include "common/dds/process_main.hpp"
 
+#include <pthread.h>
+
+#include <atomic>
 #include <boost/program_options.hpp>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <csignal>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <stop_token>
+#include <thread>
 
 #include "common/dds/cyclone_config.hpp"
 
 namespace wsn::dds {
 namespace {
 
-std::atomic<bool> g_stop_requested{false};
+/// Turns SIGINT and SIGTERM into a stop request of the role. A signal handler must not make the
+/// request itself: std::stop_source::request_stop takes a lock, and so does the guard condition it
+/// triggers (dds_set_guardcondition locks the guard's entity and observer mutexes; Cyclone does not
+/// document it as async-signal-safe), so a handler interrupting a thread that holds one would
+/// deadlock. Instead the signals are blocked in every thread (from the constructor on, before
+/// Cyclone starts its threads, which inherit the mask) and a thread of its own takes them with
+/// sigwait, where any call is allowed. (A self-pipe would still need a thread to read it, since a
+/// waitset cannot wait on a file descriptor.)
+class StopSignals {
+ public:
+  explicit StopSignals(std::stop_source source) {
+    sigemptyset(&signals_);
+    sigaddset(&signals_, SIGINT);
+    sigaddset(&signals_, SIGTERM);
+    if (const int rc = pthread_sigmask(SIG_BLOCK, &signals_, nullptr); rc != 0)
+      throw std::runtime_error(std::string("pthread_sigmask: ") + std::strerror(rc));
+    thread_ = std::thread([this, source]() mutable {
+      while (true) {
+        int signal_number = 0;
+        if (sigwait(&signals_, &signal_number) != 0) continue;
+        if (closing_.load()) return;
+        source.request_stop();
+      }
+    });
+  }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+  /// Wakes the thread with a signal of its own and joins it. The signals stay blocked: a stop
+  /// that arrives while the process leaves is ignored, as a stop after the role's end always was.
+  ~StopSignals() {
+    closing_.store(true);
+    pthread_kill(thread_.native_handle(), SIGTERM);
+    thread_.join();
+  }
 
-extern "C" void onStopSignal(int) { g_stop_requested.store(true); }
+ private:
+  sigset_t signals_;
+  std::atomic<bool> closing_{false};
+  std::thread thread_;
+};
 
 }  // namespace
 
@@ -88,14 +132,15 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
     return 2;
   }
 
-  std::signal(SIGTERM, onStopSignal);
-  std::signal(SIGINT, onStopSignal);
-  context.stop = &g_stop_requested;
+  std::stop_source stop_source;
+  context.stop = stop_source.get_token();
   context.stall_timeout = std::chrono::milliseconds(static_cast<long>(stall_timeout_s * 1000));
   context.tick_interval = std::chrono::microseconds(std::llround(tick_interval_s * 1e6));
   context.domain = static_cast<dds_domainid_t>(domain);
 
   try {
+    // Before the domain: Cyclone's threads must inherit the blocked signals.
+    const StopSignals stop_signals(stop_source);
     context.scenario = common::loadScenario(context.run_dir + "/scenario.yaml");
     context.shape.supernodes = static_cast<std::int32_t>(context.scenario.supernodes.size());
     Domain domain_handle(context.domain, cycloneConfigFor(readConfigTemplate(context.run_dir), participant_index));

@@ -1,5 +1,6 @@
 #include "common/dds/role_runtime.hpp"
 
+#include <algorithm>
 #include <set>
 #include <sstream>
 
@@ -10,25 +11,33 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Wake-ups at this interval only serve to notice an outside stop request and the stall
-// deadline; data arrival wakes the waitset immediately.
-constexpr std::chrono::milliseconds kWakeInterval{200};
+// The waitset token of a StopCondition; the others are indices of RoleLoop's drains.
+constexpr dds_attach_t kStopToken = -1;
+
+// The start barrier re-checks the matched endpoints at least this often: matched-status changes
+// wake it, but whether a matched reader is a role's (its user data) is read, not signalled.
+constexpr std::chrono::milliseconds kDiscoveryRecheck{200};
 
 void throwIfStopped(const RoleContext& context) {
-  if (context.stop != nullptr && context.stop->load()) throw RoleAborted(context.role + " stopped on request");
+  if (context.stop.stop_requested()) throw RoleAborted(context.role + " stopped on request");
+}
+
+// The wait left until `deadline`, rounded up so that the wake-up is not before it.
+std::chrono::milliseconds until(Clock::time_point deadline) {
+  return std::max(std::chrono::milliseconds(0), std::chrono::ceil<std::chrono::milliseconds>(deadline - Clock::now()));
 }
 
 }  // namespace
 
 RunTopics::RunTopics(const Participant& participant)
-    : sensor_boundary(participant, wsn_msg_SensorBoundary_desc, topic_names::kSensorBoundary),
-      report_batch(participant, wsn_msg_ReportBatch_desc, topic_names::kReportBatch),
-      delivery_batch(participant, wsn_msg_DeliveryBatch_desc, topic_names::kDeliveryBatch),
-      handoff_batch(participant, wsn_msg_HandoffBatch_desc, topic_names::kHandoffBatch),
-      track_batch(participant, wsn_msg_TrackBatch_desc, topic_names::kTrackBatch),
-      global_track_batch(participant, wsn_msg_GlobalTrackBatch_desc, topic_names::kGlobalTrackBatch),
-      tick_metrics(participant, wsn_msg_TickMetrics_desc, topic_names::kTickMetrics),
-      process_status(participant, wsn_msg_ProcessStatus_desc, topic_names::kProcessStatus) {}
+    : sensor_boundary(participant, topic_names::kSensorBoundary),
+      report_batch(participant, topic_names::kReportBatch),
+      delivery_batch(participant, topic_names::kDeliveryBatch),
+      handoff_batch(participant, topic_names::kHandoffBatch),
+      track_batch(participant, topic_names::kTrackBatch),
+      global_track_batch(participant, topic_names::kGlobalTrackBatch),
+      tick_metrics(participant, topic_names::kTickMetrics),
+      process_status(participant, topic_names::kProcessStatus) {}
 
 StatusPublisher::StatusPublisher(const Participant& participant, const RunTopics& topics, const RoleContext& context)
     : writer_(participant, topics.process_status, Qos::lastValueTransientLocal()),
@@ -53,17 +62,28 @@ void StatusPublisher::running(std::int32_t tick) { publish(wsn_msg_RUNNING, tick
 void StatusPublisher::done(std::int32_t tick) { publish(wsn_msg_DONE, tick, ""); }
 void StatusPublisher::failed(const std::string& message) { publish(wsn_msg_FAILED, 0, message); }
 
-RoleLoop::RoleLoop(const Participant& participant, const RoleContext& context)
-    : context_(context), waitset_(participant) {}
+StopCondition::StopCondition(const Participant& participant, std::stop_token stop)
+    : guard_(participant), callback_(std::move(stop), Trigger{guard_.handle()}) {}
 
-void RoleLoop::watch(Reader& reader, std::function<void()> drain) {
+void StopCondition::Trigger::operator()() const noexcept {
+  // Cannot fail while the guard exists, and callback_ is gone before it is deleted; the flag
+  // is set anyway, so a failure would only delay the stop to the next wake-up.
+  dds_set_guardcondition(guard, true);
+}
+
+RoleLoop::RoleLoop(const Participant& participant, const RoleContext& context)
+    : context_(context), waitset_(participant), stop_(participant, context.stop) {
+  waitset_.attach(stop_.handle(), kStopToken);
+}
+
+void RoleLoop::watch(const ReaderBase& reader, std::function<void()> drain) {
   conditions_.emplace_back(reader);
   watched_readers_.push_back(reader.handle());
   drains_.push_back(std::move(drain));
   waitset_.attach(conditions_.back().handle(), static_cast<dds_attach_t>(drains_.size() - 1));
 }
 
-void RoleLoop::unwatch(const Reader& reader) {
+void RoleLoop::unwatch(const ReaderBase& reader) {
   for (std::size_t i = 0; i < conditions_.size(); ++i) {
     if (watched_readers_[i] != reader.handle()) continue;
     // Deleting the condition also detaches it from the waitset; the slot stays (tokens are
@@ -75,36 +95,40 @@ void RoleLoop::unwatch(const Reader& reader) {
 }
 
 void RoleLoop::waitUntil(const std::function<bool()>& done, const std::function<std::string()>& describe) {
-  auto last_arrival = Clock::now();
+  // The stall deadline is the waitset's timeout: only data or a stop request wakes it before.
+  auto stall_deadline = Clock::now() + context_.stall_timeout;
   while (!done()) {
     throwIfStopped(context_);
-    const auto triggered = waitset_.wait(kWakeInterval);
+    const auto triggered = waitset_.wait(until(stall_deadline));
+    throwIfStopped(context_);
     if (triggered.empty()) {
-      if (Clock::now() - last_arrival > context_.stall_timeout) {
+      if (Clock::now() >= stall_deadline) {
         throw RoleAborted(context_.role + " " + std::to_string(context_.index) + " stalled: no data for " +
                           std::to_string(context_.stall_timeout.count() / 1000) + " s while waiting for " + describe());
       }
       continue;
     }
-    last_arrival = Clock::now();
-    for (dds_attach_t token : triggered) drains_[static_cast<std::size_t>(token)]();
+    stall_deadline = Clock::now() + context_.stall_timeout;
+    for (dds_attach_t token : triggered)
+      if (token != kStopToken) drains_[static_cast<std::size_t>(token)]();
   }
 }
 
 void RoleLoop::waitUntilTime(Clock::time_point deadline) {
   while (true) {
     throwIfStopped(context_);
-    const auto now = Clock::now();
-    if (now >= deadline) return;
-    const auto left = std::chrono::ceil<std::chrono::milliseconds>(deadline - now);
-    for (dds_attach_t token : waitset_.wait(std::min(left, kWakeInterval))) drains_[static_cast<std::size_t>(token)]();
+    if (Clock::now() >= deadline) return;
+    for (dds_attach_t token : waitset_.wait(until(deadline)))
+      if (token != kStopToken) drains_[static_cast<std::size_t>(token)]();
   }
 }
 
-void waitForDiscovery(const Participant& participant, const std::vector<std::pair<const Writer*, int>>& writers,
-                      const std::vector<std::pair<const Reader*, int>>& readers, const RoleContext& context,
+void waitForDiscovery(const Participant& participant, const std::vector<std::pair<const WriterBase*, int>>& writers,
+                      const std::vector<std::pair<const ReaderBase*, int>>& readers, const RoleContext& context,
                       std::chrono::milliseconds timeout) {
   WaitSet waitset(participant);
+  const StopCondition stop(participant, context.stop);
+  waitset.attach(stop.handle(), kStopToken);
   for (const auto& [writer, expected] : writers) waitset.attach(writer->handle(), 0);
   for (const auto& [reader, expected] : readers) waitset.attach(reader->handle(), 0);
   auto missing = [&]() {
@@ -122,16 +146,18 @@ void waitForDiscovery(const Participant& participant, const std::vector<std::pai
     throwIfStopped(context);
     if (Clock::now() > deadline)
       throw RoleAborted(context.role + " " + std::to_string(context.index) + ": discovery incomplete:" + missing());
-    waitset.wait(kWakeInterval);  // matched-status changes wake it
+    waitset.wait(std::min(kDiscoveryRecheck, until(deadline)));  // matched-status changes wake it too
   }
 }
 
 void waitForClusterReady(const Participant& participant, const RunTopics& topics, const RoleContext& context,
                          std::chrono::milliseconds timeout) {
-  Reader reader(participant, topics.process_status, Qos::lastValueTransientLocal());
+  Reader<wsn_msg_ProcessStatus> reader(participant, topics.process_status, Qos::lastValueTransientLocal());
   ReadCondition condition(reader);
   WaitSet waitset(participant);
   waitset.attach(condition.handle(), 0);
+  const StopCondition stop(participant, context.stop);
+  waitset.attach(stop.handle(), kStopToken);
   std::set<std::pair<std::string, std::uint32_t>> ready;
   const auto expected = static_cast<std::size_t>(context.shape.processes());
   const auto deadline = Clock::now() + timeout;
@@ -140,8 +166,9 @@ void waitForClusterReady(const Participant& participant, const RunTopics& topics
     if (Clock::now() > deadline)
       throw RoleAborted(context.role + ": only " + std::to_string(ready.size()) + " of " + std::to_string(expected) +
                         " processes became ready");
-    waitset.wait(kWakeInterval);
-    reader.take<wsn_msg_ProcessStatus>([&](const wsn_msg_ProcessStatus& s) {
+    waitset.wait(until(deadline));  // status samples and a stop request wake it
+    throwIfStopped(context);
+    reader.take([&](const wsn_msg_ProcessStatus& s) {
       if (s.run_id != context.run_id) return;
       if (s.state == wsn_msg_FAILED) throw RoleAborted(std::string(s.role) + " failed: " + s.message);
       if (s.state != wsn_msg_STARTING) ready.emplace(s.role, s.index);
@@ -157,7 +184,7 @@ PipelineProgress::PipelineProgress(const Participant& participant, const RunTopi
                                    const RoleContext& context, RoleLoop& loop)
     : context_(context), loop_(loop), reader_(participant, topics.global_track_batch, Qos::reliableKeepAll()) {
   loop_.watch(reader_, [this] {
-    reader_.take<wsn_msg_GlobalTrackBatch>([this](const wsn_msg_GlobalTrackBatch& batch) {
+    reader_.take([this](const wsn_msg_GlobalTrackBatch& batch) {
       if (batch.run_id != context_.run_id || batch.tick <= completed_through_) return;
       arrived_.insert(batch.tick);
       while (!arrived_.empty() && *arrived_.begin() == completed_through_ + 1) {

@@ -3,18 +3,19 @@
 // consumer handles tick t once it holds tick t from every producer; DESIGN.md principle 3).
 #pragma once
 
-#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <functional>
 #include <map>
 #include <optional>
 #include <set>
+#include <stop_token>
 #include <string>
 #include <vector>
 
 #include "common/dds/entity.hpp"
 #include "common/scenario.hpp"
+#include "wsntrack.h"
 
 namespace wsn::dds {
 
@@ -30,6 +31,42 @@ inline constexpr const char* kGlobalTrackBatch = "wsn_global_track_batch";
 inline constexpr const char* kTickMetrics = "wsn_tick_metrics";
 inline constexpr const char* kProcessStatus = "wsn_process_status";
 }  // namespace topic_names
+
+/// The one binding of each IDL sample type to its generated descriptor: Topic<S>, Writer<S> and
+/// Reader<S> take the descriptor from here, so a type cannot be paired with another's descriptor
+/// or topic.
+template <>
+struct TopicType<wsn_msg_SensorBoundary> {
+  static constexpr const dds_topic_descriptor_t& descriptor = wsn_msg_SensorBoundary_desc;
+};
+template <>
+struct TopicType<wsn_msg_ReportBatch> {
+  static constexpr const dds_topic_descriptor_t& descriptor = wsn_msg_ReportBatch_desc;
+};
+template <>
+struct TopicType<wsn_msg_DeliveryBatch> {
+  static constexpr const dds_topic_descriptor_t& descriptor = wsn_msg_DeliveryBatch_desc;
+};
+template <>
+struct TopicType<wsn_msg_HandoffBatch> {
+  static constexpr const dds_topic_descriptor_t& descriptor = wsn_msg_HandoffBatch_desc;
+};
+template <>
+struct TopicType<wsn_msg_TrackBatch> {
+  static constexpr const dds_topic_descriptor_t& descriptor = wsn_msg_TrackBatch_desc;
+};
+template <>
+struct TopicType<wsn_msg_GlobalTrackBatch> {
+  static constexpr const dds_topic_descriptor_t& descriptor = wsn_msg_GlobalTrackBatch_desc;
+};
+template <>
+struct TopicType<wsn_msg_TickMetrics> {
+  static constexpr const dds_topic_descriptor_t& descriptor = wsn_msg_TickMetrics_desc;
+};
+template <>
+struct TopicType<wsn_msg_ProcessStatus> {
+  static constexpr const dds_topic_descriptor_t& descriptor = wsn_msg_ProcessStatus_desc;
+};
 
 /// The processes of a cluster: one per tile, the network, one per supernode, the aggregator.
 struct ClusterShape {
@@ -53,8 +90,9 @@ struct RoleContext {
   /// run can be watched in real time; zero runs as fast as the pipeline goes. Timing only: no
   /// output depends on it.
   std::chrono::microseconds tick_interval{0};
-  /// Set from outside (signal handler, launcher) to make the role stop at its next wake-up.
-  const std::atomic<bool>* stop = nullptr;
+  /// Requested from outside (the signal thread of a role process, the in-process launcher) to
+  /// make the role stop: every wait of the role wakes at once through a guard condition.
+  std::stop_token stop;
 };
 
 /// Thrown when a role stops before finishing: stopped from outside or stalled.
@@ -66,14 +104,14 @@ class RoleAborted : public std::runtime_error {
 /// All topics of a run on one participant.
 struct RunTopics {
   explicit RunTopics(const Participant& participant);
-  Topic sensor_boundary;
-  Topic report_batch;
-  Topic delivery_batch;
-  Topic handoff_batch;
-  Topic track_batch;
-  Topic global_track_batch;
-  Topic tick_metrics;
-  Topic process_status;
+  Topic<wsn_msg_SensorBoundary> sensor_boundary;
+  Topic<wsn_msg_ReportBatch> report_batch;
+  Topic<wsn_msg_DeliveryBatch> delivery_batch;
+  Topic<wsn_msg_HandoffBatch> handoff_batch;
+  Topic<wsn_msg_TrackBatch> track_batch;
+  Topic<wsn_msg_GlobalTrackBatch> global_track_batch;
+  Topic<wsn_msg_TickMetrics> tick_metrics;
+  Topic<wsn_msg_ProcessStatus> process_status;
 };
 
 /// Publishes this role's lifecycle on the status topic.
@@ -88,7 +126,7 @@ class StatusPublisher {
 
  private:
   void publish(int state, std::int32_t tick, const std::string& message);
-  Writer writer_;
+  Writer<wsn_msg_ProcessStatus> writer_;
   std::uint64_t run_id_;
   std::string role_;
   std::uint32_t index_;
@@ -129,27 +167,47 @@ class TickInbox {
   std::uint64_t rejected_ = 0;
 };
 
+/// A guard condition triggered when `stop` is requested (at once if it already was): attached to a
+/// waitset, it wakes the wait on a stop request instead of the wait having to poll for one.
+class StopCondition {
+ public:
+  StopCondition(const Participant& participant, std::stop_token stop);
+  dds_entity_t handle() const { return guard_.handle(); }
+
+ private:
+  // Runs on the requesting thread; std::stop_callback needs it noexcept.
+  struct Trigger {
+    dds_entity_t guard;
+    void operator()() const noexcept;
+  };
+  GuardCondition guard_;
+  // Declared after guard_, so destroyed first: its destructor waits for a trigger running on
+  // another thread, and no trigger can reach a deleted guard.
+  std::stop_callback<Trigger> callback_;
+};
+
 /// A role's event loop: a waitset over its readers; each arrival is drained into inboxes by
 /// the callback registered with the reader.
 class RoleLoop {
  public:
   RoleLoop(const Participant& participant, const RoleContext& context);
   /// Registers a reader and the function that takes its samples.
-  void watch(Reader& reader, std::function<void()> drain);
+  void watch(const ReaderBase& reader, std::function<void()> drain);
   /// Stops watching a reader; a reader that dies before the loop must be unwatched first,
   /// since deleting it deletes its read condition too.
-  void unwatch(const Reader& reader);
-  /// Blocks until done() holds, draining readers as samples arrive. Throws RoleAborted when
-  /// stopped from outside, or when nothing arrives for the stall timeout (describe() says
+  void unwatch(const ReaderBase& reader);
+  /// Blocks until done() holds, draining readers as samples arrive. Throws RoleAborted as soon
+  /// as a stop is requested, or when nothing arrives for the stall timeout (describe() says
   /// what was still missing).
   void waitUntil(const std::function<bool()>& done, const std::function<std::string()>& describe);
-  /// Blocks until `deadline`, draining readers as samples arrive. Throws RoleAborted when
-  /// stopped from outside; waiting for the clock is never a stall.
+  /// Blocks until `deadline`, draining readers as samples arrive. Throws RoleAborted as soon as
+  /// a stop is requested; waiting for the clock is never a stall.
   void waitUntilTime(std::chrono::steady_clock::time_point deadline);
 
  private:
   const RoleContext& context_;
   WaitSet waitset_;
+  StopCondition stop_;
   std::vector<ReadCondition> conditions_;
   std::vector<dds_entity_t> watched_readers_;  // parallel to conditions_
   std::vector<std::function<void()>> drains_;
@@ -158,8 +216,8 @@ class RoleLoop {
 /// Blocks until every writer matched `expected` role readers (viewers do not count: see
 /// Endpoint) and every reader matched `expected` writers, so that nothing published afterwards
 /// can miss a consumer. Throws on timeout.
-void waitForDiscovery(const Participant& participant, const std::vector<std::pair<const Writer*, int>>& writers,
-                      const std::vector<std::pair<const Reader*, int>>& readers, const RoleContext& context,
+void waitForDiscovery(const Participant& participant, const std::vector<std::pair<const WriterBase*, int>>& writers,
+                      const std::vector<std::pair<const ReaderBase*, int>>& readers, const RoleContext& context,
                       std::chrono::milliseconds timeout);
 
 /// Blocks until every process of the cluster reported READY (or later) on the status topic.
@@ -184,7 +242,7 @@ class PipelineProgress {
   /// one interval after the previous tick's scheduled start, at once when the interval is zero. A
   /// late tick restarts the schedule rather than being made up by a burst.
   void paceTick();
-  Reader& reader() { return reader_; }
+  Reader<wsn_msg_GlobalTrackBatch>& reader() { return reader_; }
   PipelineProgress(const PipelineProgress&) = delete;
   PipelineProgress& operator=(const PipelineProgress&) = delete;
   ~PipelineProgress() { loop_.unwatch(reader_); }
@@ -192,7 +250,7 @@ class PipelineProgress {
  private:
   const RoleContext& context_;
   RoleLoop& loop_;
-  Reader reader_;
+  Reader<wsn_msg_GlobalTrackBatch> reader_;
   std::set<std::int32_t> arrived_;
   std::int32_t completed_through_ = 0;
   std::optional<std::chrono::steady_clock::time_point> paced_at_;
