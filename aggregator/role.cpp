@@ -43,7 +43,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
     const auto associator = makeAssociator(scenario);
     // Read now, not after the run: a malformed run.json must not cost the run's metrics.json.
     const std::string provenance = common::readRunProvenance(context.run_dir + "/run.json");
-    RunScorer scorer(scenario.metrics, scenario.supernodes);
+    RunScorer scorer(kLiveStream, scenario.metrics, scenario.supernodes);
 
     Reader track_reader(participant, topics.track_batch, Qos::reliableKeepAll());
     Writer global_writer(participant, topics.global_track_batch, Qos::reliableKeepAll());
@@ -67,7 +67,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
 
     common::CsvFile supernode_csv(context.run_dir + "/tracks_supernode.csv", std::string("tick,supernode,") + kTrackColumns);
     common::CsvFile global_csv(context.run_dir + "/tracks.csv", std::string("tick,") + kTrackColumns);
-    common::CsvFile per_tick_csv(context.run_dir + "/metrics_per_tick.csv", kPerTickCsvHeader);
+    common::CsvFile per_tick_csv(context.run_dir + "/metrics_per_tick.csv", scorer.csvHeader());
     // Each supernode reports its running total of stale drops; the run's total is the sum of
     // the last value of each.
     std::map<std::uint32_t, std::uint64_t> dropped_stale_by_supernode;
@@ -86,7 +86,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
       }
       auto global = associator->associate(t, inputs);
       const TickScores scores = scorer.add(t, truth.at(t), global);
-      per_tick_csv.row(perTickCsvRow(scores));
+      per_tick_csv.row(scorer.csvRow(scores));
       for (const auto& track : global) global_csv.row(std::to_string(t) + "," + trackFields(track));
 
       auto encoded = encode(global);
@@ -96,18 +96,19 @@ void runAggregatorRole(const dds::RoleContext& context) {
       sample.tracks = sequenceView<dds_sequence_wsn_msg_TrackEstimate>(encoded);
       global_writer.write(sample);
 
+      const auto live = [&](const char* name) { return scores.find(name).value_or(0.0); };
       wsn_msg_TickMetrics tick_sample{};
       tick_sample.run_id = context.run_id;
       tick_sample.tick = t;
-      tick_sample.truth_targets = static_cast<std::int32_t>(scores.truth_targets);
-      tick_sample.tracks = static_cast<std::int32_t>(scores.tracks);
-      tick_sample.ospa = scores.ospa;
-      tick_sample.gospa = scores.gospa.distance;
-      tick_sample.gospa_localisation = scores.gospa.localisation;
-      tick_sample.gospa_missed = scores.gospa.missed;
-      tick_sample.gospa_false = scores.gospa.false_targets;
-      tick_sample.eps_k_running = scores.eps_k_running;
-      tick_sample.ospa_mean_running = scores.ospa_mean_running;
+      tick_sample.truth_targets = static_cast<std::int32_t>(live("truth_targets"));
+      tick_sample.tracks = static_cast<std::int32_t>(live("tracks"));
+      tick_sample.ospa = live("ospa");
+      tick_sample.gospa = live("gospa");
+      tick_sample.gospa_localisation = live("gospa_localisation");
+      tick_sample.gospa_missed = live("gospa_missed");
+      tick_sample.gospa_false = live("gospa_false");
+      tick_sample.eps_k_running = live("eps_k_running");
+      tick_sample.ospa_mean_running = live("ospa_mean_running");
       tick_metrics_writer.write(tick_sample);
       status.running(t);
     }
