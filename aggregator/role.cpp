@@ -96,19 +96,15 @@ void runAggregatorRole(const dds::RoleContext& context) {
       sample.tracks = sequenceView<dds_sequence_wsn_msg_TrackEstimate>(encoded);
       global_writer.write(sample);
 
-      const auto live = [&](const char* name) { return scores.find(name).value_or(0.0); };
+      // Every metric's live values by name: a new metric goes out without an IDL change.
+      const auto live = scores.live();
+      std::vector<wsn_msg_MetricValue> values;
+      values.reserve(live.size());
+      for (const auto& v : live) values.push_back({const_cast<char*>(v.name.c_str()), v.value});
       wsn_msg_TickMetrics tick_sample{};
       tick_sample.run_id = context.run_id;
       tick_sample.tick = t;
-      tick_sample.truth_targets = static_cast<std::int32_t>(live("truth_targets"));
-      tick_sample.tracks = static_cast<std::int32_t>(live("tracks"));
-      tick_sample.ospa = live("ospa");
-      tick_sample.gospa = live("gospa");
-      tick_sample.gospa_localisation = live("gospa_localisation");
-      tick_sample.gospa_missed = live("gospa_missed");
-      tick_sample.gospa_false = live("gospa_false");
-      tick_sample.eps_k_running = live("eps_k_running");
-      tick_sample.ospa_mean_running = live("ospa_mean_running");
+      tick_sample.values = sequenceView<dds_sequence_wsn_msg_MetricValue>(values);
       tick_metrics_writer.write(tick_sample);
       status.running(t);
     }
