@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <limits>
-#include <sstream>
 #include <stdexcept>
 #include <tuple>
 
@@ -47,8 +46,6 @@ double squaredError(const TargetState& truth, const TrackEstimate& track) {
 }
 
 }  // namespace
-
-std::string jsonReal(double value) { return std::isfinite(value) ? common::fixed6(value) : "null"; }
 
 double ospaDistance(const std::vector<Vec2>& x, const std::vector<Vec2>& y, double c, double p) {
   // Schuhmacher, Vo & Vo 2008, eq. (3), with X the smaller set.
@@ -179,35 +176,6 @@ MetricsSummary MetricsAccumulator::finish() const {
   s.eps_x_defined = s.sum_matches > 0;
   if (s.eps_x_defined) s.eps_x = std::sqrt(s.sum_squared_position_error / static_cast<double>(s.sum_matches));
   return s;
-}
-
-std::string toJson(const MetricsSummary& s) {
-  std::ostringstream out;
-  out << "{\n";
-  out << "    \"ticks_scored\": " << s.ticks_scored << ",\n";
-  out << "    \"first_tick\": " << s.first_tick << ",\n";
-  out << "    \"last_tick\": " << s.last_tick << ",\n";
-  out << "    \"eps_k\": " << jsonReal(s.eps_k) << ",\n";
-  out << "    \"eps_k_defined\": " << jsonBool(s.eps_k_defined) << ",\n";
-  out << "    \"eps_x\": " << jsonReal(s.eps_x) << ",\n";
-  out << "    \"eps_x_defined\": " << jsonBool(s.eps_x_defined) << ",\n";
-  out << "    \"mean_k\": " << jsonReal(s.mean_k) << ",\n";
-  out << "    \"mean_k_true\": " << jsonReal(s.mean_k_true) << ",\n";
-  out << "    \"sum_k\": " << s.sum_k << ",\n";
-  out << "    \"sum_k_true\": " << s.sum_k_true << ",\n";
-  out << "    \"sum_abs_k_error\": " << s.sum_abs_k_error << ",\n";
-  out << "    \"sum_matches\": " << s.sum_matches << ",\n";
-  out << "    \"sum_squared_position_error\": " << jsonReal(s.sum_squared_position_error) << ",\n";
-  out << "    \"ospa_c\": " << jsonReal(s.ospa_c) << ",\n";
-  out << "    \"ospa_p\": " << jsonReal(s.ospa_p) << ",\n";
-  out << "    \"ospa_mean\": " << jsonReal(s.ospa_mean) << ",\n";
-  out << "    \"ospa_per_tick\": [";
-  for (std::size_t i = 0; i < s.ospa_per_tick.size(); ++i) out << (i == 0 ? "" : ", ") << jsonReal(s.ospa_per_tick[i]);
-  out << "],\n";
-  out << "    \"track_ids\": " << s.track_ids << ",\n";
-  out << "    \"tracks_ignored_nonfinite\": " << s.tracks_ignored_nonfinite << "\n";
-  out << "  }";
-  return out.str();
 }
 
 }  // namespace wsn::aggregator

@@ -83,6 +83,8 @@ struct MetricsSummary {
 
   std::int64_t track_ids = 0;  ///< distinct global track ids seen over the run
   std::int64_t tracks_ignored_nonfinite = 0;
+
+  bool operator==(const MetricsSummary&) const = default;
 };
 
 /// What add() returns: the values of that tick and the running scores over the ticks added so
@@ -129,16 +131,5 @@ class MetricsAccumulator {
   std::int64_t running_k_true_ = 0;
   double running_ospa_ = 0.0;
 };
-
-/// A real as a metrics.json number: 6 decimals, or null when not finite (valid inputs never
-/// give one, but the file must stay valid JSON).
-std::string jsonReal(double value);
-/// "true" or "false".
-inline const char* jsonBool(bool value) { return value ? "true" : "false"; }
-
-/// The summary as a JSON object (2-space indentation, nested one level: it is embedded as the
-/// value of "metrics" in metrics.json). Numbers: integers as such, reals with 6 decimals;
-/// ospa_per_tick on one line.
-std::string toJson(const MetricsSummary& summary);
 
 }  // namespace wsn::aggregator

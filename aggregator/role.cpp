@@ -43,7 +43,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
     const auto associator = makeAssociator(scenario);
     // Read now, not after the run: a malformed run.json must not cost the run's metrics.json.
     const std::string provenance = common::readRunProvenance(context.run_dir + "/run.json");
-    RunScorer scorer(scenario.metrics, scenario.supernodes);
+    RunScorer scorer(kLiveStream, scenario.metrics, scenario.supernodes);
 
     Reader<wsn_msg_TrackBatch> track_reader(participant, topics.track_batch, Qos::reliableKeepAll());
     Writer<wsn_msg_GlobalTrackBatch> global_writer(participant, topics.global_track_batch, Qos::reliableKeepAll());
@@ -67,7 +67,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
 
     common::CsvFile supernode_csv(context.run_dir + "/tracks_supernode.csv", std::string("tick,supernode,") + kTrackColumns);
     common::CsvFile global_csv(context.run_dir + "/tracks.csv", std::string("tick,") + kTrackColumns);
-    common::CsvFile per_tick_csv(context.run_dir + "/metrics_per_tick.csv", kPerTickCsvHeader);
+    common::CsvFile per_tick_csv(context.run_dir + "/metrics_per_tick.csv", scorer.csvHeader());
     // Each supernode reports its running total of stale drops; the run's total is the sum of
     // the last value of each.
     std::map<std::uint32_t, std::uint64_t> dropped_stale_by_supernode;
@@ -86,7 +86,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
       }
       auto global = associator->associate(t, inputs);
       const TickScores scores = scorer.add(t, truth.at(t), global);
-      per_tick_csv.row(perTickCsvRow(scores));
+      per_tick_csv.row(scorer.csvRow(scores));
       for (const auto& track : global) global_csv.row(std::to_string(t) + "," + trackFields(track));
 
       auto encoded = encode(global);
@@ -96,18 +96,15 @@ void runAggregatorRole(const dds::RoleContext& context) {
       sample.tracks = sequenceView<dds_sequence_wsn_msg_TrackEstimate>(encoded);
       global_writer.write(sample);
 
+      // Every metric's live values by name: a new metric goes out without an IDL change.
+      const auto live = scores.live();
+      std::vector<wsn_msg_MetricValue> values;
+      values.reserve(live.size());
+      for (const auto& v : live) values.push_back({const_cast<char*>(v.name.c_str()), v.value});
       wsn_msg_TickMetrics tick_sample{};
       tick_sample.run_id = context.run_id;
       tick_sample.tick = t;
-      tick_sample.truth_targets = static_cast<std::int32_t>(scores.truth_targets);
-      tick_sample.tracks = static_cast<std::int32_t>(scores.tracks);
-      tick_sample.ospa = scores.ospa;
-      tick_sample.gospa = scores.gospa.distance;
-      tick_sample.gospa_localisation = scores.gospa.localisation;
-      tick_sample.gospa_missed = scores.gospa.missed;
-      tick_sample.gospa_false = scores.gospa.false_targets;
-      tick_sample.eps_k_running = scores.eps_k_running;
-      tick_sample.ospa_mean_running = scores.ospa_mean_running;
+      tick_sample.values = sequenceView<dds_sequence_wsn_msg_MetricValue>(values);
       tick_metrics_writer.write(tick_sample);
       status.running(t);
     }

@@ -14,6 +14,7 @@
  * for TIMEOUT_S seconds (default 60), 2 for bad arguments. */
 #include <dds/dds.h>
 #include <inttypes.h>
+#include <math.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -37,8 +38,15 @@ struct held_tick {
   dds_time_t arrived;
   char *line; /* "K=.. " part and the track list, built when the batch arrived */
   int has_metrics;
-  wsn_msg_TickMetrics metrics;
+  double truth_targets, ospa, gospa, eps_k; /* copied out: the sample's strings go with its loan */
 };
+
+/* TickMetrics carries every metric's values by name (docs/METRICS.md); NAN if one is absent. */
+static double metric_value(const wsn_msg_TickMetrics *m, const char *name) {
+  for (uint32_t i = 0; i < m->values._length; i++)
+    if (strcmp(m->values._buffer[i].name, name) == 0) return m->values._buffer[i].value;
+  return NAN;
+}
 
 /* Appends printf-formatted text to a growing heap string. */
 static void append(char **text, size_t *used, size_t *size, const char *format, ...) {
@@ -73,8 +81,8 @@ static char *describe_tracks(const wsn_msg_GlobalTrackBatch *batch) {
 static void print_held(struct held_tick *held, uint32_t tracks) {
   if (!held->valid) return;
   if (held->has_metrics)
-    printf("tick=%" PRId32 " K=%u K*=%" PRId32 " OSPA=%.3f GOSPA=%.3f epsK=%.4f %s\n", held->tick, tracks,
-           held->metrics.truth_targets, held->metrics.ospa, held->metrics.gospa, held->metrics.eps_k_running, held->line);
+    printf("tick=%" PRId32 " K=%u K*=%.0f OSPA=%.3f GOSPA=%.3f epsK=%.4f %s\n", held->tick, tracks, held->truth_targets,
+           held->ospa, held->gospa, held->eps_k, held->line);
   else
     printf("tick=%" PRId32 " K=%u K*=n/a OSPA=n/a GOSPA=n/a epsK=n/a %s\n", held->tick, tracks, held->line);
   fflush(stdout);
@@ -193,7 +201,10 @@ int main(int argc, char **argv) {
         const wsn_msg_TickMetrics *m = samples[i];
         if (!infos[i].valid_data || m->run_id != run_id) continue;
         if (held.valid && held.tick == m->tick) {
-          held.metrics = *m;
+          held.truth_targets = metric_value(m, "truth_targets");
+          held.ospa = metric_value(m, "ospa");
+          held.gospa = metric_value(m, "gospa");
+          held.eps_k = metric_value(m, "eps_k_running");
           held.has_metrics = 1;
         }
       }

@@ -42,11 +42,8 @@ struct WatchOptions {
   double max_fps = 20;
 };
 
-/// What the aggregator's TickMetrics say about one tick.
-struct Scores {
-  std::int32_t truth_targets = 0;
-  double ospa = 0, gospa = 0, eps_k_running = 0, ospa_mean_running = 0;
-};
+/// What the aggregator's TickMetrics say about one tick: its metrics' live values, by name.
+using Scores = std::map<std::string, double>;
 
 /// One tick's global tracks, waiting to be drawn.
 struct PendingTick {
@@ -298,7 +295,8 @@ class Watcher {
       });
       metrics_reader.take([&](const wsn_msg_TickMetrics& m) {
         if (m.run_id != run_.identity.run_id || m.tick <= drawn_tick_) return;
-        scores_[m.tick] = {m.truth_targets, m.ospa, m.gospa, m.eps_k_running, m.ospa_mean_running};
+        auto& scores = scores_[m.tick];
+        for (std::uint32_t i = 0; i < m.values._length; ++i) scores[m.values._buffer[i].name] = m.values._buffer[i].value;
       });
 
       // The launcher stops every process after the first failure, and they report FAILED too
@@ -413,13 +411,19 @@ class Watcher {
 
     const auto metric = [&](const std::string& name, const std::string& value) { return name + "=" + value + " "; };
     const std::string na = "n/a";
+    // A value the aggregator did not publish shows as n/a, like a tick without TickMetrics.
+    const auto value = [&](const char* name, int decimals) {
+      const auto it = scores.find(name);
+      if (it == scores.end()) return na;
+      return decimals == 0 ? std::to_string(std::llround(it->second)) : fixed(it->second, decimals);
+    };
     std::ostringstream head;
     head << "tick " << tick << "/" << run_.ticks << "  "
-         << metric("K*", scored ? std::to_string(scores.truth_targets) : na)
+         << metric("K*", value("truth_targets", 0))
          << metric("K", std::to_string(tracks.size()))
-         << metric("OSPA", scored ? fixed(scores.ospa, 3) : na) << metric("GOSPA", scored ? fixed(scores.gospa, 3) : na)
-         << metric("epsK", scored ? fixed(scores.eps_k_running, 4) : na)
-         << metric("meanOSPA", scored ? fixed(scores.ospa_mean_running, 3) : na);
+         << metric("OSPA", value("ospa", 3)) << metric("GOSPA", value("gospa", 3))
+         << metric("epsK", value("eps_k_running", 4))
+         << metric("meanOSPA", value("ospa_mean_running", 3));
     std::string head_line = head.str();
     head_line.pop_back();
 

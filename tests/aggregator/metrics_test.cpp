@@ -4,9 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <random>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -15,7 +13,6 @@
 using wsn::aggregator::MetricsAccumulator;
 using wsn::aggregator::MetricsSummary;
 using wsn::aggregator::ospaDistance;
-using wsn::aggregator::toJson;
 using wsn::common::MetricsConfig;
 using wsn::common::TargetState;
 using wsn::common::TrackEstimate;
@@ -31,14 +28,6 @@ MetricsConfig config(double c = 5.0, double p = 2.0) {
   m.ospa_c = c;
   m.ospa_p = p;
   return m;
-}
-
-/// The launcher's extraction: "key" : number.
-std::optional<double> jsonNumber(const std::string& json, const std::string& key) {
-  const std::regex pattern("\"" + key + "\"\\s*:\\s*(-?[0-9.eE+-]+)");
-  std::smatch match;
-  if (!std::regex_search(json, match, pattern)) return std::nullopt;
-  return std::stod(match[1].str());
 }
 
 }  // namespace
@@ -285,7 +274,7 @@ TEST_CASE("MetricsAccumulator does not depend on the order of its inputs", "[agg
     forward.add(t, truth, tracks);
     backward.add(t, {truth.rbegin(), truth.rend()}, {tracks.rbegin(), tracks.rend()});
   }
-  CHECK(toJson(forward.finish()) == toJson(backward.finish()));
+  CHECK(forward.finish() == backward.finish());
 }
 
 TEST_CASE("MetricsAccumulator rejects bad settings, repeated ticks and ignores non-finite tracks", "[aggregator][metrics]") {
@@ -300,32 +289,4 @@ TEST_CASE("MetricsAccumulator rejects bad settings, repeated ticks and ignores n
   CHECK(s.tracks_ignored_nonfinite == 1);
   CHECK(s.sum_abs_k_error == 0);
   CHECK(s.track_ids == 1);
-}
-
-TEST_CASE("toJson gives the launcher's keys as numbers and no timing", "[aggregator][metrics][json]") {
-  MetricsAccumulator metrics(config());
-  // eps_K = |1 - 2| / 2 = 0.5; eps_X: one match, error 1 -> 1; OSPA sqrt(13) as above.
-  metrics.add(1, {target(1, 0, 0), target(2, 10, 0)}, {track(3, 0, 1)});
-  const std::string json = toJson(metrics.finish());
-  CHECK(jsonNumber(json, "eps_k") == Approx(0.5));
-  CHECK(jsonNumber(json, "eps_x") == Approx(1.0));
-  CHECK(jsonNumber(json, "ospa_mean") == Approx(std::sqrt(13.0)).margin(1e-6));
-  CHECK(jsonNumber(json, "track_ids") == Approx(1.0));
-  CHECK(jsonNumber(json, "ticks_scored") == Approx(1.0));
-  CHECK(json.find("timing") == std::string::npos);
-  CHECK(json.find("\"eps_k\": 0.500000,") != std::string::npos);  // fixed 6 decimals
-  CHECK(json.find("\"ospa_per_tick\": [3.605551],") != std::string::npos);
-  CHECK(json.front() == '{');
-  CHECK(json.back() == '}');
-  CHECK(std::count(json.begin(), json.end(), '{') == std::count(json.begin(), json.end(), '}'));
-  CHECK(json.find("nan") == std::string::npos);
-}
-
-TEST_CASE("toJson of an empty run is valid and all zero", "[aggregator][metrics][json]") {
-  const MetricsAccumulator metrics(config());
-  const std::string json = toJson(metrics.finish());
-  CHECK(jsonNumber(json, "eps_k") == Approx(0.0));
-  CHECK(jsonNumber(json, "ospa_mean") == Approx(0.0));
-  CHECK(json.find("\"ospa_per_tick\": [],") != std::string::npos);
-  CHECK(json.find("nan") == std::string::npos);
 }
