@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "aggregator/association.hpp"
+#include "aggregator/metric/metric.hpp"
 #include "common/config/field_table.hpp"
 #include "common/scenario_schema.hpp"
 #include "node/sensor_model_registry.hpp"
@@ -79,6 +80,18 @@ std::string componentsText() {
         << "\n  measures: " << joined(model.measurement_kinds) << "\n";
   out << "\n";
   printEngines(out);
+  out << "\nMetrics (metrics.json keys, metrics_per_tick.csv columns; settings in the scenario's metrics section):\n";
+  const common::MetricsConfig defaults;
+  for (const auto& metric : aggregator::metricRegistry()) {
+    out << metric.name << ": " << metric.description << "\n";
+    if (!metric.settings.empty()) out << "  settings: " << joined(metric.settings) << "\n";
+    const auto columns = metric.create(defaults, {})->columns();
+    if (!columns.empty()) {
+      std::vector<std::string> names;
+      for (const auto& c : columns) names.push_back(c.name);
+      out << "  per-tick columns: " << joined(names) << "\n";
+    }
+  }
   return out.str();
 }
 

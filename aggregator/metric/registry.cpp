@@ -16,12 +16,12 @@ const MetricRegistry& metricRegistry() {
   // The order is that of metrics.json's blocks and of metrics_per_tick.csv's columns, which
   // tools/plot_run.py and tools/sweep.py read: append, do not insert.
   static const MetricRegistry registry("metric", {
-                                                     ohOspaMetric(),
-                                                     gospaMetric(),
-                                                     clearMotMetric(),
-                                                     trackQualityMetric(),
-                                                     boundaryMetric(),
-                                                 });
+      ohOspaMetric(),
+      gospaMetric(),
+      clearMotMetric(),
+      trackQualityMetric(),
+      boundaryMetric(),
+  });
   return registry;
 }
 
