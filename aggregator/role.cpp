@@ -8,6 +8,7 @@
 #include "common/dds/codec.hpp"
 #include "common/output.hpp"
 #include "common/provenance.hpp"
+#include "common/track_id.hpp"
 #include "common/truth.hpp"
 
 namespace wsn::aggregator {
@@ -25,7 +26,7 @@ constexpr const char* kTrackColumns =
     "track,label,x,y,vx,vy,p_xx,p_xy,p_xvx,p_xvy,p_yy,p_yvx,p_yvy,p_vxvx,p_vxvy,p_vyvy";
 
 std::string trackFields(const common::TrackEstimate& track) {
-  std::string row = std::to_string(track.track) + "," + common::trackLabel(track.track);
+  std::string row = std::to_string(track.track) + "," + common::track_id::label(track.track);
   for (const double value : {track.x, track.y, track.vx, track.vy}) row += "," + common::fixed6(value);
   for (int i = 0; i < 4; ++i)
     for (int j = i; j < 4; ++j) row += "," + common::significant9(track.covariance[static_cast<std::size_t>(4 * i + j)]);

@@ -8,30 +8,15 @@
 #include <string>
 #include <vector>
 
+#include "common/track_id.hpp"
+
 namespace wsn::common {
 
 /// Identifies a sensor: its index in the layout (row-major for grids).
 using SensorId = std::uint32_t;
-/// Track identities are global: (supernode + 1) << 48 | per-supernode serial (engines mint them,
-/// e.g. gnn::birthTrackId); ids below 1 << 48 are the aggregator's own.
+/// A track's global identity; its bit layout is common/track_id.hpp's.
 using TrackId = std::uint64_t;
-inline constexpr int kTrackOwnerShift = 48;
 
-/// Serials at or above this are birth ids, tick << 24 | sensor (gnn::birthTrackId, used by the GNN
-/// and rule-based engines); below it, counters (MCMCDA). Ticks start at 1, so the two never meet.
-inline constexpr std::uint64_t kBirthSerialFloor = std::uint64_t{1} << 24;
-
-/// A track id as people read it: "S:N" for serial N of supernode S; "S:tTsK" for a track that
-/// supernode S started at tick T from sensor K's report; "gN" for an id the aggregator minted.
-/// `wsntrack watch` and the track CSVs show ids this way.
-inline std::string trackLabel(TrackId id) {
-  const std::uint64_t owner = id >> kTrackOwnerShift;
-  const std::uint64_t serial = id & ((std::uint64_t{1} << kTrackOwnerShift) - 1);
-  if (owner == 0) return "g" + std::to_string(serial);
-  const std::string supernode = std::to_string(owner - 1) + ":";
-  if (serial < kBirthSerialFloor) return supernode + std::to_string(serial);
-  return supernode + "t" + std::to_string(serial >> 24) + "s" + std::to_string(serial & (kBirthSerialFloor - 1));
-}
 /// Ground-truth target id; kFalseAlarm marks a report that no target caused.
 using TargetId = std::int32_t;
 inline constexpr TargetId kFalseAlarm = -1;

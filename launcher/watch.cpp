@@ -22,6 +22,7 @@
 #include "common/dds/entity.hpp"
 #include "common/dds/process_main.hpp"
 #include "common/dds/role_runtime.hpp"
+#include "common/track_id.hpp"
 #include "launcher/run_directory.hpp"
 #include "wsntrack.h"
 
@@ -432,7 +433,7 @@ class Watcher {
     std::snprintf(buffer, sizeof buffer, "  %-14s %9s %9s %8s %8s %7s", "track", "x", "y", "vx", "vy", "speed");
     rows.emplace_back(buffer);
     for (const auto& t : tracks) {
-      std::snprintf(buffer, sizeof buffer, "  %-14s %9.2f %9.2f %8.3f %8.3f %7.3f", common::trackLabel(t.track).c_str(), t.x,
+      std::snprintf(buffer, sizeof buffer, "  %-14s %9.2f %9.2f %8.3f %8.3f %7.3f", common::track_id::label(t.track).c_str(), t.x,
                     t.y, t.vx, t.vy, std::hypot(t.vx, t.vy));
       rows.emplace_back(buffer);
     }

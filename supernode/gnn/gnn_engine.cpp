@@ -1,5 +1,7 @@
 #include "supernode/gnn/gnn_engine.hpp"
 
+#include "common/track_id.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -16,10 +18,6 @@ using common::kVx;
 using common::kVy;
 using common::kX;
 using common::kY;
-
-constexpr std::uint64_t kTickBits = 24;
-constexpr std::uint64_t kSensorBits = 24;
-constexpr std::uint64_t kSupernodeShift = kTickBits + kSensorBits;
 
 bool byId(const GnnEngine::Track& a, const GnnEngine::Track& b) { return a.id < b.id; }
 
@@ -66,22 +64,6 @@ GnnParams GnnParams::fromScenario(const common::Scenario& scenario) {
   return common::decodeParams(paramTable(), scenario.tracker.params);
 }
 
-common::TrackId birthTrackId(std::uint32_t supernode, std::int32_t tick, common::SensorId sensor) {
-  if (tick < 0 || static_cast<std::uint64_t>(tick) >= (std::uint64_t{1} << kTickBits))
-    throw std::out_of_range("track id: tick " + std::to_string(tick) + " does not fit in 24 bits");
-  if (static_cast<std::uint64_t>(sensor) >= (std::uint64_t{1} << kSensorBits))
-    throw std::out_of_range("track id: sensor " + std::to_string(sensor) + " does not fit in 24 bits");
-  if (std::uint64_t{supernode} + 1 >= (std::uint64_t{1} << (64 - kSupernodeShift)))
-    throw std::out_of_range("track id: supernode " + std::to_string(supernode) + " does not fit in 16 bits");
-  return ((std::uint64_t{supernode} + 1) << kSupernodeShift) | (static_cast<std::uint64_t>(tick) << kSensorBits) |
-         static_cast<std::uint64_t>(sensor);
-}
-
-std::uint32_t birthSupernode(common::TrackId id) { return static_cast<std::uint32_t>((id >> kSupernodeShift) - 1); }
-
-std::int32_t birthTick(common::TrackId id) {
-  return static_cast<std::int32_t>((id >> kSensorBits) & ((std::uint64_t{1} << kTickBits) - 1));
-}
 
 GnnEngine::GnnEngine(const EngineContext& context)
     : supernode_(context.supernode),
@@ -228,7 +210,7 @@ void GnnEngine::processTick(std::vector<Track>& tracks, std::int32_t tick,
   for (std::size_t j = 0; j < cols; ++j) {
     if (used[j]) continue;
     Track born;
-    born.id = birthTrackId(supernode_, tick, slot[j].sensor);
+    born.id = common::track_id::birth(supernode_, tick, slot[j].sensor);
     // Two reports of one sensor in one tick would share an id: the first (canonical order) wins.
     const auto end = next.begin() + static_cast<std::ptrdiff_t>(survivors);
     if (std::binary_search(next.begin(), end, born, byId) ||

@@ -31,14 +31,6 @@ struct GnnParams {
 /// The parameters' one description: key, member, unit, range, default (GnnParams{}) and meaning.
 const config::FieldTable<GnnParams>& paramTable();
 
-/// Identity of a track born at supernode j from the observation (tick, sensor):
-/// ((j + 1) << 48) | (tick << 24) | sensor, so that every replay of the window gives it the same id.
-/// Throws std::out_of_range when tick or sensor does not fit in 24 bits.
-common::TrackId birthTrackId(std::uint32_t supernode, std::int32_t tick, common::SensorId sensor);
-
-/// The supernode and tick a birthTrackId names.
-std::uint32_t birthSupernode(common::TrackId id);
-std::int32_t birthTick(common::TrackId id);
 
 /// GNN tracker with window replay. The engine keeps an *anchor* (its tracks after every tick that
 /// already left the window) and, on each step, replays the window's ticks from the anchor, so an

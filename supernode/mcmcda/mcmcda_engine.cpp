@@ -11,11 +11,10 @@
 #include <tuple>
 
 #include "common/rng.hpp"
+#include "common/track_id.hpp"
 
 namespace wsn::supernode::mcmcda {
 namespace {
-
-constexpr std::uint64_t kSupernodeShift = 48;
 
 TrackState stateFromHandoff(const common::TrackHandoff& h) {
   // Both engines' filters are axis-symmetric (R = r^2 I, Q and the prior per axis alike), so the
@@ -143,7 +142,7 @@ McmcdaEngine::McmcdaEngine(const McmcdaParams& params, const common::Rect& regio
     : supernode_(id_space), seed_(seed), region_(region), params_(params), motion_(params_.model) {}
 
 common::TrackId McmcdaEngine::mintId() {
-  return ((std::uint64_t{supernode_} + 1) << kSupernodeShift) | next_serial_++;
+  return common::track_id::supernodeSerial(supernode_, next_serial_++);
 }
 
 bool McmcdaEngine::canContinue(const LiveTrack& track, std::int32_t oldest) const {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "common/assignment.hpp"
+#include "common/track_id.hpp"
 #include "supernode/gnn/gnn_engine.hpp"
 
 namespace wsn::supernode::rulebased {
@@ -192,8 +193,8 @@ void RulebasedEngine::adopt(const common::TrackHandoff& handoff) {
   std::erase_if(identities_, [&](const Identity& local) {
     const double gap = common::distance(local.cluster.centroid, adopted.cluster.centroid) -
                        (local.cluster.radius + adopted.cluster.radius);
-    const bool born_here_lately = gnn::birthSupernode(local.id) == supernode_ &&
-                                  handoff.last_tick - gnn::birthTick(local.id) <= params_.handoff_ghost_ticks;
+    const bool born_here_lately = common::track_id::supernodeOf(local.id) == supernode_ &&
+                                  handoff.last_tick - common::track_id::birthTick(local.id) <= params_.handoff_ghost_ticks;
     return local.id != adopted.id && born_here_lately && gap <= reach;
   });
   const auto it = std::lower_bound(identities_.begin(), identities_.end(), adopted, byId);
@@ -498,7 +499,7 @@ void RulebasedEngine::updateBirthCandidates(std::int32_t tick, const std::vector
       candidate = candidates_[static_cast<std::size_t>(continued[f])];
       candidate.previous_measurement = candidate.measurement;
     } else {
-      candidate.id = gnn::birthTrackId(supernode_, tick, cluster.members.front().sensor);
+      candidate.id = common::track_id::birth(supernode_, tick, cluster.members.front().sensor);
     }
     candidate.cluster = {cluster.centroid, cluster.radius};
     candidate.measurement = measurementOf(cluster);

@@ -62,7 +62,7 @@ TEST_CASE("a target crossing into the next tracking group continues there under 
   // x = 40.5 + t: the prediction for tick 10 (x = 50.5) is the first beyond the boundary x = 50,
   // so supernode 0 releases the track at tick 9 and supernode 1 adopts it at tick 10.
   auto truth = [](std::int32_t t) { return common::Vec2{40.5 + t, 50.0 + 0.2 * t}; };
-  const common::TrackId id = gnn::birthTrackId(0, 1, sensorAt(truth(1).x, truth(1).y));
+  const common::TrackId id = common::track_id::birth(0, 1, sensorAt(truth(1).x, truth(1).y));
   for (std::int32_t t = 1; t <= 25; ++t) {
     const auto p = truth(t);
     const auto out = pair.step(t, {observation(t, t, p.x, p.y)});
@@ -156,7 +156,7 @@ TEST_CASE("the tick output reports the window's contents and the stale drops", "
 TEST_CASE("a handoff addressed to another supernode is ignored and counted", "[tracker]") {
   SupernodeTracker tracker(twoSupernodes(), 0);
   common::TrackHandoff h;
-  h.track = gnn::birthTrackId(1, 1, 1);
+  h.track = common::track_id::birth(1, 1, 1);
   h.to_supernode = 1;
   h.last_tick = 1;
   h.confirmed = true;

@@ -40,22 +40,22 @@ const common::TrackEstimate* findTrack(const std::vector<common::TrackEstimate>&
 
 TEST_CASE("a track id encodes supernode, birth tick and sensor", "[gnn]") {
   // (0 + 1) << 48 | 3 << 24 | 5
-  CHECK(birthTrackId(0, 3, 5) == ((std::uint64_t{1} << 48) | (std::uint64_t{3} << 24) | 5));
-  CHECK(birthTrackId(2, 0, 0) == (std::uint64_t{3} << 48));
-  CHECK(birthSupernode(birthTrackId(2, 77, 9)) == 2);
-  CHECK(birthTick(birthTrackId(2, 77, 9)) == 77);
+  CHECK(common::track_id::birth(0, 3, 5) == ((std::uint64_t{1} << 48) | (std::uint64_t{3} << 24) | 5));
+  CHECK(common::track_id::birth(2, 0, 0) == (std::uint64_t{3} << 48));
+  CHECK(common::track_id::supernodeOf(common::track_id::birth(2, 77, 9)) == 2);
+  CHECK(common::track_id::birthTick(common::track_id::birth(2, 77, 9)) == 77);
   // Read as "started by supernode 2 at tick 77 from sensor 9"; counters (MCMCDA) stay S:N.
-  CHECK(common::trackLabel(birthTrackId(2, 77, 9)) == "2:t77s9");
-  CHECK(common::trackLabel((std::uint64_t{1} << 48) | 1) == "0:1");
-  CHECK(common::trackLabel(5) == "g5");
-  CHECK_THROWS_AS(birthTrackId(0, 1, 1u << 24), std::out_of_range);
-  CHECK_THROWS_AS(birthTrackId(0, 1 << 24, 0), std::out_of_range);
+  CHECK(common::track_id::label(common::track_id::birth(2, 77, 9)) == "2:t77s9");
+  CHECK(common::track_id::label((std::uint64_t{1} << 48) | 1) == "0:1");
+  CHECK(common::track_id::label(5) == "g5");
+  CHECK_THROWS_AS(common::track_id::birth(0, 1, 1u << 24), std::out_of_range);
+  CHECK_THROWS_AS(common::track_id::birth(0, 1 << 24, 0), std::out_of_range);
 }
 
 TEST_CASE("a straight-line target is confirmed after M hits and tracked with vanishing error", "[gnn]") {
   Harness h(gnnScenario());
   auto truth = [](std::int32_t t) { return common::Vec2{10.0 + t, 20.0 + 0.5 * t}; };
-  const common::TrackId id = birthTrackId(0, 1, sensorAt(11.0, 20.5));
+  const common::TrackId id = common::track_id::birth(0, 1, sensorAt(11.0, 20.5));
   double error_at_5 = 0.0;
   for (std::int32_t t = 1; t <= 30; ++t) {
     const auto p = truth(t);
@@ -111,8 +111,8 @@ TEST_CASE("two crossing targets keep their identities through the crossing", "[g
   // A climbs, B descends; at t = 10 they are 0.3 apart at (15, 20) and (15.3, 20).
   auto a = [](std::int32_t t) { return common::Vec2{5.0 + t, 10.0 + t}; };
   auto b = [](std::int32_t t) { return common::Vec2{5.3 + t, 30.0 - t}; };
-  const common::TrackId id_a = birthTrackId(0, 1, sensorAt(6.0, 11.0));
-  const common::TrackId id_b = birthTrackId(0, 1, sensorAt(6.3, 29.0));
+  const common::TrackId id_a = common::track_id::birth(0, 1, sensorAt(6.0, 11.0));
+  const common::TrackId id_b = common::track_id::birth(0, 1, sensorAt(6.3, 29.0));
   REQUIRE(id_a != id_b);
   for (std::int32_t t = 1; t <= 20; ++t) {
     h.step(t, {observation(t, t, a(t).x, a(t).y, 0), observation(t, t, b(t).x, b(t).y, 1)});
@@ -257,7 +257,7 @@ TEST_CASE("late observations revive a track that their absence had deleted, unde
       CHECK(late.engine.confirmedTracks().empty());
     }
   }
-  const common::TrackId id = birthTrackId(0, 1, noisyObservation(1, 1).sensor);
+  const common::TrackId id = common::track_id::birth(0, 1, noisyObservation(1, 1).sensor);
   const auto revived = late.engine.confirmedTracks();
   REQUIRE(revived.size() == 1);
   CHECK(revived[0].track == id);
@@ -265,7 +265,7 @@ TEST_CASE("late observations revive a track that their absence had deleted, unde
   // Without them tick 10's observation can only start a new, tentative track.
   CHECK(missing.engine.confirmedTracks().empty());
   REQUIRE(missing.engine.liveTracks().size() == 1);
-  CHECK(missing.engine.liveTracks()[0].id == birthTrackId(0, 10, noisyObservation(10, 10).sensor));
+  CHECK(missing.engine.liveTracks()[0].id == common::track_id::birth(0, 10, noisyObservation(10, 10).sensor));
 }
 
 TEST_CASE("observations one tick late end where on-time ones do once the window has them", "[gnn]") {
@@ -308,7 +308,7 @@ TEST_CASE("a handoff older than the window enters the anchor predicted up to it"
   Harness h(gnnScenario(3));
   for (std::int32_t t = 1; t <= 10; ++t) h.step(t);  // anchor after tick 7
   common::TrackHandoff handoff;
-  handoff.track = birthTrackId(1, 2, 42);
+  handoff.track = common::track_id::birth(1, 2, 42);
   handoff.to_supernode = 0;
   handoff.last_tick = 5;
   handoff.state = {10.0, 10.0, 1.0, 0.0};
@@ -328,7 +328,7 @@ TEST_CASE("a handoff older than the window enters the anchor predicted up to it"
 TEST_CASE("a released track leaves every later replay and unknown ones cannot be released", "[gnn]") {
   Harness h(gnnScenario());
   for (std::int32_t t = 1; t <= 5; ++t) h.step(t, {observation(t, t, 10.0 + t, 10.0)});
-  const common::TrackId id = birthTrackId(0, 1, sensorAt(11.0, 10.0));
+  const common::TrackId id = common::track_id::birth(0, 1, sensorAt(11.0, 10.0));
   const auto handoff = h.engine.release(id, 3);
   CHECK(handoff.track == id);
   CHECK(handoff.to_supernode == 3);
@@ -347,7 +347,7 @@ TEST_CASE("a released track leaves every later replay and unknown ones cannot be
   h.step(6, {observation(6, 6, 16.0, 10.0)});
   CHECK(h.engine.confirmedTracks().empty());
   REQUIRE(h.engine.liveTracks().size() == 1);
-  CHECK(h.engine.liveTracks()[0].id == birthTrackId(0, 6, sensorAt(16.0, 10.0)));
+  CHECK(h.engine.liveTracks()[0].id == common::track_id::birth(0, 6, sensorAt(16.0, 10.0)));
 }
 
 }  // namespace

@@ -168,7 +168,7 @@ TEST_CASE("a single target is tracked within a few metres under one identity", "
   // the first sighting's tick and smallest sensor id (gnn::birthTrackId).
   h.step(1, std::vector{target});
   CHECK(h.tracks().empty());
-  const common::TrackId id = gnn::birthTrackId(0, 1, firstSensor(1, target));
+  const common::TrackId id = common::track_id::birth(0, 1, firstSensor(1, target));
   double squared_error_sum = 0.0;
   for (std::int32_t t = 2; t <= 60; ++t) {
     h.step(t, std::vector{target});
@@ -308,7 +308,7 @@ TEST_CASE("a target that appears mid-run gets a new track after confirm_ticks si
   h.run(1, 30, movers);
   REQUIRE(h.tracks().size() == 1);
   const common::TrackId old_id = h.tracks()[0].track;
-  CHECK(old_id == gnn::birthTrackId(0, 1, firstSensor(1, stays)));
+  CHECK(old_id == common::track_id::birth(0, 1, firstSensor(1, stays)));
   // Sightings 1 .. confirm - 1 (ticks 31 .. 29 + confirm) leave it a candidate; the confirm-th
   // sighting, tick 30 + confirm, makes the track, named after its first sighting (tick 31).
   for (std::int32_t t = 31; t < 30 + confirm; ++t) {
@@ -320,7 +320,7 @@ TEST_CASE("a target that appears mid-run gets a new track after confirm_ticks si
   const auto tracks = h.tracks();
   checkInvariants(tracks);
   REQUIRE(tracks.size() == 2);
-  const common::TrackId new_id = gnn::birthTrackId(0, 31, firstSensor(31, comes));
+  const common::TrackId new_id = common::track_id::birth(0, 31, firstSensor(31, comes));
   CHECK(nearestTrack(tracks, stays.at(30 + confirm)).track == old_id);
   CHECK(nearestTrack(tracks, comes.at(30 + confirm)).track == new_id);
   CHECK(h.rulebased().stats().births == 2);

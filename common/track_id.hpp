@@ -1,0 +1,48 @@
+// Track identities, the one place their bit layout is written: engines mint them, associations
+// keep or mint them, and `wsntrack watch`, the track CSVs and tools/plot_run.py read them.
+//
+//   (supernode + 1) << 48 | serial     a supernode's track; the serial is a counter (MCMCDA), or
+//                                      a birth id tick << 24 | sensor (GNN, rule-based) so that a
+//                                      replay of the window names a track the same way again
+//   serial < 1 << 48                   a global id the aggregator minted
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace wsn::common {
+
+/// Global track id (see above). Also declared in common/messages.hpp, which carries it.
+using TrackId = std::uint64_t;
+using SensorId = std::uint32_t;
+
+namespace track_id {
+
+inline constexpr int kOwnerShift = 48;     ///< the owning supernode + 1 sits above this bit
+inline constexpr int kBirthTickShift = 24;  ///< a birth serial's tick sits above this bit
+/// Serials at or above this are birth ids; below it, counters. Ticks start at 1, so the two never meet.
+inline constexpr std::uint64_t kBirthSerialFloor = std::uint64_t{1} << kBirthTickShift;
+inline constexpr std::uint64_t kSerialLimit = std::uint64_t{1} << kOwnerShift;
+
+/// Serial `serial` (< 2^48) of supernode `supernode` (< 2^16 - 1).
+TrackId supernodeSerial(std::uint32_t supernode, std::uint64_t serial);
+/// The track supernode `supernode` starts at `tick` from sensor `sensor`'s observation; throws
+/// std::out_of_range when tick or sensor does not fit in 24 bits or the supernode in 16.
+TrackId birth(std::uint32_t supernode, std::int32_t tick, SensorId sensor);
+
+/// True for a supernode's id, false for one the aggregator minted.
+inline bool ownedBySupernode(TrackId id) { return (id >> kOwnerShift) != 0; }
+/// The supernode whose space the id is in (ownedBySupernode(id) must hold).
+inline std::uint32_t supernodeOf(TrackId id) { return static_cast<std::uint32_t>((id >> kOwnerShift) - 1); }
+inline std::uint64_t serialOf(TrackId id) { return id & (kSerialLimit - 1); }
+inline bool isBirth(TrackId id) { return ownedBySupernode(id) && serialOf(id) >= kBirthSerialFloor; }
+/// The tick and sensor of a birth id.
+inline std::int32_t birthTick(TrackId id) { return static_cast<std::int32_t>(serialOf(id) >> kBirthTickShift); }
+inline SensorId birthSensor(TrackId id) { return static_cast<SensorId>(serialOf(id) & (kBirthSerialFloor - 1)); }
+
+/// A track id as people read it: "S:N" for serial N of supernode S; "S:tTsK" for a track that
+/// supernode S started at tick T from sensor K's report; "gN" for an id the aggregator minted.
+std::string label(TrackId id);
+
+}  // namespace track_id
+}  // namespace wsn::common
