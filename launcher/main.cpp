@@ -20,6 +20,7 @@
 #include "common/version.hpp"
 #include "launcher/cluster.hpp"
 #include "launcher/install_layout.hpp"
+#include "launcher/plot_job.hpp"
 #include "launcher/run_directory.hpp"
 #include "launcher/watch.hpp"
 #include "supernode/engine.hpp"
