@@ -15,6 +15,7 @@
 #include "common/rng.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
+#include "launcher/cluster.hpp"
 
 namespace wsn::launcher {
 
@@ -116,6 +117,23 @@ void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario
     }
     sensors.close();
   }
+}
+
+RunIdentity prepareRunDirectory(const std::string& run_dir, const common::Scenario& scenario, bool in_process,
+                                bool overwrite) {
+  createRunDirectory(run_dir, overwrite);
+  RunIdentity identity;
+  identity.run_id = newRunId();
+  const int participants = participantCount(scenario, in_process);
+  // Cyclone maps participant index i to ports 7400 + 250 d + 2 i + {10, 11}: beyond 119
+  // participants a run's ports would spill into the next domain's range.
+  if (participants > kMaxParticipants)
+    throw std::runtime_error("a run may have at most " + std::to_string(kMaxParticipants) +
+                             " DDS participants (node tiles + supernodes + 3), this one needs " +
+                             std::to_string(participants));
+  identity.domain = pickFreeDomain(identity.run_id, participants);
+  writeRunInputs(run_dir, scenario, identity, participants);
+  return identity;
 }
 
 }  // namespace wsn::launcher

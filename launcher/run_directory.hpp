@@ -42,4 +42,10 @@ void createRunDirectory(const std::string& path, bool overwrite);
 void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario, const RunIdentity& identity,
                     int participants);
 
+/// Everything a run needs on disk before its cluster starts: the directory (created, or cleared
+/// with `overwrite`), a fresh run id, a domain with free ports for its participants, and the
+/// inputs of writeRunInputs(). Throws std::runtime_error saying what failed.
+RunIdentity prepareRunDirectory(const std::string& run_dir, const common::Scenario& scenario, bool in_process,
+                                bool overwrite);
+
 }  // namespace wsn::launcher
