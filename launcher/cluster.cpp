@@ -23,6 +23,7 @@
 #include "common/dds/cyclone_config.hpp"
 #include "common/dds/entity.hpp"
 #include "common/dds/role_runtime.hpp"
+#include "launcher/run_description.hpp"
 #include "network_model/role.hpp"
 #include "node/role.hpp"
 #include "supernode/role.hpp"

@@ -9,7 +9,7 @@
 
 #include "common/dds/cyclone_config.hpp"
 #include "common/scenario.hpp"
-#include "launcher/run_directory.hpp"
+#include "launcher/run_description.hpp"
 
 namespace wsn::launcher {
 

@@ -3,16 +3,10 @@
 
 #include <boost/program_options.hpp>
 #include <cerrno>
-#include <charconv>
 #include <cstring>
-#include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <optional>
-#include <regex>
-#include <sstream>
 
 #include "aggregator/association.hpp"
 #include "common/provenance.hpp"
@@ -21,7 +15,10 @@
 #include "launcher/cluster.hpp"
 #include "launcher/components.hpp"
 #include "launcher/install_layout.hpp"
+#include "launcher/plot_job.hpp"
+#include "launcher/run_arguments.hpp"
 #include "launcher/run_directory.hpp"
+#include "launcher/run_summary.hpp"
 #include "launcher/watch.hpp"
 #include "supernode/engine.hpp"
 
@@ -46,12 +43,6 @@ constexpr const char* kUsage =
     "  help               show this text\n\n"
     "'wsntrack <command> --help' explains each command's options.\n";
 
-/// The help of --set, shared by run and validate.
-constexpr const char* kSetHelp =
-    "set a scenario value, KEY=VALUE (repeatable): KEY is a dotted path into the scenario YAML, list "
-    "items as name[i] (network.pte=0.4, tracker.engine=gnn, tracker.params.max_speed=4, run.ticks=20, "
-    "supernodes[0].x=30); VALUE is one YAML scalar; the result is checked like a file";
-
 /// The --set options, in the order given; throws common::OverrideError for one without '='.
 std::vector<common::ScenarioOverride> overridesOf(const po::variables_map& vm) {
   std::vector<common::ScenarioOverride> overrides;
@@ -73,62 +64,10 @@ common::Scenario loadResolved(const std::string& path, const std::vector<common:
   return common::loadScenario(path, overrides, resolveComponentParams);
 }
 
-std::string readFile(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-/// The first number after "key": in one of our own JSON files (fixed, known layout).
-std::optional<double> jsonNumber(const std::string& json, const std::string& key) {
-  const std::regex pattern("\"" + key + "\"\\s*:\\s*(-?[0-9.eE+-]+)");
-  std::smatch match;
-  if (!std::regex_search(json, match, pattern)) return std::nullopt;
-  return std::stod(match[1].str());
-}
-
-std::string show(std::optional<double> value, int decimals) {
-  if (!value) return "n/a";
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, *value);
-  return buffer;
-}
-
-void printSummary(const std::string& run_dir, const launcher::ClusterResult& result, bool in_process) {
-  const auto metrics = readFile(run_dir + "/metrics.json");
-  const auto network = readFile(run_dir + "/network.json");
-  const auto row = [](const std::string& name, const std::string& value) {
-    std::cout << "  " << name << std::string(name.size() < 26 ? 26 - name.size() : 1, ' ') << value << "\n";
-  };
-  std::cout << "\nRun directory: " << run_dir << "\n";
-  row("mode", in_process ? "in-process (threads over DDS)" : "multi-process over DDS");
-  row("targets (truth)", show(jsonNumber(metrics, "truth_targets"), 0));
-  row("tracks (global ids)", show(jsonNumber(metrics, "track_ids"), 0));
-  row("eps_K  (Oh eq. 9)", show(jsonNumber(metrics, "eps_k"), 4));
-  row("eps_X  (Oh eq. 10)", show(jsonNumber(metrics, "eps_x"), 4));
-  row("OSPA (mean)", show(jsonNumber(metrics, "ospa_mean"), 4));
-  row("reports sent", show(jsonNumber(network, "sent"), 0));
-  row("reports lost", show(jsonNumber(network, "lost"), 0));
-  row("reports delayed", show(jsonNumber(network, "delayed"), 0));
-  row("dropped (older than ws)", show(jsonNumber(metrics, "observations_dropped_stale"), 0));
-  row("wall time (tick loop)", show(jsonNumber(metrics, "wall_s"), 3) + " s");
-  row("ticks/s (tick loop)", show(jsonNumber(metrics, "ticks_per_s"), 1));
-  row("wall time (all)", show(result.wall_s, 3) + " s");
-  if (in_process) {
-    row("peak RSS (whole process)", show(static_cast<double>(result.in_process_peak_rss_kb) / 1024.0, 1) + " MiB");
-    return;
-  }
-  std::cout << "  peak RSS per process (MiB):";
-  for (const auto& outcome : result.outcomes)
-    std::cout << " " << outcome.name << " " << show(static_cast<double>(outcome.peak_rss_kb) / 1024.0, 1) << ";";
-  std::cout << "\n";
-}
-
 int commandValidate(const std::vector<std::string>& args) {
   po::options_description options("Options");
   options.add_options()("help,h", "show this help")(
-      "set", po::value<std::vector<std::string>>()->value_name("KEY=VALUE"), kSetHelp)(
+      "set", po::value<std::vector<std::string>>()->value_name("KEY=VALUE"), launcher::kSetHelp)(
       "files", po::value<std::vector<std::string>>(), "scenario files");
   po::positional_options_description positional;
   positional.add("files", -1);
@@ -204,64 +143,25 @@ int commandReplay(const std::vector<std::string>& args) {
   return 1;
 }
 
-int commandRun(const std::vector<std::string>& command_line) {
-  const std::vector<std::string> args(command_line.begin() + 2, command_line.end());
-  std::string scenario_path;
-  std::string out_dir;
-  std::string seed_text;
-  int nodes = 0;
-  int ticks = 0;
-  double timeout_s = 1800;
-  double stall_s = 60;
-  double tick_interval_s = 0;
-  std::string plot_format = "png";
-  po::options_description options("Options");
-  options.add_options()("help,h", "show this help")(
-      "seed", po::value(&seed_text), "random seed, 0 .. 2^64-1 (overrides run.seed of the scenario)")(
-      "out", po::value(&out_dir), "run directory (default runs/<scenario>-seed<seed>-<UTC time>-<pid>)")(
-      "overwrite", "reuse --out even if it is not empty (its contents are deleted)")(
-      "nodes", po::value(&nodes), "number of sensor-node processes (tiles); overrides run.node_processes")(
-      "ticks", po::value(&ticks), "number of ticks T; overrides run.ticks")(
-      "set", po::value<std::vector<std::string>>()->value_name("KEY=VALUE"), kSetHelp)(
-      "in-process", "run every role as a thread of this process (still over DDS)")(
-      "timeout", po::value(&timeout_s)->default_value(1800), "stop everything after this many seconds")(
-      "stall-timeout", po::value(&stall_s)->default_value(60),
-      "a role gives up after this many seconds without input (a peer died)")(
-      "tick-interval", po::value(&tick_interval_s)->default_value(0),
-      "real-time pacing: at most one tick per this many seconds, to follow with 'wsntrack watch' "
-      "(0: as fast as possible; outputs are the same either way)")(
-      "quiet,q", "no progress display")("no-plot", "do not draw the plots (tools/plot_run.py) after the run")(
-      "plot-format", po::value(&plot_format)->default_value("png"), "format of the plots: png or svg")(
-      "scenario", po::value(&scenario_path), "scenario file");
-  po::positional_options_description positional;
-  positional.add("scenario", 1);
-  po::variables_map vm;
-  po::store(po::command_line_parser(args).options(options).positional(positional).run(), vm);
-  po::notify(vm);
-  if (vm.count("help") || scenario_path.empty()) {
-    std::cout << "Usage: wsntrack run SCENARIO [--seed N] [--out DIR [--overwrite]] [--nodes N] [--ticks T]\n"
-                 "                    [--set KEY=VALUE]... [--in-process] [--timeout S] [--stall-timeout S]\n"
-                 "                    [--tick-interval S]\n"
-                 "                    [--quiet] [--no-plot] [--plot-format png|svg]\n\n"
-                 "Starts every process of the cluster on this host — sensor-node tiles, the network\n"
-                 "model, one supernode per tracking group and the aggregator — over Cyclone DDS on\n"
-                 "loopback, shows progress, and prints a summary. Outputs (run directory):\n"
-                 "  scenario.yaml  truth.csv  observations.csv  tracks_supernode.csv  tracks.csv\n"
-                 "  network.json  metrics.json  logs/<role>-<index>.log  sensors.csv (random layout)\n"
-                 "  plots/{tracks,cardinality,ospa}.png (or .svg): drawn after the run by plot_run.py with\n"
-                 "  /usr/bin/python3 and matplotlib unless --no-plot; without them a warning, not a failure\n\n"
-                 "--set KEY=VALUE changes one value as an edit of the file would: values the loader\n"
-                 "derives (sensor_model.beta) follow it, and the result passes every check of\n"
-                 "'wsntrack validate'. The --set options apply in order, before --seed, --nodes and\n"
-                 "--ticks; e.g. --set network.pte=0.4 --set tracker.params.max_speed=4. The run\n"
-                 "directory's scenario.yaml records the result.\n\n"
-              << options << "\n";
-    return vm.count("help") ? 0 : 2;
-  }
+/// Draws the plots of a run that succeeded; a failure to draw them is a warning, not a failure of
+/// the run: they are a view of it.
+std::optional<launcher::PlotOutcome> finishPlots(std::optional<launcher::PlotJob>& job) {
+  if (!job) return std::nullopt;
+  auto plots = job->finish(true);
+  if (plots.status != launcher::PlotOutcome::Status::kDrawn)
+    std::cerr << "wsntrack run: warning: no plots: " << plots.message << "\n";
+  return plots;
+}
 
+int commandRun(const std::vector<std::string>& command_line) {
+  const auto args = launcher::parseRunArguments({command_line.begin() + 2, command_line.end()});
+  if (args.help || args.scenario_path.empty()) {
+    std::cout << launcher::runHelp();
+    return args.help ? 0 : 2;
+  }
   common::Scenario scenario;
   try {
-    scenario = loadResolved(scenario_path, overridesOf(vm));
+    scenario = launcher::loadRunScenario(args, resolveComponentParams);
   } catch (const common::OverrideError& error) {
     std::cerr << "wsntrack run: " << error.what() << "\n";
     return 2;
@@ -269,67 +169,20 @@ int commandRun(const std::vector<std::string>& command_line) {
     std::cerr << error.what() << "\n";
     return 2;
   }
-  if (vm.count("seed")) {
-    std::uint64_t seed = 0;
-    const char* end = seed_text.data() + seed_text.size();
-    const auto [stop, error] = std::from_chars(seed_text.data(), end, seed);
-    if (seed_text.empty() || error != std::errc() || stop != end) {
-      std::cerr << "wsntrack run: --seed must be a whole number in [0, 2^64-1], got '" << seed_text << "'\n";
-      return 2;
-    }
-    scenario.run.seed = seed;
-  }
-  for (const auto& [name, value] : {std::pair{"--timeout", timeout_s}, std::pair{"--stall-timeout", stall_s}}) {
-    if (!std::isfinite(value) || value <= 0 || value > 604800) {
-      std::cerr << "wsntrack run: " << name << " must be in (0, 604800] seconds, got " << value << "\n";
-      return 2;
-    }
-  }
-  if (vm.count("nodes")) {
-    if (nodes < 1 || nodes > 64) {
-      std::cerr << "wsntrack run: --nodes must be in [1, 64], got " << nodes << "\n";
-      return 2;
-    }
-    scenario.run.node_processes = nodes;
-  }
-  if (vm.count("ticks")) {
-    if (ticks < 1 || ticks > 1000000) {
-      std::cerr << "wsntrack run: --ticks must be in [1, 1000000], got " << ticks << "\n";
-      return 2;
-    }
-    scenario.run.ticks = ticks;
-  }
-
-  if (plot_format != "png" && plot_format != "svg") {
-    std::cerr << "wsntrack run: --plot-format must be png or svg, got '" << plot_format << "'\n";
+  if (const auto problem = launcher::checkRunOptions(args)) {
+    std::cerr << "wsntrack run: " << *problem << "\n";
     return 2;
-  }
-
-  // The overrides pass the same cross-field checks as the file (e.g. tiles vs. cells).
-  if (vm.count("seed") || vm.count("nodes") || vm.count("ticks")) {
-    try {
-      scenario = common::parseScenario(common::resolvedScenarioYaml(scenario), scenario_path + " with --seed/--nodes/--ticks");
-      resolveComponentParams(scenario);
-    } catch (const std::exception& error) {
-      std::cerr << "wsntrack run: " << error.what() << "\n";
-      return 2;
-    }
   }
 
   launcher::ClusterOptions cluster;
   cluster.scenario = scenario;
-  cluster.in_process = vm.count("in-process") != 0;
-  cluster.show_progress = vm.count("quiet") == 0;
-  cluster.timeout = std::chrono::seconds(static_cast<long>(timeout_s));
-  cluster.stall_timeout_s = stall_s;
-  if (!std::isfinite(tick_interval_s) || tick_interval_s < 0 || tick_interval_s > 3600 || tick_interval_s >= stall_s) {
-    std::cerr << "wsntrack run: --tick-interval must be in [0, 3600] seconds and below --stall-timeout, got "
-              << tick_interval_s << "\n";
-    return 2;
-  }
-  cluster.tick_interval_s = tick_interval_s;
+  cluster.in_process = args.in_process;
+  cluster.show_progress = !args.quiet;
+  cluster.timeout = std::chrono::seconds(static_cast<long>(args.timeout_s));
+  cluster.stall_timeout_s = args.stall_timeout_s;
+  cluster.tick_interval_s = args.tick_interval_s;
   try {
-    cluster.provenance_json = common::provenanceJson(common::captureProvenance(command_line, scenario_path));
+    cluster.provenance_json = common::provenanceJson(common::captureProvenance(command_line, args.scenario_path));
   } catch (const std::exception& error) {
     std::cerr << "wsntrack run: " << error.what() << "\n";
     return 2;
@@ -337,53 +190,26 @@ int commandRun(const std::vector<std::string>& command_line) {
   // Located once: the role executables for the cluster, the plot script for the plots.
   const launcher::InstallLayout install = launcher::locateInstall(executableDirectory());
   cluster.bin_dir = install.requireRoleDir();
-  cluster.run_dir = out_dir.empty() ? launcher::defaultRunDirectory(scenario) : out_dir;
+  cluster.run_dir = args.out_dir.empty() ? launcher::defaultRunDirectory(scenario) : args.out_dir;
   try {
-    launcher::createRunDirectory(cluster.run_dir, vm.count("overwrite") != 0);
-    cluster.identity.run_id = launcher::newRunId();
-    const int participants = launcher::participantCount(scenario, cluster.in_process);
-    // Cyclone maps participant index i to ports 7400 + 250 d + 2 i + {10, 11}: beyond 119
-    // participants a run's ports would spill into the next domain's range.
-    if (participants > launcher::kMaxParticipants)
-      throw std::runtime_error("a run may have at most " + std::to_string(launcher::kMaxParticipants) +
-                               " DDS participants (node tiles + supernodes + 3), this one needs " +
-                               std::to_string(participants));
-    cluster.identity.domain = launcher::pickFreeDomain(cluster.identity.run_id, participants);
-    launcher::writeRunInputs(cluster.run_dir, scenario, cluster.identity, participants);
+    cluster.identity = launcher::prepareRunDirectory(cluster.run_dir, scenario, cluster.in_process, args.overwrite);
   } catch (const std::exception& error) {
     std::cerr << "wsntrack run: " << error.what() << "\n";
     return 1;
   }
 
-  std::cerr << "wsntrack: " << scenario.name << " (seed " << scenario.run.seed << ", " << scenario.run.ticks
-            << " ticks) on " << scenario.run.node_processes << " node tiles, " << scenario.supernodes.size()
-            << " supernodes, engine " << scenario.tracker.engine << ", domain " << cluster.identity.domain
-            << (cluster.in_process ? ", in-process" : "") << "\n";
+  std::cerr << launcher::runStartLine(scenario, cluster.identity.domain, cluster.in_process);
   // Started before the cluster so that python and matplotlib load while it runs.
   std::optional<launcher::PlotJob> plot_job;
-  if (!vm.count("no-plot")) plot_job.emplace(install.plot_script, cluster.run_dir, plot_format);
+  if (args.plot) plot_job.emplace(install.plot_script, cluster.run_dir, args.plot_format);
   const auto result = launcher::runCluster(cluster);
   if (!result.ok) {
-    std::cerr << "wsntrack run: FAILED: " << result.failure << "\n";
-    for (const auto& outcome : result.outcomes)
-      if (outcome.exit_code != 0)
-        std::cerr << "  " << outcome.name << ": exit " << outcome.exit_code
-                  << (outcome.message.empty() ? "" : " (" + outcome.message + ")") << "\n";
+    std::cerr << launcher::runFailure(result);
     return 1;
   }
-  // A run that succeeded stays a success whatever becomes of its plots: they are a view of it.
-  std::optional<launcher::PlotOutcome> plots;
-  if (plot_job) {
-    plots = plot_job->finish(true);
-    if (plots->status != launcher::PlotOutcome::Status::kDrawn)
-      std::cerr << "wsntrack run: warning: no plots: " << plots->message << "\n";
-  }
-  printSummary(cluster.run_dir, result, cluster.in_process);
-  if (plots) {
-    const bool drawn = plots->status == launcher::PlotOutcome::Status::kDrawn;
-    std::cout << "  plots" << std::string(21, ' ')
-              << (drawn ? plots->message + " (" + show(plots->seconds, 1) + " s)" : "none: " + plots->message) << "\n";
-  }
+  const auto plots = finishPlots(plot_job);
+  std::cout << launcher::runSummary(cluster.run_dir, launcher::readRunFigures(cluster.run_dir), result,
+                                    cluster.in_process, plots);
   return 0;
 }
 

@@ -8,14 +8,9 @@
 #include <vector>
 
 #include "common/scenario.hpp"
+#include "launcher/run_description.hpp"
 
 namespace wsn::launcher {
-
-/// Where and how a run talks: unique per run.
-struct RunIdentity {
-  std::uint64_t run_id = 0;
-  int domain = 0;
-};
 
 /// A fresh run id (time, pid and a counter mixed), never 0.
 std::uint64_t newRunId();
@@ -47,56 +42,10 @@ void createRunDirectory(const std::string& path, bool overwrite);
 void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario, const RunIdentity& identity,
                     int participants);
 
-/// What became of the plots of a run.
-struct PlotOutcome {
-  enum class Status { kDrawn, kSkipped, kFailed };
-  Status status = Status::kSkipped;
-  std::string message;  ///< one line: the files written, or why there are none
-  double seconds = 0;
-};
-
-/// plot_run.py (located by install_layout) run by kPlotPython (the one with python3-matplotlib) on a run
-/// directory, output to logs/plot.log. It is started before the cluster and waits on a pipe for the
-/// word to go: python's start-up and matplotlib's import, most of the plotting time, overlap the
-/// run instead of following it. A missing python, script or matplotlib gives kSkipped, any other
-/// failure kFailed: neither undoes a run that succeeded.
-class PlotJob {
- public:
-  PlotJob(const std::string& plot_script, const std::string& run_dir, const std::string& format);
-  PlotJob(const PlotJob&) = delete;
-  PlotJob& operator=(const PlotJob&) = delete;
-  /// A job never told to go is told to stop, and reaped.
-  ~PlotJob();
-  /// Lets the script draw (`go`) or tells it to stop, and waits for it.
-  PlotOutcome finish(bool go);
-
- private:
-  int pid_ = -1;
-  int to_script_ = -1;  ///< write end of the script's stdin
-  PlotOutcome outcome_;
-  std::string log_;
-  std::string files_;
-};
-
-/// What a viewer needs to join a running cluster, kept as run.json in the run directory.
-struct RunDescription {
-  RunIdentity identity;
-  int participants = 0;        ///< Cyclone participant indices 0 .. participants - 1 are the cluster's
-  int first_viewer_index = 0;  ///< viewers take indices first_viewer_index .. + viewer_slots - 1
-  int viewer_slots = 0;
-  std::string scenario;        ///< its name
-  std::int32_t ticks = 0;
-  std::int32_t processes = 0;  ///< role processes (or threads) that report on the status topic
-  double tick_interval_s = 0;
-  bool in_process = false;
-  long long launcher_pid = 0;  ///< the run is live while this wsntrack process is
-  std::string provenance_json;  ///< common::provenanceJson of the run; the last line of run.json
-};
-
-/// Writes run_dir/run.json atomically (written aside, then renamed).
-void writeRunDescription(const std::string& run_dir, const RunDescription& run);
-
-/// Reads run_dir/run.json; throws std::runtime_error saying what is missing or wrong.
-RunDescription readRunDescription(const std::string& run_dir);
+/// Everything a run needs on disk before its cluster starts: the directory (created, or cleared
+/// with `overwrite`), a fresh run id, a domain with free ports for its participants, and the
+/// inputs of writeRunInputs(). Throws std::runtime_error saying what failed.
+RunIdentity prepareRunDirectory(const std::string& run_dir, const common::Scenario& scenario, bool in_process,
+                                bool overwrite);
 
 }  // namespace wsn::launcher

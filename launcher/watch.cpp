@@ -22,8 +22,8 @@
 #include "common/dds/entity.hpp"
 #include "common/dds/process_main.hpp"
 #include "common/dds/role_runtime.hpp"
-#include "common/track_id.hpp"
-#include "launcher/run_directory.hpp"
+#include "launcher/run_description.hpp"
+#include "launcher/watch_state.hpp"
 #include "wsntrack.h"
 
 namespace wsn::launcher {
@@ -43,32 +43,22 @@ struct WatchOptions {
   double max_fps = 20;
 };
 
-/// What the aggregator's TickMetrics say about one tick: its metrics' live values, by name.
-using Scores = std::map<std::string, double>;
-
-/// One tick's global tracks, waiting to be drawn.
-struct PendingTick {
-  std::vector<common::TrackEstimate> tracks;
-  Clock::time_point arrived;
-};
-
-/// Last state of one role instance on the status topic.
-struct RoleState {
-  int state = wsn_msg_STARTING;
-  std::int32_t tick = 0;
-  std::string message;
-};
-
 std::string hex(std::uint64_t value) {
   std::ostringstream out;
   out << std::hex << value;
   return out.str();
 }
 
-std::string fixed(double value, int decimals) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, value);
-  return buffer;
+/// A status sample's state, as the watch's state machine knows it.
+ProcessState processState(wsn_msg_ProcessState state) {
+  switch (state) {
+    case wsn_msg_STARTING: return ProcessState::kStarting;
+    case wsn_msg_READY: return ProcessState::kReady;
+    case wsn_msg_RUNNING: return ProcessState::kRunning;
+    case wsn_msg_DONE: return ProcessState::kDone;
+    case wsn_msg_FAILED: return ProcessState::kFailed;
+  }
+  return ProcessState::kStarting;
 }
 
 /// Whether the launcher that wrote run.json still runs: its pid is alive and still a wsntrack
@@ -242,20 +232,10 @@ class Watcher {
                 << ") in " << options_.run_dir << "\n"
                 << std::flush;
 
-    const auto min_frame_gap = std::chrono::duration_cast<Clock::duration>(Seconds(1.0 / options_.max_fps));
-    const auto timeout = std::chrono::duration_cast<Clock::duration>(Seconds(options_.timeout_s));
-    // After the aggregator's DONE, its last batch may still be on its way (another topic).
-    constexpr auto kEndGrace = std::chrono::seconds(2);
-    // TickMetrics of tick t follow its batch at once; a frame waits this long for them at most.
-    constexpr auto kMetricsWait = std::chrono::milliseconds(300);
-    Clock::time_point last_progress = Clock::now();
-    Clock::time_point last_draw{};
-    Clock::time_point last_waiting_draw{};
-    Clock::time_point last_launcher_check = Clock::now();
-    std::optional<Clock::time_point> done_at;
-    std::optional<Clock::time_point> failed_at;
-    bool started = false;
-    bool held_back = false;
+    WatchTiming timing;
+    timing.min_frame_gap = std::chrono::duration_cast<Clock::duration>(Seconds(1.0 / options_.max_fps));
+    timing.timeout = std::chrono::duration_cast<Clock::duration>(Seconds(options_.timeout_s));
+    WatchState state(run_, options_.run_dir, timing, Clock::now(), start_deadline);
     told_waiting_ = false;
 
     while (true) {
@@ -263,181 +243,47 @@ class Watcher {
         finishLine("interrupted; the run goes on");
         return kWatchInterrupted;
       }
-      // A frame held back by the rate limit is drawn as soon as it is allowed, not a wake-up later.
-      auto wait = std::chrono::milliseconds(50);
-      if (held_back)
-        wait = std::clamp(std::chrono::ceil<std::chrono::milliseconds>(last_draw + min_frame_gap - Clock::now()),
-                          std::chrono::milliseconds(0), wait);
-      waitset.wait(wait);
+      waitset.wait(state.nextWait(Clock::now()));
       const auto now = Clock::now();
 
       status_reader.take([&](const wsn_msg_ProcessStatus& s) {
         if (s.run_id != run_.identity.run_id) return;
-        started = true;
-        last_progress = now;
-        auto& role = roles_[{s.role, s.index}];
-        role = {static_cast<int>(s.state), s.tick, s.message};
-        if (s.state == wsn_msg_FAILED) {
-          failures_.push_back(std::string(s.role) + " " + std::to_string(s.index) + ": " + s.message);
-          if (!failed_at) failed_at = now;
-        }
-        if (std::string(s.role) == "aggregator" && s.state == wsn_msg_DONE && !done_at) {
-          done_at = now;
-          done_tick_ = s.tick;
-        }
+        state.onStatus({s.role, s.index, processState(s.state), s.tick, s.message}, now);
       });
       track_reader.take([&](const wsn_msg_GlobalTrackBatch& batch) {
-        if (batch.run_id != run_.identity.run_id || batch.tick <= drawn_tick_) return;
-        started = true;
-        last_progress = now;
-        auto& pending = pending_[batch.tick];
-        pending.arrived = now;
-        pending.tracks = dds::decode(batch.tracks);
+        if (batch.run_id != run_.identity.run_id) return;
+        state.onTracks(batch.tick, dds::decode(batch.tracks), now);
       });
       metrics_reader.take([&](const wsn_msg_TickMetrics& m) {
-        if (m.run_id != run_.identity.run_id || m.tick <= drawn_tick_) return;
-        auto& scores = scores_[m.tick];
+        if (m.run_id != run_.identity.run_id) return;
+        TickScores scores;
         for (std::uint32_t i = 0; i < m.values._length; ++i) scores[m.values._buffer[i].name] = m.values._buffer[i].value;
+        state.onMetrics(m.tick, scores);
       });
 
-      // The launcher stops every process after the first failure, and they report FAILED too
-      // ("stopped on request"): a moment's wait collects the cause along with them.
-      if (failed_at && now - *failed_at >= std::chrono::milliseconds(500)) {
-        if (!pending_.empty()) drawTick(pending_.rbegin()->first);
-        std::cerr << "wsntrack watch: the run FAILED at tick " << drawn_tick_ << "/" << run_.ticks << ":\n";
-        for (const auto& failure : failures_) std::cerr << "  " << failure << "\n";
-        std::cerr << "  (the launcher's output and " << options_.run_dir << "/logs/ say why)\n";
-        return kWatchFailed;
-      }
-      if (!std::cout) return kWatchFailed;  // stdout went away (a closed pipe): nobody is watching
-
-      // The newest tick that is ready to be drawn: its metrics are in, or will not come.
-      const bool metrics_published = metrics_reader.matchedWriters() > 0;
-      std::optional<std::int32_t> ready;
-      for (auto it = pending_.rbegin(); it != pending_.rend(); ++it) {
-        const bool newer_exists = it != pending_.rbegin();
-        if (scores_.count(it->first) || !metrics_published || newer_exists || done_at ||
-            now - it->second.arrived >= kMetricsWait) {
-          ready = it->first;
-          break;
-        }
-      }
-      held_back = false;
-      if (ready && (*ready == run_.ticks || now - last_draw >= min_frame_gap)) {
-        drawTick(*ready);
-        last_draw = now;
-      } else if (ready) {
-        held_back = true;
-      }
-      if (drawn_tick_ >= run_.ticks) {
-        finishLine("the run finished: tick " + std::to_string(drawn_tick_) + "/" + std::to_string(run_.ticks) + " shown");
-        return kWatchFinished;
-      }
-      if (done_at && pending_.empty() && now - *done_at >= kEndGrace) {
-        finishLine("the run finished (aggregator DONE at tick " + std::to_string(done_tick_) + "); last tick shown: " +
-                   (drawn_tick_ > 0 ? std::to_string(drawn_tick_) : std::string("none")));
-        return kWatchFinished;
-      }
-
-      if (drawn_tick_ == 0 && now - last_waiting_draw >= std::chrono::milliseconds(500)) {
-        drawWaiting(started);
-        last_waiting_draw = now;
-      }
-      if (!started && now >= start_deadline) {
-        std::cerr << "wsntrack watch: no process of run " << hex(run_.identity.run_id) << " showed up within "
-                  << options_.timeout_s << " s\n";
-        return kWatchFailed;
-      }
-      if (started && now - last_progress >= timeout) {
-        std::cerr << "wsntrack watch: no progress for " << options_.timeout_s << " s (last tick seen "
-                  << drawn_tick_ << "/" << run_.ticks << ")\n";
-        return kWatchFailed;
-      }
-      if (now - last_launcher_check >= std::chrono::milliseconds(500)) {
-        last_launcher_check = now;
-        if (!done_at && !failed_at && !launcherAlive(run_.launcher_pid)) {
-          std::cerr << "wsntrack watch: the run's launcher (pid " << run_.launcher_pid
-                    << ") exited before the run finished (last tick seen " << drawn_tick_ << "/" << run_.ticks
-                    << "); see " << options_.run_dir << "/logs/\n";
-          return kWatchFailed;
-        }
-      }
+      const auto step = state.step(now, metrics_reader.matchedWriters() > 0, static_cast<bool>(std::cout),
+                                   [&] { return launcherAlive(run_.launcher_pid); });
+      if (step.frame) drawTick(state, *step.frame);
+      if (step.draw_waiting) drawWaiting(state);
+      if (step.end) return finish(*step.end);
     }
   }
 
   // ---- drawing -----------------------------------------------------------------------------
 
-  std::string processSummary() const {
-    int ready = 0, running = 0, done = 0;
-    for (const auto& [key, role] : roles_) {
-      if (role.state == wsn_msg_READY) ++ready;
-      if (role.state == wsn_msg_RUNNING) ++running;
-      if (role.state == wsn_msg_DONE) ++done;
-    }
-    std::ostringstream out;
-    out << roles_.size() << "/" << run_.processes << " processes up";
-    if (ready + running + done > 0) out << " (" << ready << " ready, " << running << " running, " << done << " done)";
-    return out.str();
-  }
-
-  void drawWaiting(bool started) {
-    const std::string line = std::string(started ? "waiting for the first tick: " : "waiting for the run to start: ") +
-                             processSummary();
+  void drawWaiting(const WatchState& state) {
     if (tty_) {
-      std::cout << "\x1b[H\x1b[2J" << title() << "\n\n  " << line << "\x1b[K\n\n  Ctrl-C quits.\x1b[J" << std::flush;
+      std::cout << "\x1b[H\x1b[2J" << watchTitle(run_) << "\n\n  " << state.waitingLine() << "\x1b[K\n\n  Ctrl-C quits.\x1b[J"
+                << std::flush;
     } else if (!told_waiting_) {
-      std::cerr << "wsntrack watch: " << line << "\n";
+      std::cerr << "wsntrack watch: " << state.waitingLine() << "\n";
       told_waiting_ = true;
     }
   }
 
-  std::string title() const {
-    std::ostringstream out;
-    out << "wsntrack watch  " << run_.scenario << "  run " << hex(run_.identity.run_id) << "  domain "
-        << run_.identity.domain;
-    if (run_.tick_interval_s > 0) out << "  paced " << fixed(run_.tick_interval_s, 3) << " s/tick";
-    return out.str();
-  }
-
-  void drawTick(std::int32_t tick) {
-    auto tracks = std::move(pending_[tick].tracks);
-    std::sort(tracks.begin(), tracks.end(), [](const common::TrackEstimate& a, const common::TrackEstimate& b) { return a.track < b.track; });
-    Scores scores;
-    const auto found = scores_.find(tick);
-    const bool scored = found != scores_.end();
-    if (scored) scores = found->second;
-    pending_.erase(pending_.begin(), pending_.upper_bound(tick));
-    scores_.erase(scores_.begin(), scores_.upper_bound(tick));
-    drawn_tick_ = tick;
-
-    const auto metric = [&](const std::string& name, const std::string& value) { return name + "=" + value + " "; };
-    const std::string na = "n/a";
-    // A value the aggregator did not publish shows as n/a, like a tick without TickMetrics.
-    const auto value = [&](const char* name, int decimals) {
-      const auto it = scores.find(name);
-      if (it == scores.end()) return na;
-      return decimals == 0 ? std::to_string(std::llround(it->second)) : fixed(it->second, decimals);
-    };
-    std::ostringstream head;
-    head << "tick " << tick << "/" << run_.ticks << "  "
-         << metric("K*", value("truth_targets", 0))
-         << metric("K", std::to_string(tracks.size()))
-         << metric("OSPA", value("ospa", 3)) << metric("GOSPA", value("gospa", 3))
-         << metric("epsK", value("eps_k_running", 4))
-         << metric("meanOSPA", value("ospa_mean_running", 3));
-    std::string head_line = head.str();
-    head_line.pop_back();
-
-    std::vector<std::string> rows;
-    char buffer[160];
-    std::snprintf(buffer, sizeof buffer, "  %-14s %9s %9s %8s %8s %7s", "track", "x", "y", "vx", "vy", "speed");
-    rows.emplace_back(buffer);
-    for (const auto& t : tracks) {
-      std::snprintf(buffer, sizeof buffer, "  %-14s %9.2f %9.2f %8.3f %8.3f %7.3f", common::track_id::label(t.track).c_str(), t.x,
-                    t.y, t.vx, t.vy, std::hypot(t.vx, t.vy));
-      rows.emplace_back(buffer);
-    }
-
+  void drawTick(const WatchState& state, const WatchFrame& frame) {
+    const std::string head_line = frameHeadLine(frame, run_.ticks);
+    const std::vector<std::string> rows = frameRows(frame);
     if (!tty_) {
       std::cout << head_line << "\n";
       for (const auto& row : rows) std::cout << row << "\n";
@@ -447,9 +293,9 @@ class Watcher {
     // Home and overwrite line by line (clearing each line's rest) rather than clearing the
     // screen first: no flicker between frames.
     std::ostringstream screen;
-    screen << "\x1b[H" << title() << "\x1b[K\n" << processSummary() << "\x1b[K\n\x1b[K\n";
+    screen << "\x1b[H" << watchTitle(run_) << "\x1b[K\n" << state.processSummary() << "\x1b[K\n\x1b[K\n";
     const int bar_width = 40;
-    const int filled = static_cast<int>(std::lround(bar_width * static_cast<double>(tick) / run_.ticks));
+    const int filled = static_cast<int>(std::lround(bar_width * static_cast<double>(frame.tick) / run_.ticks));
     screen << "  [" << std::string(static_cast<std::size_t>(filled), '#')
            << std::string(static_cast<std::size_t>(bar_width - filled), '.') << "]\x1b[K\n";
     screen << "  " << head_line << "\x1b[K\n\x1b[K\n";
@@ -462,6 +308,13 @@ class Watcher {
     std::cout << screen.str() << std::flush;
   }
 
+  /// The watch's last words: an error on stderr, or a line below the last frame.
+  int finish(const WatchEnd& end) {
+    if (end.error && !end.text.empty()) std::cerr << "wsntrack watch: " << end.text << "\n";
+    if (!end.error) finishLine(end.text);
+    return end.exit_code;
+  }
+
   /// The last word, below the last frame.
   void finishLine(const std::string& text) {
     if (tty_) std::cout << "\n\n";
@@ -472,12 +325,6 @@ class Watcher {
   bool tty_;
   RunDescription run_;
   int participant_index_ = -1;
-  std::map<std::pair<std::string, std::uint32_t>, RoleState> roles_;
-  std::map<std::int32_t, PendingTick> pending_;
-  std::map<std::int32_t, Scores> scores_;
-  std::int32_t drawn_tick_ = 0;
-  std::int32_t done_tick_ = 0;
-  std::vector<std::string> failures_;
   bool told_waiting_ = false;
 };
 

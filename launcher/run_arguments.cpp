@@ -1,0 +1,160 @@
+#include "launcher/run_arguments.hpp"
+
+#include <boost/program_options.hpp>
+#include <cmath>
+#include <functional>
+#include <sstream>
+#include <tuple>
+
+namespace wsn::launcher {
+namespace {
+
+namespace po = boost::program_options;
+
+constexpr const char* kRunUsage =
+    "Usage: wsntrack run SCENARIO [--seed N] [--out DIR [--overwrite]] [--nodes N] [--ticks T]\n"
+    "                    [--set KEY=VALUE]... [--in-process] [--timeout S] [--stall-timeout S]\n"
+    "                    [--tick-interval S]\n"
+    "                    [--quiet] [--no-plot] [--plot-format png|svg]\n\n"
+    "Starts every process of the cluster on this host — sensor-node tiles, the network\n"
+    "model, one supernode per tracking group and the aggregator — over Cyclone DDS on\n"
+    "loopback, shows progress, and prints a summary. Outputs (run directory):\n"
+    "  scenario.yaml  truth.csv  observations.csv  tracks_supernode.csv  tracks.csv\n"
+    "  network.json  metrics.json  logs/<role>-<index>.log  sensors.csv (random layout)\n"
+    "  plots/{tracks,cardinality,ospa}.png (or .svg): drawn after the run by plot_run.py with\n"
+    "  /usr/bin/python3 and matplotlib unless --no-plot; without them a warning, not a failure\n\n"
+    "--set KEY=VALUE changes one value as an edit of the file would: values the loader\n"
+    "derives (sensor_model.beta) follow it, and the result passes every check of\n"
+    "'wsntrack validate'. The --set options apply in order, e.g. --set network.pte=0.4\n"
+    "--set tracker.params.max_speed=4; --seed, --nodes and --ticks follow them as overrides\n"
+    "of run.seed, run.node_processes and run.ticks. The run directory's scenario.yaml\n"
+    "records the result.\n\n";
+
+/// The options, bound to the fields of `a`.
+po::options_description runOptions(RunArguments& a) {
+  po::options_description options("Options");
+  options.add_options()("help,h", "show this help")(
+      "seed", po::value<std::string>(),
+      "random seed, 0 .. 2^64-1 (overrides run.seed of the scenario)")(
+      "out", po::value(&a.out_dir), "run directory (default runs/<scenario>-seed<seed>-<UTC time>-<pid>)")(
+      "overwrite", "reuse --out even if it is not empty (its contents are deleted)")(
+      "nodes", po::value<std::string>(),
+      "number of sensor-node processes (tiles); overrides run.node_processes")(
+      "ticks", po::value<std::string>(), "number of ticks T; overrides run.ticks")(
+      "set", po::value(&a.sets)->value_name("KEY=VALUE"), kSetHelp)(
+      "in-process", "run every role as a thread of this process (still over DDS)")(
+      "timeout", po::value(&a.timeout_s)->default_value(1800), "stop everything after this many seconds")(
+      "stall-timeout", po::value(&a.stall_timeout_s)->default_value(60),
+      "a role gives up after this many seconds without input (a peer died)")(
+      "tick-interval", po::value(&a.tick_interval_s)->default_value(0),
+      "real-time pacing: at most one tick per this many seconds, to follow with 'wsntrack watch' "
+      "(0: as fast as possible; outputs are the same either way)")(
+      "quiet,q", "no progress display")("no-plot", "do not draw the plots (tools/plot_run.py) after the run")(
+      "plot-format", po::value(&a.plot_format)->default_value("png"), "format of the plots: png or svg")(
+      "scenario", po::value(&a.scenario_path), "scenario file");
+  return options;
+}
+
+std::optional<std::string> optionText(const po::variables_map& vm, const char* name) {
+  if (!vm.count(name)) return std::nullopt;
+  return vm[name].as<std::string>();
+}
+
+/// `message` with the overrides it names at its start ("--set K=V --set K2=V2: why") written as
+/// typed. applyOverrides() names them in their order, so one pass over the list finds them.
+std::string asTyped(const std::string& message, const std::vector<RunOverride>& overrides) {
+  std::string named;
+  std::size_t at = 0;
+  for (const auto& o : overrides) {
+    const std::string text = o.set.text();
+    if (message.compare(at, text.size(), text) != 0) continue;
+    const std::size_t end = at + text.size();
+    if (message.compare(end, 1, " ") != 0 && message.compare(end, 2, ": ") != 0) continue;
+    named += (named.empty() ? "" : " ") + o.as_typed;
+    at = message.compare(end, 2, ": ") == 0 ? end : end + 1;
+    if (at == end) return named + message.substr(end);
+  }
+  return message;
+}
+
+/// `load` with the run's overrides, its OverrideError rewritten to name the options as typed.
+common::Scenario namingOptions(
+    const RunArguments& args,
+    const std::function<common::Scenario(const std::vector<common::ScenarioOverride>&)>& load) {
+  const auto overrides = runOverrides(args);
+  std::vector<common::ScenarioOverride> sets;
+  for (const auto& o : overrides) sets.push_back(o.set);
+  try {
+    return load(sets);
+  } catch (const common::OverrideError& error) {
+    throw common::OverrideError(asTyped(error.what(), overrides));
+  }
+}
+
+}  // namespace
+
+RunArguments parseRunArguments(const std::vector<std::string>& args) {
+  RunArguments a;
+  const auto options = runOptions(a);
+  po::positional_options_description positional;
+  positional.add("scenario", 1);
+  po::variables_map vm;
+  po::store(po::command_line_parser(args).options(options).positional(positional).run(), vm);
+  po::notify(vm);
+  a.seed = optionText(vm, "seed");
+  a.nodes = optionText(vm, "nodes");
+  a.ticks = optionText(vm, "ticks");
+  a.overwrite = vm.count("overwrite") != 0;
+  a.in_process = vm.count("in-process") != 0;
+  a.quiet = vm.count("quiet") != 0;
+  a.plot = vm.count("no-plot") == 0;
+  a.help = vm.count("help") != 0;
+  return a;
+}
+
+std::string runHelp() {
+  RunArguments unused;
+  std::ostringstream out;
+  out << kRunUsage << runOptions(unused) << "\n";
+  return out.str();
+}
+
+std::optional<std::string> checkRunOptions(const RunArguments& a) {
+  std::ostringstream why;
+  for (const auto& [name, value] : {std::pair{"--timeout", a.timeout_s}, std::pair{"--stall-timeout", a.stall_timeout_s}})
+    if (!std::isfinite(value) || value <= 0 || value > 604800) {
+      why << name << " must be in (0, 604800] seconds, got " << value;
+      return why.str();
+    }
+  if (a.plot_format != "png" && a.plot_format != "svg") return "--plot-format must be png or svg, got '" + a.plot_format + "'";
+  const double interval = a.tick_interval_s;
+  if (!std::isfinite(interval) || interval < 0 || interval > 3600 || interval >= a.stall_timeout_s) {
+    why << "--tick-interval must be in [0, 3600] seconds and below --stall-timeout, got " << interval;
+    return why.str();
+  }
+  return std::nullopt;
+}
+
+std::vector<RunOverride> runOverrides(const RunArguments& a) {
+  std::vector<RunOverride> overrides;
+  for (const auto& text : a.sets) {
+    auto set = common::parseOverride(text);
+    overrides.push_back({set, set.text()});
+  }
+  for (const auto& [option, key, value] : {std::tuple{"--seed", "run.seed", a.seed},
+                                           std::tuple{"--nodes", "run.node_processes", a.nodes},
+                                           std::tuple{"--ticks", "run.ticks", a.ticks}})
+    if (value) overrides.push_back({{key, *value}, std::string(option) + " " + *value});
+  return overrides;
+}
+
+common::Scenario applyRunOverrides(const std::string& yaml_text, const std::string& name_for_errors,
+                                   const RunArguments& args, const common::ScenarioCheck& check) {
+  return namingOptions(args, [&](const auto& sets) { return common::applyOverrides(yaml_text, name_for_errors, sets, check); });
+}
+
+common::Scenario loadRunScenario(const RunArguments& args, const common::ScenarioCheck& check) {
+  return namingOptions(args, [&](const auto& sets) { return common::loadScenario(args.scenario_path, sets, check); });
+}
+
+}  // namespace wsn::launcher

@@ -1,0 +1,67 @@
+// The options of `wsntrack run` and the scenario they make: --set, --seed, --nodes and --ticks
+// are all overrides of the scenario file, checked once by its loader.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/scenario.hpp"
+
+namespace wsn::launcher {
+
+/// The help of --set, shared by run and validate.
+inline constexpr const char* kSetHelp =
+    "set a scenario value, KEY=VALUE (repeatable): KEY is a dotted path into the scenario YAML, list "
+    "items as name[i] (network.pte=0.4, tracker.engine=gnn, tracker.params.max_speed=4, run.ticks=20, "
+    "supernodes[0].x=30); VALUE is one YAML scalar; the result is checked like a file";
+
+/// `wsntrack run`'s options as given.
+struct RunArguments {
+  std::string scenario_path;
+  std::string out_dir;  ///< empty: defaultRunDirectory()
+  bool overwrite = false;
+  std::vector<std::string> sets;     ///< --set KEY=VALUE, in order
+  std::optional<std::string> seed;   ///< --seed, as typed
+  std::optional<std::string> nodes;  ///< --nodes, as typed
+  std::optional<std::string> ticks;  ///< --ticks, as typed
+  bool in_process = false;
+  double timeout_s = 1800;
+  double stall_timeout_s = 60;
+  double tick_interval_s = 0;
+  bool quiet = false;
+  bool plot = true;
+  std::string plot_format = "png";
+  bool help = false;  ///< --help: show runHelp()
+};
+
+/// Parses the arguments after `wsntrack run`; throws boost::program_options::error for a malformed
+/// option (unknown, missing its value, not a number).
+RunArguments parseRunArguments(const std::vector<std::string>& args);
+
+/// The text of `wsntrack run --help`.
+std::string runHelp();
+
+/// The first problem of the options that are not scenario values (timeouts, pacing, plot format),
+/// as "--option must be ..., got ..."; empty when there is none.
+std::optional<std::string> checkRunOptions(const RunArguments& args);
+
+/// One scenario override and the option the user wrote for it.
+struct RunOverride {
+  common::ScenarioOverride set;
+  std::string as_typed;  ///< "--set KEY=VALUE", or "--nodes 4" for the run.node_processes=4 it stands for
+};
+
+/// The overrides of a run in the order they apply: every --set, then --seed, --nodes and --ticks
+/// as run.seed, run.node_processes and run.ticks. Throws common::OverrideError for a --set without '='.
+std::vector<RunOverride> runOverrides(const RunArguments& args);
+
+/// applyOverrides() of the scenario text with the run's overrides; an OverrideError names the
+/// options as the user typed them: "--nodes 0: 'run.node_processes' must be in [1, 64], got 0".
+common::Scenario applyRunOverrides(const std::string& yaml_text, const std::string& name_for_errors,
+                                   const RunArguments& args, const common::ScenarioCheck& check = {});
+
+/// The same from args.scenario_path (common::loadScenario, with its messages for a missing file).
+common::Scenario loadRunScenario(const RunArguments& args, const common::ScenarioCheck& check = {});
+
+}  // namespace wsn::launcher

@@ -1,0 +1,117 @@
+#include "launcher/run_summary.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace wsn::launcher {
+namespace {
+
+/// The number at `pointer` (e.g. "/metrics/track_ids"); empty when it is absent or not a number.
+std::optional<double> numberAt(const nlohmann::json& json, const char* pointer) {
+  const nlohmann::json::json_pointer where(pointer);
+  if (!json.contains(where) || !json.at(where).is_number()) return std::nullopt;
+  return json.at(where).get<double>();
+}
+
+nlohmann::json parseOrNull(const std::string& text) {
+  auto json = nlohmann::json::parse(text, nullptr, false);
+  return json.is_object() ? json : nlohmann::json();
+}
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string show(std::optional<double> value, int decimals) {
+  if (!value) return "n/a";
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, *value);
+  return buffer;
+}
+
+double mib(long kb) { return static_cast<double>(kb) / 1024.0; }
+
+/// One "  name      value" line, the values in one column.
+void row(std::ostringstream& out, const std::string& name, const std::string& value) {
+  out << "  " << name << std::string(name.size() < 26 ? 26 - name.size() : 1, ' ') << value << "\n";
+}
+
+}  // namespace
+
+RunFigures parseRunFigures(const std::string& metrics_json, const std::string& network_json) {
+  const auto metrics = parseOrNull(metrics_json);
+  const auto network = parseOrNull(network_json);
+  RunFigures f;
+  f.truth_targets = numberAt(metrics, "/truth_targets");
+  f.track_ids = numberAt(metrics, "/metrics/track_ids");
+  f.eps_k = numberAt(metrics, "/eps_k");
+  f.eps_x = numberAt(metrics, "/eps_x");
+  f.ospa_mean = numberAt(metrics, "/metrics/ospa_mean");
+  f.dropped_stale = numberAt(metrics, "/observations_dropped_stale");
+  f.wall_s = numberAt(metrics, "/timing/wall_s");
+  f.ticks_per_s = numberAt(metrics, "/timing/ticks_per_s");
+  f.reports_sent = numberAt(network, "/sent");
+  f.reports_lost = numberAt(network, "/lost");
+  f.reports_delayed = numberAt(network, "/delayed");
+  return f;
+}
+
+RunFigures readRunFigures(const std::string& run_dir) {
+  return parseRunFigures(readFile(run_dir + "/metrics.json"), readFile(run_dir + "/network.json"));
+}
+
+std::string runStartLine(const common::Scenario& scenario, int domain, bool in_process) {
+  std::ostringstream out;
+  out << "wsntrack: " << scenario.name << " (seed " << scenario.run.seed << ", " << scenario.run.ticks << " ticks) on "
+      << scenario.run.node_processes << " node tiles, " << scenario.supernodes.size() << " supernodes, engine "
+      << scenario.tracker.engine << ", domain " << domain << (in_process ? ", in-process" : "") << "\n";
+  return out.str();
+}
+
+std::string runSummary(const std::string& run_dir, const RunFigures& f, const ClusterResult& result, bool in_process,
+                       const std::optional<PlotOutcome>& plots) {
+  std::ostringstream out;
+  out << "\nRun directory: " << run_dir << "\n";
+  row(out, "mode", in_process ? "in-process (threads over DDS)" : "multi-process over DDS");
+  row(out, "targets (truth)", show(f.truth_targets, 0));
+  row(out, "tracks (global ids)", show(f.track_ids, 0));
+  row(out, "eps_K  (Oh eq. 9)", show(f.eps_k, 4));
+  row(out, "eps_X  (Oh eq. 10)", show(f.eps_x, 4));
+  row(out, "OSPA (mean)", show(f.ospa_mean, 4));
+  row(out, "reports sent", show(f.reports_sent, 0));
+  row(out, "reports lost", show(f.reports_lost, 0));
+  row(out, "reports delayed", show(f.reports_delayed, 0));
+  row(out, "dropped (older than ws)", show(f.dropped_stale, 0));
+  row(out, "wall time (tick loop)", show(f.wall_s, 3) + " s");
+  row(out, "ticks/s (tick loop)", show(f.ticks_per_s, 1));
+  row(out, "wall time (all)", show(result.wall_s, 3) + " s");
+  if (in_process) {
+    row(out, "peak RSS (whole process)", show(mib(result.in_process_peak_rss_kb), 1) + " MiB");
+  } else {
+    out << "  peak RSS per process (MiB):";
+    for (const auto& outcome : result.outcomes) out << " " << outcome.name << " " << show(mib(outcome.peak_rss_kb), 1) << ";";
+    out << "\n";
+  }
+  if (plots) {
+    const bool drawn = plots->status == PlotOutcome::Status::kDrawn;
+    row(out, "plots", drawn ? plots->message + " (" + show(plots->seconds, 1) + " s)" : "none: " + plots->message);
+  }
+  return out.str();
+}
+
+std::string runFailure(const ClusterResult& result) {
+  std::ostringstream out;
+  out << "wsntrack run: FAILED: " << result.failure << "\n";
+  for (const auto& outcome : result.outcomes)
+    if (outcome.exit_code != 0)
+      out << "  " << outcome.name << ": exit " << outcome.exit_code
+          << (outcome.message.empty() ? "" : " (" + outcome.message + ")") << "\n";
+  return out.str();
+}
+
+}  // namespace wsn::launcher

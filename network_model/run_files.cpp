@@ -1,0 +1,76 @@
+#include "network_model/run_files.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include "common/output.hpp"
+
+namespace wsn::network_model {
+namespace {
+
+// Insertion order is the file's order: settings, counts, ratios, then the breakdowns.
+using Json = nlohmann::ordered_json;
+
+void putCounts(Json& json, const NetworkCounts& c) {
+  json["sent"] = c.sent;
+  json["lost"] = c.lost;
+  json["unreachable"] = c.unreachable;
+  json["delivered"] = c.delivered;
+  json["delayed"] = c.delayed;
+  json["beyond_window"] = c.beyond_window;
+  json["after_end"] = c.after_end;
+}
+
+double ratio(std::uint64_t part, std::uint64_t whole) {
+  return whole == 0 ? 0.0 : static_cast<double>(part) / static_cast<double>(whole);
+}
+
+}  // namespace
+
+std::string observationRow(const ReportFate& fate) {
+  const auto& r = fate.report;
+  const char* what = fate.hops < 0 ? "unreachable" : fate.lost ? "lost" : fate.tick_delivered < 0 ? "after_end" : "delivered";
+  return std::to_string(r.tick) + "," + (fate.tick_delivered < 0 ? std::string() : std::to_string(fate.tick_delivered)) +
+         "," + std::to_string(r.sensor) + "," + std::to_string(fate.supernode) + "," + std::to_string(fate.hops) + "," +
+         (fate.delay < 0 ? std::string() : std::to_string(fate.delay)) + "," + common::fixed6(r.x) + "," +
+         common::fixed6(r.y) + "," + std::to_string(r.target) + "," + what;
+}
+
+NetworkReport networkReport(const common::Scenario& scenario, const Topology& topology, const Router& router) {
+  NetworkReport report;
+  report.communication_range = scenario.network.communication_range;
+  report.pte = scenario.network.pte;
+  report.pde = scenario.network.pde;
+  report.mean_hops = topology.meanHops();
+  report.max_hops = topology.maxHops();
+  report.total = router.counts();
+  for (std::uint32_t j = 0; j < scenario.supernodes.size(); ++j) report.per_supernode.push_back(router.counts(j));
+  return report;
+}
+
+std::string networkJson(const NetworkReport& report) {
+  const auto& c = report.total;
+  // A report is "received" when it is not lost, as in Oh §VII-E; one due after the last tick is
+  // received late, so it counts as delayed too (its d > 0 by construction).
+  const std::uint64_t received = c.delivered + c.after_end;
+  Json json;
+  json["communication_range"] = report.communication_range;
+  json["pte"] = report.pte;
+  json["pde"] = report.pde;
+  json["mean_hops"] = report.mean_hops;
+  json["max_hops"] = report.max_hops;
+  putCounts(json, c);
+  json["rejected"] = c.rejected;
+  json["lost_to_total"] = ratio(c.lost + c.unreachable, c.sent);
+  json["delayed_to_received"] = ratio(c.delayed + c.after_end, received);
+  json["supernodes"] = Json::array();
+  for (std::size_t j = 0; j < report.per_supernode.size(); ++j) {
+    Json group;
+    group["supernode"] = j;
+    putCounts(group, report.per_supernode[j]);
+    json["supernodes"].push_back(std::move(group));
+  }
+  json["paper_oh_vii_e"] = {{"reports", 1174}, {"lost_reports", 319}, {"received_reports", 855}, {"delayed_reports", 449}};
+  return json.dump(2) + "\n";
+}
+
+}  // namespace wsn::network_model

@@ -1,0 +1,40 @@
+// The network model's files in a run directory (observations.csv rows and network.json), as pure
+// functions of what the router decided: no DDS, so that the formats are unit-tested on their own.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/scenario.hpp"
+#include "network_model/router.hpp"
+#include "network_model/topology.hpp"
+
+namespace wsn::network_model {
+
+/// The header of observations.csv: one row per report, in the order the router decided them.
+inline constexpr const char* kObservationsHeader =
+    "tick_generated,tick_delivered,sensor,supernode,hops,delay,x,y,target,fate";
+
+/// One observations.csv row; its fate reads delivered, lost, unreachable or after_end.
+std::string observationRow(const ReportFate& fate);
+
+/// What network.json records of a run: the model's settings and what became of the reports.
+struct NetworkReport {
+  double communication_range = 0;
+  double pte = 0;
+  double pde = 0;
+  double mean_hops = 0;
+  std::int32_t max_hops = 0;
+  NetworkCounts total;
+  std::vector<NetworkCounts> per_supernode;  ///< index = supernode id
+};
+
+/// The report of a run once the router has seen its last tick.
+NetworkReport networkReport(const common::Scenario& scenario, const Topology& topology, const Router& router);
+
+/// network.json: the report, its loss and delay ratios as Oh §VII-E counts them, and the paper's
+/// §VII-E counts beside them for comparison.
+std::string networkJson(const NetworkReport& report);
+
+}  // namespace wsn::network_model

@@ -1,0 +1,124 @@
+// What `wsntrack run` prints (launcher/run_summary.cpp), from hand-made run files and results.
+#include "launcher/run_summary.hpp"
+
+#include <catch2/catch.hpp>
+
+namespace wsn::launcher {
+namespace {
+
+/// The keys the summary reads, where the aggregator and the network model put them.
+constexpr const char* kMetrics = R"({
+  "scenario": "s", "truth_targets": 5, "eps_k": 0.123456, "eps_x": 1.5, "ospa": 2.25,
+  "observations_dropped_stale": 3,
+  "metrics": {"eps_k": 9, "ospa_mean": 2.25, "track_ids": 7},
+  "timing": {"wall_s": 1.23456, "ticks_per_s": 80.04}
+})";
+constexpr const char* kNetwork = R"({
+  "communication_range": 11.6, "sent": 1174, "lost": 319, "delayed": 449,
+  "supernodes": [{"supernode": 0, "sent": 1, "lost": 2, "delayed": 3}]
+})";
+
+ClusterResult processes() {
+  ClusterResult result;
+  result.ok = true;
+  result.wall_s = 4.5;
+  result.outcomes = {{"node 0", 0, "", "", 10240}, {"aggregator 0", 0, "", "", 20480 + 512}};
+  return result;
+}
+
+TEST_CASE("the figures come from their own keys in metrics.json and network.json", "[launcher][run_summary]") {
+  const auto f = parseRunFigures(kMetrics, kNetwork);
+  CHECK(f.truth_targets == 5);
+  CHECK(f.eps_k == 0.123456);  // the headline value, not the one under "metrics"
+  CHECK(f.eps_x == 1.5);
+  CHECK(f.ospa_mean == 2.25);
+  CHECK(f.track_ids == 7);
+  CHECK(f.dropped_stale == 3);
+  CHECK(f.wall_s == 1.23456);
+  CHECK(f.ticks_per_s == 80.04);
+  CHECK(f.reports_sent == 1174);  // the total, not the supernode's
+  CHECK(f.reports_lost == 319);
+  CHECK(f.reports_delayed == 449);
+}
+
+TEST_CASE("missing files, keys and undefined metrics give no figure", "[launcher][run_summary]") {
+  const auto none = parseRunFigures("", "not json");
+  CHECK_FALSE(none.truth_targets);
+  CHECK_FALSE(none.reports_sent);
+  // eps_x is written as null when no track was ever matched.
+  const auto f = parseRunFigures(R"({"eps_k": 0.5, "eps_x": null, "metrics": 3})", "[]");
+  CHECK(f.eps_k == 0.5);
+  CHECK_FALSE(f.eps_x);
+  CHECK_FALSE(f.track_ids);  // "metrics" is not an object here
+  CHECK_FALSE(f.reports_sent);
+}
+
+TEST_CASE("the summary of a multi-process run lists figures and each process's memory", "[launcher][run_summary]") {
+  PlotOutcome plots;
+  plots.status = PlotOutcome::Status::kDrawn;
+  plots.message = "d/plots/{tracks,cardinality,ospa}.png";
+  plots.seconds = 1.26;
+  // Values at 26 columns; eps with 4 decimals, times with 3, ticks/s with 1; RSS in MiB:
+  // 10240 kB = 10.0, 20992 kB = 20.5.
+  CHECK(runSummary("d", parseRunFigures(kMetrics, kNetwork), processes(), false, plots) ==
+        "\nRun directory: d\n"
+        "  mode                      multi-process over DDS\n"
+        "  targets (truth)           5\n"
+        "  tracks (global ids)       7\n"
+        "  eps_K  (Oh eq. 9)         0.1235\n"
+        "  eps_X  (Oh eq. 10)        1.5000\n"
+        "  OSPA (mean)               2.2500\n"
+        "  reports sent              1174\n"
+        "  reports lost              319\n"
+        "  reports delayed           449\n"
+        "  dropped (older than ws)   3\n"
+        "  wall time (tick loop)     1.235 s\n"
+        "  ticks/s (tick loop)       80.0\n"
+        "  wall time (all)           4.500 s\n"
+        "  peak RSS per process (MiB): node 0 10.0; aggregator 0 20.5;\n"
+        "  plots                     d/plots/{tracks,cardinality,ospa}.png (1.3 s)\n");
+}
+
+TEST_CASE("the summary of an in-process run without figures says n/a", "[launcher][run_summary]") {
+  auto result = processes();
+  result.in_process_peak_rss_kb = 3 * 1024;
+  PlotOutcome skipped;
+  skipped.message = "matplotlib is not available";
+  const auto text = runSummary("d", RunFigures{}, result, true, skipped);
+  CHECK(text.find("  mode                      in-process (threads over DDS)\n") != std::string::npos);
+  CHECK(text.find("  eps_K  (Oh eq. 9)         n/a\n") != std::string::npos);
+  CHECK(text.find("  wall time (tick loop)     n/a s\n") != std::string::npos);
+  CHECK(text.find("  peak RSS (whole process)  3.0 MiB\n") != std::string::npos);
+  CHECK(text.find("per process") == std::string::npos);
+  CHECK(text.find("  plots                     none: matplotlib is not available\n") != std::string::npos);
+  // --no-plot: no plots line at all.
+  CHECK(runSummary("d", RunFigures{}, result, true, std::nullopt).find("plots") == std::string::npos);
+}
+
+TEST_CASE("a failed run names the failure and every process that exited non-zero", "[launcher][run_summary]") {
+  auto result = processes();
+  result.ok = false;
+  result.failure = "supernode 1 exited with 3";
+  result.outcomes.push_back({"supernode 1", 3, "bad engine", "", 0});
+  result.outcomes.push_back({"network 0", 143, "", "", 0});
+  CHECK(runFailure(result) ==
+        "wsntrack run: FAILED: supernode 1 exited with 3\n"
+        "  supernode 1: exit 3 (bad engine)\n"
+        "  network 0: exit 143\n");
+}
+
+TEST_CASE("the start line says what runs where", "[launcher][run_summary]") {
+  common::Scenario s;
+  s.name = "oh";
+  s.run.seed = 3;
+  s.run.ticks = 20;
+  s.run.node_processes = 4;
+  s.supernodes.resize(2);
+  s.tracker.engine = "gnn";
+  CHECK(runStartLine(s, 17, false) == "wsntrack: oh (seed 3, 20 ticks) on 4 node tiles, 2 supernodes, engine gnn, domain 17\n");
+  CHECK(runStartLine(s, 17, true) ==
+        "wsntrack: oh (seed 3, 20 ticks) on 4 node tiles, 2 supernodes, engine gnn, domain 17, in-process\n");
+}
+
+}  // namespace
+}  // namespace wsn::launcher
