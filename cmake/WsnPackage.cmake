@@ -37,8 +37,8 @@ else()
       "python3, libboost-program-options1.74.0 (>= 1.74.0+ds1), libc6 (>= 2.35), libddsc0debian (>= 0.8.0), \
 libgcc-s1 (>= 3.0), libssl3 (>= 3.0.0), libstdc++6 (>= 11), libyaml-cpp0.7 (>= 0.7.0)")
 endif()
-# Plots (plot_run.py) need matplotlib, the run loader numpy; a run works without either.
-set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3-matplotlib, python3-numpy")
+# Plots (plot_run.py) need matplotlib, the run loader numpy, both PyYAML; a run works without them.
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3-matplotlib, python3-numpy, python3-yaml")
 
 # A source package of the repository, should anyone make one, without build trees and runs.
 set(CPACK_SOURCE_GENERATOR TGZ)

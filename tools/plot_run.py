@@ -2,9 +2,9 @@
 """Plots of one wsntrack run directory: tracks against the truth on the sensor field, the number
 of tracks K and of targets K* over time, and OSPA over time.
 
-Needs Debian's python3-matplotlib, hence /usr/bin/python3 rather than whatever python3 is first
-on PATH. Everything else is the standard library; the run's scenario.yaml is read by a small
-reader of the subset of YAML that wsntrack writes, so PyYAML is not needed.
+Needs Debian's python3-matplotlib and python3-yaml (PyYAML, for the run's scenario.yaml), hence
+/usr/bin/python3 rather than whatever python3 is first on PATH. Everything else is the standard
+library.
 """
 
 import argparse
@@ -16,8 +16,17 @@ import sys
 import time
 from pathlib import Path
 
+# Imported here rather than when scenario.yaml is read: under 'wsntrack run' (--wait) the import
+# then overlaps the run. Without it the script still starts, to report it as a missing tool.
+try:
+    import yaml
+    _YAML_IMPORT_ERROR = None
+except ImportError as error:
+    yaml = None
+    _YAML_IMPORT_ERROR = str(error)
+
 EXIT_BAD_INPUT = 2
-EXIT_NO_MATPLOTLIB = 3
+EXIT_TOOL_MISSING = 3
 
 DESCRIPTION = """\
 Draws the plots of a wsntrack run directory (what 'wsntrack run' does after every run unless
@@ -47,8 +56,8 @@ computed from scenario.yaml).
 
 Exit status: 0 on success; 1 when the video encoder (ffmpeg) fails; 2 for a bad command line, a
 missing or malformed input file (reported as FILE:LINE: what was expected) or an output that cannot
-be written; 3 when a tool is missing: matplotlib (or numpy or Pillow for --animate) for this python,
-or ffmpeg on PATH for an MP4.
+be written; 3 when a tool is missing: PyYAML or matplotlib (or numpy or Pillow for --animate) for
+this python, or ffmpeg on PATH for an MP4.
 """
 
 
@@ -56,190 +65,76 @@ class InputError(Exception):
     """A missing or malformed input file: reported as one line, exit status 2."""
 
 
+class ToolMissing(ImportError):
+    """A Python package this script needs is not installed: reported as one line, exit status 3."""
+
+
 # ---------------------------------------------------------------------------------------------
-# scenario.yaml: wsntrack writes block mappings, block lists of flow mappings, flow mappings and
-# plain or double-quoted scalars. Anything outside that subset is reported, not guessed at.
+# scenario.yaml, read by PyYAML's safe loader. Its nodes keep their lines, so that a value read
+# later can still be reported as FILE:LINE.
 
 
-def _strip_comment(line):
-    quoted = False
-    escaped = False
-    for i, c in enumerate(line):
-        if escaped:
-            escaped = False
-        elif c == "\\" and quoted:
-            escaped = True
-        elif c == '"':
-            quoted = not quoted
-        elif c == "#" and not quoted and (i == 0 or line[i - 1] in " \t"):
-            return line[:i]
-    return line
+def _yaml_error(error, path, text):
+    """FILE:LINE: what PyYAML expected, and where the construct it was reading began."""
+    if isinstance(error, yaml.MarkedYAMLError) and (error.problem_mark or error.context_mark):
+        mark = error.problem_mark or error.context_mark
+        what = error.problem or error.context
+        if error.problem and error.problem.startswith("but ") and error.context:
+            what = f"{error.context}, {error.problem}"  # one sentence that PyYAML splits in two
+        elif error.problem and error.context and error.context_mark:
+            what += f" ({error.context} at line {error.context_mark.line + 1})"
+        return f"{path}:{mark.line + 1}: {what}"
+    if isinstance(error, yaml.reader.ReaderError):  # a character YAML does not allow
+        line = text.count("\n", 0, error.position) + 1
+        return f"{path}:{line}: {error.reason} (character #x{error.character:04x})"
+    return f"{path}: malformed YAML ({error})"
 
 
-def _split_flow(text, where):
-    """Splits the inside of {...} or [...] at top-level commas."""
-    items, depth, quoted, escaped, start = [], 0, False, False, 0
-    for i, c in enumerate(text):
-        if escaped:
-            escaped = False
-        elif quoted:
-            if c == "\\":
-                escaped = True
-            elif c == '"':
-                quoted = False
-        elif c == '"':
-            quoted = True
-        elif c in "[{":
-            depth += 1
-        elif c in "]}":
-            depth -= 1
-            if depth < 0:
-                raise InputError(f"{where}: unbalanced '{c}'")
-        elif c == "," and depth == 0:
-            items.append(text[start:i].strip())
-            start = i + 1
-    if quoted or depth != 0:
-        raise InputError(f"{where}: unterminated flow collection or string")
-    last = text[start:].strip()
-    if last or items:
-        items.append(last)
-    return items
+def _note_lines(loader, node, keys, where, open_nodes):
+    """Records in `where` the line of every key and list item under `node`; an alias of an
+    enclosing node (a recursive document) is not followed again."""
+    if id(node) in open_nodes:
+        return
+    open_nodes.add(id(node))
+    if isinstance(node, yaml.MappingNode):
+        # Later entries overwrite earlier ones, as in the constructed mapping (merged keys come
+        # first, and a repeated key wins).
+        for key_node, value_node in node.value:
+            key = loader.construct_object(key_node, deep=True)
+            where[keys + (key,)] = key_node.start_mark.line + 1
+            _note_lines(loader, value_node, keys + (key,), where, open_nodes)
+    elif isinstance(node, yaml.SequenceNode):
+        for index, item in enumerate(node.value):
+            where[keys + (index,)] = item.start_mark.line + 1
+            _note_lines(loader, item, keys + (index,), where, open_nodes)
+    open_nodes.discard(id(node))
 
 
-def _split_key(text, where):
-    """'key: value' -> (key, value or ''); the key may be double-quoted."""
-    if text.startswith('"'):
-        end = 1
-        while end < len(text) and (text[end] != '"' or text[end - 1] == "\\"):
-            end += 1
-        if end >= len(text) or not text[end + 1:].startswith(":"):
-            raise InputError(f"{where}: expected '\"key\": value', got '{text}'")
-        return _scalar(text[: end + 1], where), text[end + 2:].strip()
-    colon = text.find(": ")
-    if colon < 0 and text.endswith(":"):
-        colon = len(text) - 1
-    if colon <= 0:
-        raise InputError(f"{where}: expected 'key: value', got '{text}'")
-    return text[:colon].strip(), text[colon + 1:].strip()
-
-
-def _scalar(text, where):
-    if text.startswith("{"):
-        if not text.endswith("}"):
-            raise InputError(f"{where}: unterminated flow mapping '{text}'")
-        result = {}
-        for item in _split_flow(text[1:-1], where):
-            key, value = _split_key(item, where)
-            result[key] = _scalar(value, where)
-        return result
-    if text.startswith("["):
-        if not text.endswith("]"):
-            raise InputError(f"{where}: unterminated flow list '{text}'")
-        return [_scalar(item, where) for item in _split_flow(text[1:-1], where)]
-    if text.startswith('"'):
-        if len(text) < 2 or not text.endswith('"'):
-            raise InputError(f"{where}: unterminated string {text}")
-        body = text[1:-1].replace("\\x", "\\u00")
-        try:
-            return json.loads('"' + body + '"')
-        except ValueError:
-            raise InputError(f"{where}: malformed string {text}") from None
-    if text in ("", "~", "null", "Null", "NULL"):
-        return None
-    if text in ("true", "True", "TRUE"):
-        return True
-    if text in ("false", "False", "FALSE"):
-        return False
-    for kind in (int, float):
-        try:
-            return kind(text)
-        except ValueError:
-            pass
-    lowered = text.lower()
-    if lowered in (".inf", "+.inf"):
-        return math.inf
-    if lowered == "-.inf":
-        return -math.inf
-    if lowered == ".nan":
-        return math.nan
-    return text
-
-
-def parse_yaml_subset(text, path, where=None):
-    """The YAML document in `text`; when `where` is a dict it receives the line of every key and
-    list item, keyed by its path (a tuple of keys and indices), for messages about values."""
-    where = {} if where is None else where
-    lines = []
-    for number, raw in enumerate(text.splitlines(), 1):
-        content = _strip_comment(raw).rstrip()
-        if not content.strip() or content.strip() == "---":
-            continue
-        body = content.lstrip(" ")
-        if body.startswith("\t"):
-            raise InputError(f"{path}:{number}: tabs are not allowed for indentation")
-        lines.append((number, len(content) - len(body), body))
-    position = 0
-
-    def note(keys, number, value):
-        where[keys] = number
-        if isinstance(value, dict):
-            for key, item in value.items():
-                note(keys + (key,), number, item)
-        elif isinstance(value, list):
-            for index, item in enumerate(value):
-                note(keys + (index,), number, item)
-
-    def block(indent, keys):
-        nonlocal position
-        number, _, body = lines[position]
-        if body == "-" or body.startswith("- "):
-            items = []
-            while position < len(lines) and lines[position][1] == indent and lines[position][2].startswith("-"):
-                number, _, body = lines[position]
-                if body != "-" and not body.startswith("- "):
-                    raise InputError(f"{path}:{number}: expected '- item', got '{body}'")
-                position += 1
-                rest = body[1:].strip()
-                item_keys = keys + (len(items),)
-                where[item_keys] = number
-                if rest:
-                    items.append(_scalar(rest, f"{path}:{number}"))
-                    note(item_keys, number, items[-1])
-                elif position < len(lines) and lines[position][1] > indent:
-                    items.append(block(lines[position][1], item_keys))
-                else:
-                    items.append(None)
-            return items
-        mapping = {}
-        while position < len(lines) and lines[position][1] == indent:
-            number, _, body = lines[position]
-            if body.startswith("- "):
-                raise InputError(f"{path}:{number}: expected 'key: value', got a list item")
-            key, rest = _split_key(body, f"{path}:{number}")
-            if key in mapping:
-                raise InputError(f"{path}:{number}: duplicate key '{key}'")
-            position += 1
-            where[keys + (key,)] = number
-            if rest:
-                mapping[key] = _scalar(rest, f"{path}:{number}")
-                note(keys + (key,), number, mapping[key])
-            elif position < len(lines) and lines[position][1] > indent:
-                mapping[key] = block(lines[position][1], keys + (key,))
-            elif position < len(lines) and lines[position][1] == indent and lines[position][2].startswith("- "):
-                mapping[key] = block(indent, keys + (key,))  # a list may sit at its key's own indentation
-            else:
-                mapping[key] = None
-        return mapping
-
-    if not lines:
-        raise InputError(f"{path}:1: empty file, expected a scenario mapping")
-    result = block(lines[0][1], ())
-    if position < len(lines):
-        number, _, body = lines[position]
-        raise InputError(f"{path}:{number}: unexpected indentation of '{body}'")
-    if not isinstance(result, dict):
-        raise InputError(f"{path}:{lines[0][0]}: expected a mapping at the top level")
-    return result
+def parse_yaml(text, path, where=None):
+    """The YAML mapping in `text` (read from `path`), as yaml.safe_load reads it. When `where` is a
+    dict it receives the line of every key and list item, keyed by its path (a tuple of keys and
+    indices), for messages about values. Raises InputError (FILE:LINE: what was expected) for
+    malformed YAML or a document that is not a mapping, and ToolMissing without PyYAML."""
+    if yaml is None:
+        raise ToolMissing(f"PyYAML is not available to {sys.executable} ({_YAML_IMPORT_ERROR}); "
+                          "on Debian: apt-get install python3-yaml")
+    loader = None
+    try:
+        loader = yaml.SafeLoader(text)  # inside the try: it rejects characters YAML does not allow
+        node = loader.get_single_node()
+        if node is None:
+            raise InputError(f"{path}:1: empty file, expected a scenario mapping")
+        data = loader.construct_document(node)
+        if not isinstance(data, dict):
+            raise InputError(f"{path}:{node.start_mark.line + 1}: expected a mapping at the top level")
+        if where is not None:
+            _note_lines(loader, node, (), where, set())
+    except yaml.YAMLError as error:
+        raise InputError(_yaml_error(error, path, text)) from None
+    finally:
+        if loader is not None:
+            loader.dispose()
+    return data
 
 
 # ---------------------------------------------------------------------------------------------
@@ -409,7 +304,7 @@ def read_scenario(run_dir):
     except (OSError, UnicodeDecodeError) as error:
         raise InputError(f"{path}: cannot read ({error})") from None
     lines = {}
-    data = parse_yaml_subset(text, path, lines)
+    data = parse_yaml(text, path, lines)
 
     def at(*keys):
         """FILE:LINE of a value, or of the nearest enclosing key that exists."""
@@ -1466,13 +1361,16 @@ def main(argv):
     except InputError as error:
         print(f"plot_run.py: {error}", file=sys.stderr)
         return EXIT_BAD_INPUT
+    except ToolMissing as error:
+        print(f"plot_run.py: {error}", file=sys.stderr)
+        return EXIT_TOOL_MISSING
 
     if not args.wait:
         matplotlib, import_error = load_matplotlib(args.dpi, warm_up=False)
     if matplotlib is None:
         print(f"plot_run.py: matplotlib is not available to {sys.executable} ({import_error}); "
               "on Debian: apt-get install python3-matplotlib", file=sys.stderr)
-        return EXIT_NO_MATPLOTLIB
+        return EXIT_TOOL_MISSING
 
     try:
         out_dir.mkdir(parents=True, exist_ok=True)
@@ -1538,12 +1436,15 @@ def animate_main(parser, args):
     except InputError as error:
         print(f"plot_run.py: {error}", file=sys.stderr)
         return EXIT_BAD_INPUT
+    except ToolMissing as error:
+        print(f"plot_run.py: {error}", file=sys.stderr)
+        return EXIT_TOOL_MISSING
 
     matplotlib, import_error = load_matplotlib(100, warm_up=False)
     if matplotlib is None:
         print(f"plot_run.py: matplotlib is not available to {sys.executable} ({import_error}); "
               "on Debian: apt-get install python3-matplotlib", file=sys.stderr)
-        return EXIT_NO_MATPLOTLIB
+        return EXIT_TOOL_MISSING
     try:
         import importlib
         for module in ("numpy", "PIL.Image"):  # matplotlib needs both too, but not at import
@@ -1551,7 +1452,7 @@ def animate_main(parser, args):
     except ImportError as error:
         print(f"plot_run.py: --animate needs numpy and Pillow, which {sys.executable} lacks ({error}); "
               "on Debian: apt-get install python3-numpy python3-pil", file=sys.stderr)
-        return EXIT_NO_MATPLOTLIB
+        return EXIT_TOOL_MISSING
     ffmpeg = None
     if chosen == "mp4":
         import shutil
@@ -1559,7 +1460,7 @@ def animate_main(parser, args):
         if ffmpeg is None:
             print("plot_run.py: an MP4 needs ffmpeg, which is not on PATH; on Debian: apt-get install ffmpeg "
                   "(or write a GIF or an HTML page: --animate-format gif|html)", file=sys.stderr)
-            return EXIT_NO_MATPLOTLIB
+            return EXIT_TOOL_MISSING
 
     # Written under a temporary name and renamed when complete: a failed or interrupted render
     # never leaves a truncated animation behind under the real name.

@@ -2,9 +2,10 @@
 """Loads a wsntrack run directory into numpy arrays for your own analysis, and into Stone Soup
 objects when the `stonesoup` package is importable.
 
-Needs numpy (Debian: python3-numpy, which /usr/bin/python3 has) and nothing else: the files are
-read by tools/plot_run.py's readers, scenario.yaml by its YAML-subset reader, so a missing or
-malformed file is reported as ``FILE:LINE: what was expected`` (a :class:`RunError`).
+Needs numpy and PyYAML (Debian: python3-numpy and python3-yaml, which /usr/bin/python3 has): the
+files are read by tools/plot_run.py's readers, scenario.yaml with PyYAML's safe loader, so a missing
+or malformed file is reported as ``FILE:LINE: what was expected`` (a :class:`RunError`). Without
+PyYAML, loading a run raises :class:`ToolMissing` (an ImportError) saying what to install.
 
 Example (from the repository root, after ``build/bin/wsntrack run scenarios/oh_quadrants.yaml
 --ticks 20 --out /tmp/demo``)::
@@ -53,15 +54,21 @@ except ImportError:
     _plot_run = _util.module_from_spec(_spec)
     _spec.loader.exec_module(_plot_run)
 
-__all__ = ["load_run", "Run", "RunError", "track_label", "covariance_matrix", "parse_yaml_subset",
+__all__ = ["load_run", "Run", "RunError", "ToolMissing", "track_label", "covariance_matrix", "parse_yaml",
            "TRUTH_DTYPE", "OBSERVATION_DTYPE", "TRACK_DTYPE", "SUPERNODE_TRACK_DTYPE", "STONESOUP_ORDER"]
 
 #: A missing or malformed file of the run directory; ``str(error)`` is ``FILE[:LINE]: what was expected``.
 RunError = _plot_run.InputError
 
-#: ``parse_yaml_subset(text, path)``: the small YAML reader (the subset wsntrack writes) that
-#: reads scenario.yaml; raises :class:`RunError` with FILE:LINE outside that subset.
-parse_yaml_subset = _plot_run.parse_yaml_subset
+#: PyYAML (python3-yaml) is not installed; an ImportError whose message says what to install.
+ToolMissing = _plot_run.ToolMissing
+
+#: ``parse_yaml(text, path)``: the mapping of a YAML document as ``yaml.safe_load`` reads it (how
+#: scenario.yaml is read); raises :class:`RunError` with FILE:LINE for malformed YAML.
+parse_yaml = _plot_run.parse_yaml
+#: The name of ``parse_yaml`` from when scenario.yaml was read by a hand-written YAML subset
+#: reader; kept so that analysis scripts that import it still run.
+parse_yaml_subset = parse_yaml
 
 #: ``track_label(id)``: the readable id ``S:N`` or ``gN`` of a numeric track id (ids are
 #: ``(S + 1) << 48 | N``; ids below ``1 << 48`` were minted by the aggregator).
@@ -192,7 +199,7 @@ class Run:
             text = scenario_path.read_text(encoding="utf-8")
         except (OSError, UnicodeDecodeError) as error:
             raise RunError(f"{scenario_path}: cannot read ({error})") from None
-        self.scenario = parse_yaml_subset(text, scenario_path)
+        self.scenario = parse_yaml(text, scenario_path)
         summary = _plot_run.read_scenario(p)  # checks what the arrays below depend on, with FILE:LINE
         self.ticks = summary["ticks"]
         self.supernodes = np.array(summary["supernodes"], dtype=float).reshape(-1, 2)
@@ -353,8 +360,9 @@ class Run:
 
 def load_run(path):
     """Loads the run directory `path` (see :class:`Run` for what it holds). Raises RunError
-    (``FILE[:LINE]: what was expected``) for a missing or malformed file; scenario.yaml,
-    truth.csv and tracks.csv must be there, the other files are None when absent.
+    (``FILE[:LINE]: what was expected``) for a missing or malformed file, ToolMissing without
+    PyYAML; scenario.yaml, truth.csv and tracks.csv must be there, the other files are None when
+    absent.
 
     >>> run = load_run("runs/demo")                                   # doctest: +SKIP
     >>> run.tracks_at(50)[["label", "x", "y"]]                        # doctest: +SKIP
@@ -363,7 +371,8 @@ def load_run(path):
 
 
 if __name__ == "__main__":
-    # tools/wsntrack_run.py RUN_DIR: a one-screen summary, or the error and exit status 2.
+    # tools/wsntrack_run.py RUN_DIR: a one-screen summary, or the error and exit status 2 (3 for a
+    # missing tool, as plot_run.py).
     if len(sys.argv) != 2 or sys.argv[1].startswith("-"):
         sys.exit("usage: wsntrack_run.py RUN_DIR   (loads a run directory and prints what it holds)")
     try:
@@ -371,6 +380,9 @@ if __name__ == "__main__":
     except RunError as error:
         print(f"wsntrack_run.py: {error}", file=sys.stderr)
         sys.exit(2)
+    except ToolMissing as error:
+        print(f"wsntrack_run.py: {error}", file=sys.stderr)
+        sys.exit(3)
     print(loaded)
     for name in ("truth", "observations", "tracks", "supernode_tracks", "metrics_per_tick"):
         value = getattr(loaded, name)

@@ -23,7 +23,7 @@ sys.path.insert(0, str(SOURCE / "tools"))
 sys.path.insert(0, str(SOURCE / "tests" / "tools"))
 import tiny_run  # noqa: E402
 import wsntrack_run  # noqa: E402
-from wsntrack_run import RunError, load_run, track_label  # noqa: E402
+from wsntrack_run import RunError, ToolMissing, load_run, track_label  # noqa: E402
 
 
 def fresh(name, old=False):
@@ -194,6 +194,62 @@ class Errors(unittest.TestCase):
                     r"e8/metrics_per_tick\.csv:1: expected a header .* \(no column 'tracks'\)")
         self.expect(self.edit("e9", "truth.csv", 3, "2,0,1.0"),
                     r"e9/truth\.csv:3: expected 6 fields \(tick,target,x,y,vx,vy\), got 3")
+
+    def test_malformed_yaml(self):
+        # PyYAML meets the unterminated flow mapping at the next line's ':' and names where it began.
+        line = tiny_run.SCENARIO.splitlines().index("  x_max: 20") + 1
+        self.expect(self.edit("y1", "scenario.yaml", line, "  x_max: {oops"),
+                    rf"y1/scenario\.yaml:{line + 1}: expected ',' or '\}}', but got ':' "
+                    rf"\(while parsing a flow mapping at line {line}\)")
+        line = tiny_run.SCENARIO.splitlines().index("  ticks: 10") + 1
+        self.expect(self.edit("y2", "scenario.yaml", line, "\tticks: 10"),
+                    rf"y2/scenario\.yaml:{line}: found character '\\t' that cannot start any token")
+        # Indented by one: 'ticks: 10 seed' reads as one plain scalar, up to the ':' of the next line.
+        self.expect(self.edit("y3", "scenario.yaml", line, " ticks: 10"),
+                    rf"y3/scenario\.yaml:{line + 1}: mapping values are not allowed here")
+        d = fresh("y4")
+        (d / "scenario.yaml").write_text("# nothing but a comment\n")
+        self.expect(d, r"y4/scenario\.yaml:1: empty file, expected a scenario mapping")
+        (d / "scenario.yaml").write_text("# a list\n- {x: 1}\n")
+        self.expect(d, r"y4/scenario\.yaml:2: expected a mapping at the top level")
+        (d / "scenario.yaml").write_text(tiny_run.SCENARIO + "---\nname: again\n")
+        self.expect(d, r"y4/scenario\.yaml:\d+: expected a single document in the stream, but found another document")
+
+    def test_yaml_lines_of_values(self):
+        # A value's FILE:LINE is the line that holds it, inside a flow mapping too.
+        lines = tiny_run.SCENARIO.splitlines()
+        line = lines.index("  - {x: 15, y: 5}") + 1
+        self.expect(self.edit("y5", "scenario.yaml", line, "  - {x: 15, y: north}"),
+                    rf"y5/scenario\.yaml:{line}: supernodes\[1\]\.y must be a number, got 'north'")
+        line = lines.index("  x_max: 20") + 1
+        self.expect(self.edit("y6", "scenario.yaml", line, "  x_max: -5"),
+                    rf"y6/scenario\.yaml:{lines.index('region:') + 1}: region must have x_min < x_max")
+        # A missing key is reported at the line of the nearest enclosing key.
+        self.expect(self.edit("y7", "scenario.yaml", line, "  z_max: 20"),
+                    rf"y7/scenario\.yaml:{lines.index('region:') + 1}: missing 'region\.x_max'")
+        where = {}
+        data = wsntrack_run.parse_yaml(tiny_run.SCENARIO, "s.yaml", where)
+        self.assertEqual(data["targets"]["scripted"][1], {"appear_tick": 4, "disappear_tick": 0, "x": 16.5, "y": 8,
+                                                          "vx": -1, "vy": 0})
+        self.assertEqual(where[("targets", "scripted", 1, "vx")], lines.index("    - {appear_tick: 4, disappear_tick: 0, "
+                                                                              "x: 16.5, y: 8, vx: -1, vy: 0}") + 1)
+        self.assertEqual(where[("run", "ticks")], lines.index("  ticks: 10") + 1)
+        self.assertIs(wsntrack_run.parse_yaml_subset, wsntrack_run.parse_yaml)  # the old name still works
+
+    def test_without_pyyaml(self):
+        # A python without PyYAML, simulated by a package of that name that cannot be imported: one
+        # line saying what to install and exit status 3, like plot_run.py without matplotlib.
+        import subprocess
+        fake = WORK / "no-pyyaml" / "yaml"
+        fake.mkdir(parents=True, exist_ok=True)
+        (fake / "__init__.py").write_text('raise ImportError("simulated: no PyYAML")\n')
+        script = SOURCE / "tools" / "wsntrack_run.py"
+        done = subprocess.run([sys.executable, "-B", script, str(fresh("no-pyyaml-run"))], capture_output=True, text=True,
+                              env={"PATH": "/usr/bin:/bin", "PYTHONPATH": str(fake.parent)})
+        self.assertEqual(done.returncode, 3, done.stderr)
+        self.assertRegex(done.stderr, r"^wsntrack_run\.py: PyYAML is not available to .*simulated: no PyYAML.*"
+                                      r"apt-get install python3-yaml\n$")
+        self.assertTrue(issubclass(ToolMissing, ImportError))
 
     def test_command_line(self):
         import subprocess
