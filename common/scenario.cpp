@@ -905,7 +905,7 @@ ScenarioOverride parseOverride(const std::string& key_equals_value) {
   const std::size_t equals = key_equals_value.find('=');
   if (equals == std::string::npos || equals == 0)
     throw OverrideError("--set " + key_equals_value + ": expected KEY=VALUE, e.g. --set network.pte=0.4");
-  return {key_equals_value.substr(0, equals), key_equals_value.substr(equals + 1)};
+  return {key_equals_value.substr(0, equals), key_equals_value.substr(equals + 1), ""};
 }
 
 Scenario applyOverrides(const std::string& yaml_text, const std::string& name_for_errors,

@@ -52,7 +52,10 @@ class OverrideError : public ScenarioError {
 struct ScenarioOverride {
   std::string key;
   std::string value;
-  std::string text() const { return "--set " + key + "=" + value; }  ///< as the user wrote it
+  /// How the user wrote it when that was not `--set KEY=VALUE` (`--nodes 5`); messages name it so.
+  std::string as_written;
+  /// As the user wrote it.
+  std::string text() const { return as_written.empty() ? "--set " + key + "=" + value : as_written; }
 };
 
 /// Splits "KEY=VALUE" at the first '='; throws OverrideError when there is none or KEY is empty.

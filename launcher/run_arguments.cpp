@@ -60,35 +60,14 @@ std::optional<std::string> optionText(const po::variables_map& vm, const char* n
   return vm[name].as<std::string>();
 }
 
-/// `message` with the overrides it names at its start ("--set K=V --set K2=V2: why") written as
-/// typed. applyOverrides() names them in their order, so one pass over the list finds them.
-std::string asTyped(const std::string& message, const std::vector<RunOverride>& overrides) {
-  std::string named;
-  std::size_t at = 0;
-  for (const auto& o : overrides) {
-    const std::string text = o.set.text();
-    if (message.compare(at, text.size(), text) != 0) continue;
-    const std::size_t end = at + text.size();
-    if (message.compare(end, 1, " ") != 0 && message.compare(end, 2, ": ") != 0) continue;
-    named += (named.empty() ? "" : " ") + o.as_typed;
-    at = message.compare(end, 2, ": ") == 0 ? end : end + 1;
-    if (at == end) return named + message.substr(end);
-  }
-  return message;
-}
-
-/// `load` with the run's overrides, its OverrideError rewritten to name the options as typed.
+/// `load` with the run's overrides (an OverrideError names each as the user typed it).
 common::Scenario namingOptions(
     const RunArguments& args,
     const std::function<common::Scenario(const std::vector<common::ScenarioOverride>&)>& load) {
   const auto overrides = runOverrides(args);
   std::vector<common::ScenarioOverride> sets;
   for (const auto& o : overrides) sets.push_back(o.set);
-  try {
-    return load(sets);
-  } catch (const common::OverrideError& error) {
-    throw common::OverrideError(asTyped(error.what(), overrides));
-  }
+  return load(sets);
 }
 
 }  // namespace
@@ -144,7 +123,10 @@ std::vector<RunOverride> runOverrides(const RunArguments& a) {
   for (const auto& [option, key, value] : {std::tuple{"--seed", "run.seed", a.seed},
                                            std::tuple{"--nodes", "run.node_processes", a.nodes},
                                            std::tuple{"--ticks", "run.ticks", a.ticks}})
-    if (value) overrides.push_back({{key, *value}, std::string(option) + " " + *value});
+    if (value) {
+      const std::string typed = std::string(option) + " " + *value;
+      overrides.push_back({{key, *value, typed}, typed});
+    }
   return overrides;
 }
 

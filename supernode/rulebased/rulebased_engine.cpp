@@ -8,7 +8,6 @@
 
 #include "common/assignment.hpp"
 #include "common/track_id.hpp"
-#include "supernode/gnn/gnn_engine.hpp"
 
 namespace wsn::supernode::rulebased {
 namespace {

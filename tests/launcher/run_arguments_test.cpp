@@ -68,11 +68,15 @@ TEST_CASE("seed, nodes and ticks are overrides after every --set", "[launcher][r
   REQUIRE(overrides.size() == 4);
   CHECK(overrides[0].set.text() == "--set run.ticks=5");
   CHECK(overrides[0].as_typed == "--set run.ticks=5");
-  CHECK(overrides[1].set.text() == "--set run.seed=7");
+  // Each names itself as typed in the loader's messages, and sets its key.
+  CHECK(overrides[1].set.text() == "--seed 7");
+  CHECK(overrides[1].set.key == "run.seed");
   CHECK(overrides[1].as_typed == "--seed 7");
-  CHECK(overrides[2].set.text() == "--set run.node_processes=3");
+  CHECK(overrides[2].set.text() == "--nodes 3");
+  CHECK(overrides[2].set.key == "run.node_processes");
   CHECK(overrides[2].as_typed == "--nodes 3");
-  CHECK(overrides[3].set.text() == "--set run.ticks=20");
+  CHECK(overrides[3].set.text() == "--ticks 20");
+  CHECK(overrides[3].set.key == "run.ticks");
   CHECK(overrides[3].as_typed == "--ticks 20");
   // Applied last, --ticks wins over the --set of the same key.
   const auto s = apply({"--ticks", "20", "--set", "run.ticks=5", "--seed", "7", "--nodes", "3"});
