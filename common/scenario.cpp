@@ -382,13 +382,22 @@ void gridFitsRegion(const Reader& r, const Scenario& s, int line) {
                      compactNumber(kMaxSensors));
 }
 
-/// sensor_model.beta left out: Oh §VII's beta = 3 (1 + gamma Rs^alpha), a signal three times the
-/// one at the edge of the range.
-void deriveBeta(const Reader& r, SensorModelConfig& m, int line) {
-  m.beta = 3.0 * (1.0 + m.gamma * std::pow(m.sensing_range, m.alpha));
-  if (!(m.beta <= 1e12))
-    r.fail(line, "'sensor_model.beta' left out is 3 (1 + gamma Rs^alpha) = " + compactNumber(m.beta) +
-                     ", outside (0, 1e12]; give beta explicitly");
+/// Every number of `table` that `given` (the section as written; null when the file has none)
+/// leaves out and that has a derived default: computed from the scenario read so far, checked
+/// against the key's range, and noted in s.derived.
+template <typename C>
+void deriveLeftOut(const Reader& r, const Section* given, const FieldTable<C>& table, C& config, Scenario& s) {
+  for (const auto& field : table.fields) {
+    if (!field.derive || (given != nullptr && given->find(field.key) != nullptr)) continue;
+    const std::string path = table.section + "." + field.key;
+    const double value = field.derive(config, s);
+    if (!field.range.contains(value))
+      r.fail(given != nullptr ? given->line : 1, "'" + path + "' left out is " + field.derivation + " = " +
+                                                     compactNumber(value) + ", outside " + field.range.text() +
+                                                     "; give " + field.key + " explicitly");
+    field.set_number(config, value);
+    s.derived[path] = field.derivation;
+  }
 }
 
 /// sensor_model.acoustic: a tick is a whole number (at most 100000) of detection steps.
@@ -502,43 +511,16 @@ std::map<std::string, EngineParam> readParams(const Reader& r, const Entry& entr
 // The scenario, section by section. Sections are read in a fixed order (region first) so that
 // checks against the region do not depend on the order of keys in the file.
 
-Scenario readScenario(const YAML::Node& root, const std::string& file) {
-  const Reader r(file);
-  Scenario s;
-  s.source_path = file;
-  const Section top = r.section(root, 1, "", schema::sectionNames());
-
-  if (const Entry* e = top.find("name")) {
-    r.fields(top, schema::topLevel(), s);
-    if (!validName(s.name))
-      r.fail(Reader::lineOf(*e), "'name' must be 1 to " + std::to_string(kMaxNameLength) +
-                                     " characters from A-Z a-z 0-9 _ - . (it names the run directory), got '" +
-                                     s.name + "'");
-  }
-
-  int region_line = 1;
-  if (const Entry* e = top.find("region")) {
-    const Section sec = r.section(*e, schema::region());
-    region_line = sec.line;
-    r.fields(sec, schema::region(), s.region);
-    regionIsOrdered(r, s.region, sec.line);
-  }
-
-  int layout_line = region_line;  // where a layout that does not fit the region is reported
-  if (const Entry* e = top.find("sensors")) {
-    const Section sec = r.section(*e, schema::sensors());
-    r.fields(sec, schema::sensors(), s.sensors);
-    layout_line = lineOr(sec, "spacing", layout_line);
-  }
-  gridFitsRegion(r, s, layout_line);
-
-  // sensor_model (Oh eq. 5, or An et al. 2014 eq. 1-4 for acoustic sensors)
-  int sensing_range_line = region_line;
+/// sensor_model (Oh eq. 5, or An et al. 2014 eq. 1-4 for acoustic sensors); returns the line
+/// to blame for sensing_range (fallback when the file does not give it).
+int readSensorModel(const Reader& r, const Section& top, Scenario& s, int fallback_line) {
+  int sensing_range_line = fallback_line;
+  if (top.find("sensor_model") == nullptr) deriveLeftOut(r, nullptr, schema::sensorModel(), s.sensor_model, s);
   if (const Entry* e = top.find("sensor_model")) {
     const Section sec = r.section(*e, schema::sensorModel());
     r.fields(sec, schema::sensorModel(), s.sensor_model);
     sensing_range_line = lineOr(sec, "sensing_range", sensing_range_line);
-    if (sec.find("beta") == nullptr) deriveBeta(r, s.sensor_model, sec.line);
+    deriveLeftOut(r, &sec, schema::sensorModel(), s.sensor_model, s);
     if (const Entry* a = sec.find("acoustic")) {
       onlyAcoustic(r, s, "sensor_model.acoustic", Reader::lineOf(a->key));
       const Section asec = r.section(*a, schema::acoustic());
@@ -576,9 +558,11 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
     }
   }
 
-  if (const Entry* e = top.find("localisation"))
-    r.fields(r.section(*e, schema::localisation()), schema::localisation(), s.localisation);
+  return sensing_range_line;
+}
 
+/// targets: the random births and the scripted list.
+void readTargets(const Reader& r, const Section& top, Scenario& s) {
   if (const Entry* e = top.find("targets")) {
     const Section sec = r.section(*e, schema::targets());
     r.fields(sec, schema::targets(), s.targets);
@@ -603,10 +587,10 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
   }
   if (const Entry* e = top.find("targets")) bornTargetsSlowerThanSound(r, s, Reader::lineOf(*e));
 
-  if (const Entry* e = top.find("dynamics"))
-    r.fields(r.section(*e, schema::dynamics()), schema::dynamics(), s.dynamics);
+}
 
-  // supernodes: default one at the centre of the region
+/// supernodes: the listed ones, or one at the centre of the region.
+void readSupernodes(const Reader& r, const Section& top, Scenario& s) {
   if (const Entry* e = top.find("supernodes"); e != nullptr && !e->value.IsNull()) {
     const int list_line = Reader::lineOf(*e);
     if (!e->value.IsSequence()) r.fail(list_line, "'supernodes' must be a list of {x, y}, got " + describe(e->value));
@@ -624,12 +608,14 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
     });
   } else {
     s.supernodes = {{0.5 * (s.region.x_min + s.region.x_max), 0.5 * (s.region.y_min + s.region.y_max)}};
+    s.derived["supernodes"] = "one supernode at the centre of the region";
   }
 
-  if (const Entry* e = top.find("network")) r.fields(r.section(*e, schema::network()), schema::network(), s.network);
+}
 
-  // tracker and aggregator: parameters are only recorded here; the engine and association
-  // registries check them against the chosen component's table.
+/// tracker and aggregator: which components, and their parameters as written (the engine and
+/// association registries check them against the chosen component's table).
+void readComponentChoices(const Reader& r, const Section& top, Scenario& s) {
   if (const Entry* e = top.find("tracker")) {
     const Section sec = r.section(*e, schema::tracker());
     r.fields(sec, schema::tracker(), s.tracker);
@@ -649,6 +635,53 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
     }
     if (const Entry* params = sec.find("params")) s.aggregator.params = readParams(r, *params, "aggregator.params");
   }
+
+}
+
+Scenario readScenario(const YAML::Node& root, const std::string& file) {
+  const Reader r(file);
+  Scenario s;
+  s.source_path = file;
+  const Section top = r.section(root, 1, "", schema::sectionNames());
+
+  if (const Entry* e = top.find("name")) {
+    r.fields(top, schema::topLevel(), s);
+    if (!validName(s.name))
+      r.fail(Reader::lineOf(*e), "'name' must be 1 to " + std::to_string(kMaxNameLength) +
+                                     " characters from A-Z a-z 0-9 _ - . (it names the run directory), got '" +
+                                     s.name + "'");
+  }
+
+  int region_line = 1;
+  if (const Entry* e = top.find("region")) {
+    const Section sec = r.section(*e, schema::region());
+    region_line = sec.line;
+    r.fields(sec, schema::region(), s.region);
+    regionIsOrdered(r, s.region, sec.line);
+  }
+
+  int layout_line = region_line;  // where a layout that does not fit the region is reported
+  if (const Entry* e = top.find("sensors")) {
+    const Section sec = r.section(*e, schema::sensors());
+    r.fields(sec, schema::sensors(), s.sensors);
+    layout_line = lineOr(sec, "spacing", layout_line);
+  }
+  gridFitsRegion(r, s, layout_line);
+
+  const int sensing_range_line = readSensorModel(r, top, s, region_line);
+
+  if (const Entry* e = top.find("localisation"))
+    r.fields(r.section(*e, schema::localisation()), schema::localisation(), s.localisation);
+
+  readTargets(r, top, s);
+  if (const Entry* e = top.find("dynamics"))
+    r.fields(r.section(*e, schema::dynamics()), schema::dynamics(), s.dynamics);
+
+  readSupernodes(r, top, s);
+
+  if (const Entry* e = top.find("network")) r.fields(r.section(*e, schema::network()), schema::network(), s.network);
+
+  readComponentChoices(r, top, s);
 
   if (const Entry* e = top.find("metrics")) r.fields(r.section(*e, schema::metrics()), schema::metrics(), s.metrics);
 
@@ -678,16 +711,24 @@ std::string keyText(const std::string& name) {
 }
 
 /// `indent key: value` for every value key of `table` (nested keys are written by the caller).
+/// A derived value's key gets "# derived: how" after its value.
 template <typename C>
-void writeFields(std::ostringstream& out, const std::string& indent, const FieldTable<C>& table, const C& config) {
-  for (const auto& field : table.fields)
-    if (field.kind != FieldKind::kNested) out << indent << field.key << ": " << field.yamlValue(config) << "\n";
+void writeFields(std::ostringstream& out, const std::string& indent, const FieldTable<C>& table, const C& config,
+                 const std::map<std::string, std::string>& derived = {}) {
+  for (const auto& field : table.fields) {
+    if (field.kind == FieldKind::kNested) continue;
+    out << indent << field.key << ": " << field.yamlValue(config);
+    if (const auto it = derived.find(table.section + "." + field.key); it != derived.end())
+      out << "  # derived: " << it->second;
+    out << "\n";
+  }
 }
 
 template <typename C>
-void writeSection(std::ostringstream& out, const std::string& name, const FieldTable<C>& table, const C& config) {
+void writeSection(std::ostringstream& out, const std::string& name, const FieldTable<C>& table, const C& config,
+                  const std::map<std::string, std::string>& derived = {}) {
   out << name << ":\n";
-  writeFields(out, "  ", table, config);
+  writeFields(out, "  ", table, config, derived);
 }
 
 /// "{a: 1, b: 2}": a list item on one line; a key whose zero means "not given" is left out at 0.
@@ -703,12 +744,12 @@ std::string flowMapping(const FieldTable<C>& table, const C& config) {
 
 template <typename C>
 void writeList(std::ostringstream& out, const std::string& indent, const std::string& key, const FieldTable<C>& table,
-               const std::vector<C>& items) {
+               const std::vector<C>& items, const std::string& derivation = "") {
   if (items.empty()) {
     out << indent << key << ": []\n";
     return;
   }
-  out << indent << key << ":\n";
+  out << indent << key << ":" << (derivation.empty() ? "" : "  # derived: " + derivation) << "\n";
   for (const auto& item : items) out << indent << "  - " << flowMapping(table, item) << "\n";
 }
 
@@ -970,11 +1011,12 @@ Scenario loadScenario(const std::string& path, const std::vector<ScenarioOverrid
 std::string resolvedScenarioYaml(const Scenario& s) {
   std::ostringstream out;
   out << "# wsntrack resolved scenario: every parameter written out with defaults filled in.\n"
-      << "# Loading this file gives the same scenario.\n";
+      << "# Loading this file gives the same scenario. '# derived:' marks a value the file left out\n"
+      << "# and the loader computed from others.\n";
   writeFields(out, "", schema::topLevel(), s);
   writeSection(out, "region", schema::region(), s.region);
   writeSection(out, "sensors", schema::sensors(), s.sensors);
-  writeSection(out, "sensor_model", schema::sensorModel(), s.sensor_model);
+  writeSection(out, "sensor_model", schema::sensorModel(), s.sensor_model, s.derived);
   if (s.sensor_model.kind == SensorModelConfig::Kind::kAcousticDoppler) {
     out << "  acoustic:\n";
     writeFields(out, "    ", schema::acoustic(), s.sensor_model.acoustic);
@@ -991,7 +1033,9 @@ std::string resolvedScenarioYaml(const Scenario& s) {
   writeSection(out, "targets", schema::targets(), s.targets);
   writeList(out, "  ", "scripted", schema::scriptedTarget(), s.targets.scripted);
   writeSection(out, "dynamics", schema::dynamics(), s.dynamics);
-  writeList(out, "", "supernodes", schema::supernode(), s.supernodes);
+  const auto supernodes_derived = s.derived.find("supernodes");
+  writeList(out, "", "supernodes", schema::supernode(), s.supernodes,
+            supernodes_derived == s.derived.end() ? "" : supernodes_derived->second);
   writeSection(out, "network", schema::network(), s.network);
   writeSection(out, "tracker", schema::tracker(), s.tracker);
   writeParams(out, s.tracker.params);

@@ -192,6 +192,10 @@ struct Scenario {
   AggregatorConfig aggregator;
   MetricsConfig metrics;
   RunConfig run;
+  /// The keys whose values the loader derived because the file left them out ("sensor_model.beta"),
+  /// with how; the resolved scenario.yaml notes them. Not part of equality: a resolved file gives
+  /// every value explicitly, so loading it derives nothing, yet it is the same scenario.
+  std::map<std::string, std::string> derived;
 
   /// Equal in every value of the run; where it was loaded from (source_path) does not count.
   friend bool operator==(const Scenario& a, const Scenario& b) {

@@ -1,5 +1,7 @@
 #include "common/scenario_schema.hpp"
 
+#include <cmath>
+
 namespace wsn::common::schema {
 namespace {
 
@@ -65,10 +67,15 @@ const FieldTable<SensorModelConfig>& sensorModel() {
           choice<C>("kind", &C::kind, {"signal_strength", "acoustic_doppler"}, "which sensors"),
           real<C>("alpha", &C::alpha, openClosed(0.0, 100.0), "",
                   "α, decay exponent (§VII; An et al. eq. 3: Ps = Pt / d^α)"),
-          withNotes(real<C>("beta", &C::beta, openClosed(0.0, 1e12), "signal",
-                            "β, signal at distance 0. When it is left out, the loader computes it from the other "
-                            "values of the file as in §VII"),
-                    "", "3 (1 + γ Rs^α) = 9.75"),
+          derivedDefault(withNotes(real<C>("beta", &C::beta, openClosed(0.0, 1e12), "signal",
+                                           "β, signal at distance 0. When it is left out, the loader computes it "
+                                           "from the other values of the file as in §VII"),
+                                   "", "3 (1 + γ Rs^α) = 9.75"),
+                         "3 (1 + gamma Rs^alpha)",
+                         // Oh §VII: a signal three times the one at the edge of the range.
+                         [](const C& m, const Scenario&) {
+                           return 3.0 * (1.0 + m.gamma * std::pow(m.sensing_range, m.alpha));
+                         }),
           real<C>("gamma", &C::gamma, kNonNegative, "1/separation^α", "γ (§VII)"),
           real<C>("eta", &C::eta, openClosed(0.0, 1e9), "signal", "η, detection threshold (§VII)"),
           real<C>("sensing_range", &C::sensing_range, kPositive, "separations",

@@ -14,6 +14,10 @@
 #include <utility>
 #include <vector>
 
+namespace wsn::common {
+struct Scenario;  // a derived default may depend on any section read before (common/scenario_config.hpp)
+}  // namespace wsn::common
+
 namespace wsn::common::config {
 
 /// Shortest decimal text that reads back to the same double ("0.3", "9.75", "100", "1e+06").
@@ -67,6 +71,12 @@ struct Field {
   std::string default_note;
   /// A number whose 0 means "not given" (a target's own sensing range): list items leave it out.
   bool zero_means_unset = false;
+  /// A default derived from other values when the key is left out (kReal, kInteger): how, in
+  /// words for the resolved file and the docs, and the function. The loader runs it after the
+  /// section (and every section before it) is read; the resolved scenario.yaml records the value
+  /// with "# derived: <derivation>".
+  std::string derivation;
+  std::function<double(const C& section, const Scenario& scenario)> derive;
 
   // Accessors: exactly the pair of the field's kind is set.
   std::function<double(const C&)> get_number;  ///< kReal, kInteger
@@ -112,6 +122,7 @@ struct Field {
   /// The default column of the docs: C{}'s value unless default_note says otherwise.
   std::string defaultText() const {
     if (!default_note.empty()) return default_note;
+    if (!derivation.empty()) return derivation;
     const C defaults{};
     switch (kind) {
       case FieldKind::kReal:
@@ -295,6 +306,14 @@ std::vector<Field<Outer>> lift(const FieldTable<Inner>& table, Ref ref) {
     out.push_back(std::move(g));
   }
   return out;
+}
+
+/// Gives a number field a default derived from the scenario when the key is left out.
+template <typename C, typename F>
+Field<C> derivedDefault(Field<C> f, std::string derivation, F derive) {
+  f.derivation = std::move(derivation);
+  f.derive = std::move(derive);
+  return f;
 }
 
 /// Sets documentation-only columns on a field built above.
