@@ -10,7 +10,6 @@
 
 #include <boost/program_options.hpp>
 
-#include "common/sensor_layout.hpp"
 #include "network_model/calibration.hpp"
 #include "network_model/link_model.hpp"
 #include "network_model/topology.hpp"
@@ -33,9 +32,7 @@ struct Options {
 };
 
 nm::Topology topologyFor(const Options& options, double range) {
-  const auto scenario = nm::ohCalibrationScenario(range, options.placement, options.pte, options.pde);
-  const wsn::common::SensorLayout layout(scenario);
-  return nm::Topology(scenario, layout);
+  return nm::ohCalibrationTopology(range, options.placement);
 }
 
 /// Prints the sweep table and returns the range with the smallest paper mismatch (the lowest

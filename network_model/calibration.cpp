@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/scenario_config.hpp"
+#include "common/sensor_layout.hpp"
 #include "network_model/link_model.hpp"
 
 namespace wsn::network_model {
@@ -44,21 +46,24 @@ double paperMismatch(const ExpectedRatios& ratios) {
   return dl * dl / lost_variance + dd * dd / delayed_variance;
 }
 
-common::Scenario ohCalibrationScenario(double communication_range, SupernodePlacement placement, double pte,
-                                       double pde) {
-  common::Scenario scenario;
-  scenario.name = "oh_calibration";
-  scenario.region = {0.0, 0.0, 100.0, 100.0};
-  scenario.sensors.kind = common::SensorLayoutConfig::Kind::kGrid;
-  scenario.sensors.spacing = 1.0;
+TopologyConfig ohTopologyConfig(double communication_range, SupernodePlacement placement) {
+  TopologyConfig config;
   if (placement == SupernodePlacement::kQuadrants)
-    scenario.supernodes = {{25.0, 25.0}, {75.0, 25.0}, {25.0, 75.0}, {75.0, 75.0}};
+    config.supernodes = {{25.0, 25.0}, {75.0, 25.0}, {25.0, 75.0}, {75.0, 75.0}};
   else
-    scenario.supernodes = {{50.0, 50.0}};
-  scenario.network.communication_range = communication_range;
-  scenario.network.pte = pte;
-  scenario.network.pde = pde;
-  return scenario;
+    config.supernodes = {{50.0, 50.0}};
+  config.communication_range = communication_range;
+  return config;
+}
+
+Topology ohCalibrationTopology(double communication_range, SupernodePlacement placement) {
+  // The grid comes from SensorLayout so that it stays the one a run with these settings uses.
+  common::Scenario grid;
+  grid.region = {0.0, 0.0, 100.0, 100.0};
+  grid.sensors.kind = common::SensorLayoutConfig::Kind::kGrid;
+  grid.sensors.spacing = 1.0;
+  const common::SensorLayout layout(grid);
+  return Topology(ohTopologyConfig(communication_range, placement), layout.truePositions());
 }
 
 }  // namespace wsn::network_model

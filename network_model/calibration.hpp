@@ -4,7 +4,6 @@
 
 #include <cstdint>
 
-#include "common/scenario.hpp"
 #include "network_model/topology.hpp"
 
 namespace wsn::network_model {
@@ -38,9 +37,11 @@ enum class SupernodePlacement {
   kCentre,     ///< Oh §VII-C, D: a single one at the centre
 };
 
-/// The geometry of Oh §VII: 100 x 100 region, grid of spacing 1 (10^4 sensors), supernodes as
-/// given, the given range, pte and pde; everything else at its default.
-common::Scenario ohCalibrationScenario(double communication_range, SupernodePlacement placement, double pte,
-                                       double pde);
+/// Oh §VII's supernodes, placed as given, with the given range.
+TopologyConfig ohTopologyConfig(double communication_range, SupernodePlacement placement);
+
+/// The communication graph of Oh §VII: ohTopologyConfig() over the 100 x 100 region with a grid
+/// of spacing 1 (10^4 sensors at 0.5 .. 99.5, laid out as a scenario's grid is).
+Topology ohCalibrationTopology(double communication_range, SupernodePlacement placement);
 
 }  // namespace wsn::network_model

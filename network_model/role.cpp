@@ -3,6 +3,7 @@
 #include "common/dds/codec.hpp"
 #include "common/output.hpp"
 #include "common/sensor_layout.hpp"
+#include "network_model/role_config.hpp"
 #include "network_model/router.hpp"
 #include "network_model/run_files.hpp"
 #include "network_model/topology.hpp"
@@ -14,8 +15,8 @@ void runNetworkRole(const dds::RoleContext& context) {
   runRole(context, [&](const Participant& participant, const RunTopics& topics, StatusPublisher& status) {
     const auto& scenario = context.scenario;
     const common::SensorLayout layout(scenario);
-    const Topology topology(scenario, layout);
-    Router router(scenario, topology);
+    const Topology topology(topologyConfig(scenario), layout.truePositions());
+    Router router(routerConfig(scenario), topology);
 
     Reader<wsn_msg_ReportBatch> report_reader(participant, topics.report_batch, Qos::reliableKeepAll());
     Writer<wsn_msg_DeliveryBatch> delivery_writer(participant, topics.delivery_batch, Qos::reliableKeepAll());
@@ -55,7 +56,7 @@ void runNetworkRole(const dds::RoleContext& context) {
       }
     }
     observations.close();
-    common::writeTextFile(context.run_dir + "/network.json", networkJson(networkReport(scenario, topology, router)));
+    common::writeTextFile(context.run_dir + "/network.json", networkJson(networkReport(topology, router)));
     progress.waitForCompleted(ticks);
     status.done(ticks);
   });

@@ -38,19 +38,15 @@ NetworkCounts& NetworkCounts::operator+=(const NetworkCounts& other) {
   return *this;
 }
 
-Router::Router(const common::Scenario& scenario, const Topology& topology)
+Router::Router(const RouterConfig& config, const Topology& topology)
     : topology_(&topology),
-      seed_(scenario.run.seed),
-      pte_(scenario.network.pte),
-      pde_(scenario.network.pde),
-      run_ticks_(scenario.run.ticks),
-      window_size_(scenario.tracker.window_size),
+      config_(config),
       last_tick_(std::numeric_limits<std::int32_t>::min()),
       pending_(topology.supernodeCount()),
       per_supernode_(topology.supernodeCount()) {
   success_by_hops_.resize(static_cast<std::size_t>(topology.maxHops()) + 1);
   for (std::size_t k = 0; k < success_by_hops_.size(); ++k)
-    success_by_hops_[k] = successProbability(pte_, static_cast<int>(k));
+    success_by_hops_[k] = successProbability(config_.pte, static_cast<int>(k));
 }
 
 std::span<const ReportFate> Router::submit(std::int32_t tick, std::span<const common::Report> reports) {
@@ -81,8 +77,8 @@ std::span<const ReportFate> Router::submit(std::int32_t tick, std::span<const co
   for (std::size_t n = 0; n < ordered.size(); ++n) {
     const common::Report& report = ordered[n];
     if (n == 0 || ordered[n - 1].sensor != report.sensor) {
-      loss_stream.emplace(seed_, common::Purpose::kNetworkLoss, report.sensor, tick);
-      delay_stream.emplace(seed_, common::Purpose::kNetworkDelay, report.sensor, tick);
+      loss_stream.emplace(config_.seed, common::Purpose::kNetworkLoss, report.sensor, tick);
+      delay_stream.emplace(config_.seed, common::Purpose::kNetworkDelay, report.sensor, tick);
     }
     ReportFate fate;
     fate.report = report;
@@ -100,15 +96,15 @@ std::span<const ReportFate> Router::submit(std::int32_t tick, std::span<const co
       ++group.lost;
     } else {
       // Oh et al. eq. (7): d ~ NegBin(|sp(i)|, pde) extra ticks.
-      const std::int64_t d = drawDelay(*delay_stream, pde_, fate.hops);
+      const std::int64_t d = drawDelay(*delay_stream, config_.pde, fate.hops);
       fate.delay = static_cast<std::int32_t>(std::min<std::int64_t>(d, std::numeric_limits<std::int32_t>::max()));
-      if (d > static_cast<std::int64_t>(run_ticks_) - tick) {
+      if (d > static_cast<std::int64_t>(config_.run_ticks) - tick) {
         ++group.after_end;
       } else {
         fate.tick_delivered = static_cast<std::int32_t>(tick + d);
         ++group.delivered;
         if (d > 0) ++group.delayed;
-        if (d >= window_size_) ++group.beyond_window;
+        if (d >= config_.window_size) ++group.beyond_window;
         pending_[fate.supernode][fate.tick_delivered].push_back(common::Observation{
             report.tick, fate.tick_delivered, report.sensor, report.x, report.y, report.target, report.power_level});
         ++pending_count_;

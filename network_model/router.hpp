@@ -8,10 +8,20 @@
 #include <vector>
 
 #include "common/messages.hpp"
-#include "common/scenario.hpp"
 #include "network_model/topology.hpp"
 
 namespace wsn::network_model {
+
+/// What the router reads of a run: the link model of Oh §V and the run's limits. Built from a
+/// scenario by routerConfig() (network_model/role_config.hpp); defaults are the scenario's.
+struct RouterConfig {
+  double pte = 0.3;               ///< transmission failure rate per edge
+  double pde = 0.3;               ///< per-hop delay rate
+  std::int32_t run_ticks = 100;   ///< T: a report due after tick T is counted after_end, never delivered
+  std::int32_t window_size = 10;  ///< ws, in ticks: delays d >= ws are counted beyond_window
+  std::uint64_t seed = 1;         ///< keys the loss and delay streams
+  friend bool operator==(const RouterConfig&, const RouterConfig&) = default;
+};
 
 /// What became of one report (one row of the run directory's observations.csv).
 struct ReportFate {
@@ -26,7 +36,7 @@ struct ReportFate {
 
 /// Report counters. Every accepted report is in exactly one of lost, unreachable, delivered
 /// and after_end; delayed counts delivered reports with d > 0 and beyond_window those
-/// delivered with d >= tracker.window_size (a supernode's window cannot place them).
+/// delivered with d >= window_size (a supernode's window cannot place them).
 struct NetworkCounts {
   std::uint64_t sent = 0;           ///< accepted reports
   std::uint64_t lost = 0;           ///< transmission failed, probability 1 - pts
@@ -47,7 +57,10 @@ struct NetworkCounts {
 /// for every supernode j. The topology must outlive the router.
 class Router {
  public:
-  Router(const common::Scenario& scenario, const Topology& topology);
+  Router(const RouterConfig& config, const Topology& topology);
+
+  /// The configuration it routes with (network.json records pte and pde from it).
+  const RouterConfig& config() const { return config_; }
 
   /// Routes all reports generated at `tick` (any order, possibly concatenated from several
   /// tiles; they are put in canonical order first) and returns their fates in that order.
@@ -76,11 +89,7 @@ class Router {
 
  private:
   const Topology* topology_;
-  std::uint64_t seed_;
-  double pte_;
-  double pde_;
-  std::int32_t run_ticks_;
-  std::int32_t window_size_;
+  RouterConfig config_;
   std::vector<double> success_by_hops_;  // pts(pte, k), precomputed for k = 0 .. maxHops
   std::int32_t last_tick_;
   std::map<std::int32_t, std::vector<ReportFate>> fates_;

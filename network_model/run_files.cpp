@@ -35,15 +35,15 @@ std::string observationRow(const ReportFate& fate) {
          common::fixed6(r.y) + "," + std::to_string(r.target) + "," + what;
 }
 
-NetworkReport networkReport(const common::Scenario& scenario, const Topology& topology, const Router& router) {
+NetworkReport networkReport(const Topology& topology, const Router& router) {
   NetworkReport report;
-  report.communication_range = scenario.network.communication_range;
-  report.pte = scenario.network.pte;
-  report.pde = scenario.network.pde;
+  report.communication_range = topology.communicationRange();
+  report.pte = router.config().pte;
+  report.pde = router.config().pde;
   report.mean_hops = topology.meanHops();
   report.max_hops = topology.maxHops();
   report.total = router.counts();
-  for (std::uint32_t j = 0; j < scenario.supernodes.size(); ++j) report.per_supernode.push_back(router.counts(j));
+  for (std::uint32_t j = 0; j < topology.supernodeCount(); ++j) report.per_supernode.push_back(router.counts(j));
   return report;
 }
 

@@ -6,7 +6,6 @@
 #include <string>
 #include <vector>
 
-#include "common/scenario.hpp"
 #include "network_model/router.hpp"
 #include "network_model/topology.hpp"
 
@@ -30,8 +29,9 @@ struct NetworkReport {
   std::vector<NetworkCounts> per_supernode;  ///< index = supernode id
 };
 
-/// The report of a run once the router has seen its last tick.
-NetworkReport networkReport(const common::Scenario& scenario, const Topology& topology, const Router& router);
+/// The report of a run once the router has seen its last tick. The settings are read back from
+/// the topology and the router, so the file records what was simulated.
+NetworkReport networkReport(const Topology& topology, const Router& router);
 
 /// network.json: the report, its loss and delay ratios as Oh §VII-E counts them, and the paper's
 /// §VII-E counts beside them for comparison.

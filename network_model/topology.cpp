@@ -186,13 +186,8 @@ class BreadthFirst {
 
 }  // namespace
 
-Topology::Topology(const common::Scenario& scenario, const common::SensorLayout& layout)
-    : supernodes_(scenario.supernodes), range_(scenario.network.communication_range) {
-  build(layout.truePositions());
-}
-
-Topology::Topology(std::span<const Vec2> sensors, std::span<const Vec2> supernodes, double communication_range)
-    : supernodes_(supernodes.begin(), supernodes.end()), range_(communication_range) {
+Topology::Topology(const TopologyConfig& config, std::span<const Vec2> sensors)
+    : supernodes_(config.supernodes), range_(config.communication_range) {
   build(sensors);
 }
 

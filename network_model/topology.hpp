@@ -1,5 +1,5 @@
 // The communication graph of Oh et al. §V: which supernode each sensor reports to (nearest,
-// g(i)) and over how many hops (shortest path |sp(i)|), computed once per scenario.
+// g(i)) and over how many hops (shortest path |sp(i)|), computed once per run.
 #pragma once
 
 #include <cstddef>
@@ -9,10 +9,16 @@
 
 #include "common/geometry.hpp"
 #include "common/messages.hpp"
-#include "common/scenario.hpp"
-#include "common/sensor_layout.hpp"
 
 namespace wsn::network_model {
+
+/// What the communication graph is built from besides the sensors: where the supernodes sit
+/// and the radio range. Built from a scenario by topologyConfig() (network_model/role_config.hpp).
+struct TopologyConfig {
+  std::vector<common::Vec2> supernodes;
+  double communication_range = 11.6;  ///< the scenario's calibrated default (docs/NETWORK.md)
+  friend bool operator==(const TopologyConfig&, const TopologyConfig&) = default;
+};
 
 /// Oh et al. §V: G has a node per sensor (true position) and per supernode, and an edge iff
 /// two nodes are at most communication_range apart (compared on squared distances). Each
@@ -21,12 +27,9 @@ namespace wsn::network_model {
 /// sensors of other groups and other supernodes. A sensor with no such path is unreachable.
 class Topology {
  public:
-  /// Builds G from the layout's true sensor positions and scenario.supernodes with
-  /// scenario.network.communication_range. Throws std::invalid_argument without supernodes.
-  Topology(const common::Scenario& scenario, const common::SensorLayout& layout);
-  /// Same from explicit positions (hand-drawn layouts, calibration).
-  Topology(std::span<const common::Vec2> sensors, std::span<const common::Vec2> supernodes,
-           double communication_range);
+  /// Builds G over the given true sensor positions (sensor i at sensors[i]; a run passes
+  /// SensorLayout::truePositions()). Throws std::invalid_argument without supernodes.
+  Topology(const TopologyConfig& config, std::span<const common::Vec2> sensors);
 
   /// Number of sensors (ids 0 .. sensorCount() - 1).
   std::size_t sensorCount() const { return supernode_of_.size(); }

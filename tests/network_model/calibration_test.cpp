@@ -6,8 +6,6 @@
 
 #include <catch2/catch.hpp>
 
-#include "common/sensor_layout.hpp"
-
 namespace nm = wsn::network_model;
 using wsn::common::Vec2;
 
@@ -17,7 +15,7 @@ TEST_CASE("expected ratios average pts and eq. (7) over sensors by hand", "[netw
   // delayed/total = (0.7 (1 - 0.7) + 0.7399 (1 - 0.49)) / 2 = (0.21 + 0.377349) / 2 = 0.2936745;
   // delayed/received = 0.587349 / 1.4399 = 0.407910.
   const std::vector<Vec2> sensors{{1, 0}, {2, 0}};
-  const nm::Topology topology(sensors, std::vector<Vec2>{{0, 0}}, 1.0);
+  const nm::Topology topology(nm::TopologyConfig{std::vector<Vec2>{{0, 0}}, 1.0}, sensors);
   const auto ratios = nm::expectedRatios(topology, 0.3, 0.3, 10);
   CHECK(ratios.lost_to_total == Approx(0.28005).margin(1e-9));
   CHECK(ratios.delayed_to_total == Approx(0.2936745).margin(1e-9));
@@ -29,7 +27,7 @@ TEST_CASE("expected ratios average pts and eq. (7) over sensors by hand", "[netw
 TEST_CASE("unreachable sensors count as lost in the expected ratios", "[network][calibration]") {
   // Sensor 1 at x = 5 has no path (range 1): lost/total = (0.3 + 1) / 2 = 0.65 at pte = 0.3.
   const std::vector<Vec2> sensors{{1, 0}, {5, 0}};
-  const nm::Topology topology(sensors, std::vector<Vec2>{{0, 0}}, 1.0);
+  const nm::Topology topology(nm::TopologyConfig{std::vector<Vec2>{{0, 0}}, 1.0}, sensors);
   CHECK(nm::expectedRatios(topology, 0.3, 0.0, 10).lost_to_total == Approx(0.65).margin(1e-12));
 }
 
@@ -47,21 +45,24 @@ TEST_CASE("the paper mismatch vanishes at the paper's ratios and grows away from
 
 TEST_CASE("the calibration geometry is Oh's 100 x 100 grid with quadrant or centre supernodes",
           "[network][calibration]") {
-  const auto quadrants = nm::ohCalibrationScenario(12.0, nm::SupernodePlacement::kQuadrants, 0.3, 0.3);
-  CHECK(wsn::common::SensorLayout(quadrants).size() == 10000);
+  const auto quadrants = nm::ohTopologyConfig(12.0, nm::SupernodePlacement::kQuadrants);
   CHECK(quadrants.supernodes == std::vector<Vec2>{{25, 25}, {75, 25}, {25, 75}, {75, 75}});
-  CHECK(quadrants.network.communication_range == 12.0);
-  const auto centre = nm::ohCalibrationScenario(12.0, nm::SupernodePlacement::kCentre, 0.3, 0.3);
-  CHECK(centre.supernodes == std::vector<Vec2>{{50, 50}});
+  CHECK(quadrants.communication_range == 12.0);
+  CHECK(nm::ohTopologyConfig(12.0, nm::SupernodePlacement::kCentre).supernodes == std::vector<Vec2>{{50, 50}});
+  // 100 x 100 sensors at 0.5 .. 99.5; the quadrant supernodes split them into 4 groups of 50 x 50.
+  const nm::Topology topology = nm::ohCalibrationTopology(12.0, nm::SupernodePlacement::kQuadrants);
+  CHECK(topology.sensorCount() == 10000);
+  CHECK(topology.supernodeCount() == 4);
+  CHECK(topology.supernodePosition(3) == Vec2{75, 75});
+  CHECK(topology.communicationRange() == 12.0);
+  for (std::uint32_t j = 0; j < 4; ++j) CHECK(topology.groupSize(j) == 2500);
 }
 
 TEST_CASE("the calibrated range 11.6 reproduces Oh's §VII-E loss and delay counts", "[network][calibration]") {
   // docs/NETWORK.md: on the quadrant grid, range 11.6 gives hop counts 1728 x 1, 4928 x 2,
   // 3328 x 3 and 16 x 4, mean (1728 + 9856 + 9984 + 64) / 10^4 = 2.1632.
   const auto fit = [](double range) {
-    const auto scenario = nm::ohCalibrationScenario(range, nm::SupernodePlacement::kQuadrants, 0.3, 0.3);
-    const wsn::common::SensorLayout layout(scenario);
-    const nm::Topology topology(scenario, layout);
+    const nm::Topology topology = nm::ohCalibrationTopology(range, nm::SupernodePlacement::kQuadrants);
     return std::make_pair(topology.hopHistogram(), nm::expectedRatios(topology, 0.3, 0.3, 10));
   };
   const auto [histogram, ratios] = fit(11.6);
@@ -78,9 +79,7 @@ TEST_CASE("the calibrated range 11.6 reproduces Oh's §VII-E loss and delay coun
 
 TEST_CASE("Fig. 6 at the calibrated range agrees with Oh's statements for a centre supernode",
           "[network][calibration]") {
-  const auto scenario = nm::ohCalibrationScenario(11.6, nm::SupernodePlacement::kCentre, 0.0, 0.0);
-  const wsn::common::SensorLayout layout(scenario);
-  const nm::Topology topology(scenario, layout);
+  const nm::Topology topology = nm::ohCalibrationTopology(11.6, nm::SupernodePlacement::kCentre);
   // Oh §VII-C: "when pte = .4 more than 50% of packets are lost"; "at pte ~ .9, we lose all".
   CHECK(nm::expectedRatios(topology, 0.4, 0.0, 10).lost_to_total > 0.5);
   CHECK(nm::expectedRatios(topology, 0.9, 0.0, 10).lost_to_total > 0.99);

@@ -24,17 +24,11 @@ constexpr int kLine = 6;
 nm::Topology lineTopology() {
   std::vector<Vec2> sensors;
   for (int k = 1; k <= kLine; ++k) sensors.push_back({static_cast<double>(k), 0.0});
-  return nm::Topology(sensors, std::vector<Vec2>{{0, 0}}, 1.0);
+  return nm::Topology(nm::TopologyConfig{std::vector<Vec2>{{0, 0}}, 1.0}, sensors);
 }
 
-wsn::common::Scenario routerScenario(double pte, double pde, std::int32_t ticks, std::uint64_t seed = 7) {
-  wsn::common::Scenario scenario;
-  scenario.network.pte = pte;
-  scenario.network.pde = pde;
-  scenario.run.ticks = ticks;
-  scenario.run.seed = seed;
-  scenario.tracker.window_size = 10;
-  return scenario;
+nm::RouterConfig linkConfig(double pte, double pde, std::int32_t ticks, std::uint64_t seed = 7) {
+  return nm::RouterConfig{.pte = pte, .pde = pde, .run_ticks = ticks, .window_size = 10, .seed = seed};
 }
 
 Report reportOf(std::int32_t tick, wsn::common::SensorId sensor) {
@@ -61,7 +55,7 @@ TEST_CASE("measured loss and delay match pts, eq. (7) mean and P(d = 0) over 10^
   };
   for (const Case c : {Case{0.3, 0.3}, Case{0.1, 0.6}, Case{0.5, 0.1}}) {
     INFO("pte " << c.pte << ", pde " << c.pde);
-    nm::Router router(routerScenario(c.pte, c.pde, 1000000), topology);
+    nm::Router router(linkConfig(c.pte, c.pde, 1000000), topology);
     std::vector<double> sent(kLine + 1, 0), lost(kLine + 1, 0), received(kLine + 1, 0), on_time(kLine + 1, 0),
         delay_sum(kLine + 1, 0);
     std::vector<Report> reports;
@@ -115,9 +109,9 @@ TEST_CASE("measured loss and delay match pts, eq. (7) mean and P(d = 0) over 10^
 TEST_CASE("reports in a different order or split differently get identical fates and deliveries",
           "[network][router][determinism]") {
   const nm::Topology topology = lineTopology();
-  const auto scenario = routerScenario(0.3, 0.5, 60);
-  nm::Router a(scenario, topology);
-  nm::Router b(scenario, topology);
+  const auto config = linkConfig(0.3, 0.5, 60);
+  nm::Router a(config, topology);
+  nm::Router b(config, topology);
   for (std::int32_t t = 1; t <= 50; ++t) {
     std::vector<Report> forward;
     for (wsn::common::SensorId s = 0; s < kLine; ++s) forward.push_back(reportOf(t, s));
@@ -136,8 +130,8 @@ TEST_CASE("reports in a different order or split differently get identical fates
 
 TEST_CASE("a different seed gives different fates", "[network][router][determinism]") {
   const nm::Topology topology = lineTopology();
-  nm::Router a(routerScenario(0.3, 0.5, 100, 1), topology);
-  nm::Router b(routerScenario(0.3, 0.5, 100, 2), topology);
+  nm::Router a(linkConfig(0.3, 0.5, 100, 1), topology);
+  nm::Router b(linkConfig(0.3, 0.5, 100, 2), topology);
   bool differs = false;
   for (std::int32_t t = 1; t <= 20; ++t) {
     std::vector<Report> reports;
@@ -152,7 +146,7 @@ TEST_CASE("a different seed gives different fates", "[network][router][determini
 TEST_CASE("deliveries are due at t + d in (tick_generated, sensor) order and are handed out once",
           "[network][router]") {
   const nm::Topology topology = lineTopology();
-  nm::Router router(routerScenario(0.0, 0.6, 200), topology);
+  nm::Router router(linkConfig(0.0, 0.6, 200), topology);
   std::vector<nm::ReportFate> all;
   std::uint64_t collected = 0;
   for (std::int32_t t = 1; t <= 200; ++t) {
@@ -197,11 +191,11 @@ TEST_CASE("counters add up per supernode and in total, with unreachable and afte
   // Two supernodes: A = (0, 0) with a line of sensors 0..2 at x = 1, 2, 3; B = (10, 0) with
   // sensor 3 at (10.5, 0) (1 hop) and sensor 4 at (13, 0), out of range of everything.
   const std::vector<Vec2> sensors{{1, 0}, {2, 0}, {3, 0}, {10.5, 0}, {13, 0}};
-  const nm::Topology topology(sensors, std::vector<Vec2>{{0, 0}, {10, 0}}, 1.0);
+  const nm::Topology topology(nm::TopologyConfig{std::vector<Vec2>{{0, 0}, {10, 0}}, 1.0}, sensors);
   REQUIRE(topology.hops(4) == -1);
-  auto scenario = routerScenario(0.3, 0.5, 30);
-  scenario.tracker.window_size = 2;
-  nm::Router router(scenario, topology);
+  auto config = linkConfig(0.3, 0.5, 30);
+  config.window_size = 2;
+  nm::Router router(config, topology);
   for (std::int32_t t = 1; t <= 30; ++t) {
     std::vector<Report> reports;
     for (wsn::common::SensorId s = 0; s < 5; ++s) reports.push_back(reportOf(t, s));
@@ -239,7 +233,7 @@ TEST_CASE("counters add up per supernode and in total, with unreachable and afte
 
 TEST_CASE("malformed reports are rejected and counted, not routed", "[network][router]") {
   const nm::Topology topology = lineTopology();
-  nm::Router router(routerScenario(0.0, 0.0, 10), topology);
+  nm::Router router(linkConfig(0.0, 0.0, 10), topology);
   const std::vector<Report> reports{
       reportOf(3, 1),                                                    // fine
       reportOf(2, 2),                                                    // wrong tick
@@ -258,7 +252,7 @@ TEST_CASE("malformed reports are rejected and counted, not routed", "[network][r
 
 TEST_CASE("ticks must move forward and deliveries wait for their tick's submission", "[network][router]") {
   const nm::Topology topology = lineTopology();
-  nm::Router router(routerScenario(0.3, 0.3, 10), topology);
+  nm::Router router(linkConfig(0.3, 0.3, 10), topology);
   router.submit(4, {});
   CHECK_THROWS_AS(router.submit(4, {}), std::logic_error);
   CHECK_THROWS_AS(router.submit(3, {}), std::logic_error);
@@ -269,9 +263,9 @@ TEST_CASE("ticks must move forward and deliveries wait for their tick's submissi
 
 TEST_CASE("two reports from one sensor in one tick are both routed, reproducibly", "[network][router]") {
   const nm::Topology topology = lineTopology();
-  const auto scenario = routerScenario(0.3, 0.3, 100);
-  nm::Router a(scenario, topology);
-  nm::Router b(scenario, topology);
+  const auto config = linkConfig(0.3, 0.3, 100);
+  nm::Router a(config, topology);
+  nm::Router b(config, topology);
   Report first = reportOf(1, 4);
   Report second = first;
   second.x += 0.5;
@@ -286,7 +280,7 @@ TEST_CASE("two reports from one sensor in one tick are both routed, reproducibly
 
 TEST_CASE("forgotten fates free their ticks only", "[network][router]") {
   const nm::Topology topology = lineTopology();
-  nm::Router router(routerScenario(0.3, 0.3, 10), topology);
+  nm::Router router(linkConfig(0.3, 0.3, 10), topology);
   for (std::int32_t t = 1; t <= 3; ++t) router.submit(t, std::vector<Report>{reportOf(t, 0)});
   router.forgetFatesBefore(3);
   CHECK(router.fatesOf(1).empty());

@@ -109,3 +109,27 @@ TEST_CASE("an observations row names the fate of its report", "[network_model][r
   fate.hops = -1;
   CHECK(nm::observationRow(fate) == "5,,17,1,-1,,1.500000,-2.250000,3,unreachable");
 }
+
+TEST_CASE("the network report records the range, rates and counts the topology and router ran with",
+          "[network_model][run_files]") {
+  // Supernodes at 0 and 10, sensors at 1 and 2 (group 0, 1 and 2 hops) and 9 (group 1, 1 hop):
+  // mean hops (1 + 2 + 1) / 3, max 2.
+  const std::vector<wsn::common::Vec2> sensors{{1, 0}, {2, 0}, {9, 0}};
+  const nm::Topology topology(nm::TopologyConfig{{{0, 0}, {10, 0}}, 1.5}, sensors);
+  nm::Router router(nm::RouterConfig{.pte = 0.25, .pde = 0.125, .run_ticks = 1, .window_size = 10, .seed = 3},
+                    topology);
+  router.submit(1, std::vector<wsn::common::Report>{{1, 0, 1.0, 0.0, 0}, {1, 2, 9.0, 0.0, 1}});
+  const nm::NetworkReport report = nm::networkReport(topology, router);
+  CHECK(report.communication_range == 1.5);
+  CHECK(report.pte == 0.25);
+  CHECK(report.pde == 0.125);
+  CHECK(report.mean_hops == Approx(4.0 / 3.0).margin(1e-12));
+  CHECK(report.max_hops == 2);
+  CHECK(report.total == router.counts());
+  // One entry per supernode, each with its group's single report.
+  REQUIRE(report.per_supernode.size() == 2);
+  CHECK(report.per_supernode[0] == router.counts(0));
+  CHECK(report.per_supernode[1] == router.counts(1));
+  CHECK(report.per_supernode[0].sent == 1);
+  CHECK(report.per_supernode[1].sent == 1);
+}

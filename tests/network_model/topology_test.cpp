@@ -6,7 +6,6 @@
 #include <catch2/catch.hpp>
 
 #include "common/rng.hpp"
-#include "common/sensor_layout.hpp"
 #include "network_model/calibration.hpp"
 
 namespace nm = wsn::network_model;
@@ -52,7 +51,7 @@ TEST_CASE("hop counts along a line of sensors are the distance in range units", 
   const std::vector<Vec2> sensors{{1, 0}, {2, 0}, {3, 0}, {4, 0}, {5, 0}};
   const std::vector<Vec2> supernodes{{0, 0}};
   SECTION("range 1: each sensor only reaches its direct neighbours, so sensor at x = k is k hops") {
-    const nm::Topology topology(sensors, supernodes, 1.0);
+    const nm::Topology topology(nm::TopologyConfig{supernodes, 1.0}, sensors);
     for (std::uint32_t i = 0; i < 5; ++i) CHECK(topology.hops(i) == static_cast<std::int32_t>(i + 1));
     // Mean of 1..5 = 3.
     CHECK(topology.meanHops() == Approx(3.0).margin(1e-12));
@@ -61,12 +60,12 @@ TEST_CASE("hop counts along a line of sensors are the distance in range units", 
     CHECK(topology.hopHistogram() == std::vector<std::size_t>{0, 1, 1, 1, 1, 1});
   }
   SECTION("range 2: two units per hop, so hops = ceil(x / 2) = 1, 1, 2, 2, 3") {
-    const nm::Topology topology(sensors, supernodes, 2.0);
+    const nm::Topology topology(nm::TopologyConfig{supernodes, 2.0}, sensors);
     CHECK(std::vector<std::int32_t>(topology.allHops().begin(), topology.allHops().end()) ==
           std::vector<std::int32_t>{1, 1, 2, 2, 3});
   }
   SECTION("range just below 1: nothing is connected, every sensor is unreachable") {
-    const nm::Topology topology(sensors, supernodes, 0.999);
+    const nm::Topology topology(nm::TopologyConfig{supernodes, 0.999}, sensors);
     for (std::uint32_t i = 0; i < 5; ++i) CHECK(topology.hops(i) == -1);
     CHECK(topology.unreachableCount() == 5);
     CHECK(topology.reachableCount() == 0);
@@ -78,11 +77,11 @@ TEST_CASE("hop counts along a line of sensors are the distance in range units", 
 TEST_CASE("a sensor equally near two supernodes belongs to the lower index", "[network][topology]") {
   // Sensor at (1, 0) is 1 from both (0, 0) and (2, 0).
   const std::vector<Vec2> sensors{{1, 0}, {0.9, 0}, {1.1, 0}};
-  const nm::Topology forward(sensors, std::vector<Vec2>{{0, 0}, {2, 0}}, 1.0);
+  const nm::Topology forward(nm::TopologyConfig{std::vector<Vec2>{{0, 0}, {2, 0}}, 1.0}, sensors);
   CHECK(forward.supernodeOf(0) == 0);
   CHECK(forward.supernodeOf(1) == 0);
   CHECK(forward.supernodeOf(2) == 1);
-  const nm::Topology swapped(sensors, std::vector<Vec2>{{2, 0}, {0, 0}}, 1.0);
+  const nm::Topology swapped(nm::TopologyConfig{std::vector<Vec2>{{2, 0}, {0, 0}}, 1.0}, sensors);
   CHECK(swapped.supernodeOf(0) == 0);  // the tie goes to index 0, now the supernode at (2, 0)
   CHECK(swapped.supernodeOf(1) == 1);
   CHECK(swapped.supernodeOf(2) == 0);
@@ -103,7 +102,7 @@ TEST_CASE("paths run through other groups' sensors, and a sensor cut off from it
       {1.95, 0.0},  // 4 p: A, 5 hops through s and r of B's group
       {4.5, 0.0},  // 5 w: B, 1 hop
   };
-  const nm::Topology topology(sensors, std::vector<Vec2>{{0, 0}, {4, 0}}, 1.0);
+  const nm::Topology topology(nm::TopologyConfig{std::vector<Vec2>{{0, 0}, {4, 0}}, 1.0}, sensors);
   CHECK(topology.supernodeOf(2) == 1);
   CHECK(topology.supernodeOf(3) == 1);
   CHECK(topology.supernodeOf(4) == 0);
@@ -126,7 +125,7 @@ TEST_CASE("the cell-grid BFS agrees with a plain BFS on random fields", "[networ
       sensors.push_back({place.uniform(0.0, 20.0), place.uniform(0.0, 20.0)});
     }
     const std::vector<Vec2> supernodes{{5, 5}, {15, 5}, {10, 15}};
-    const nm::Topology topology(sensors, supernodes, range);
+    const nm::Topology topology(nm::TopologyConfig{supernodes, range}, sensors);
     const auto expected = referenceHops(sensors, supernodes, range);
     INFO("range " << range);
     CHECK(std::vector<std::int32_t>(topology.allHops().begin(), topology.allHops().end()) == expected);
@@ -137,9 +136,7 @@ TEST_CASE("Oh's quadrant grid gives 2500 sensors per group and grid-walk hop cou
   // 100 x 100 sensors at 0.5 .. 99.5, supernodes at the quadrant centres.
   SECTION("range 1: only the 4 grid neighbours are in range; corner (0.5, 0.5) needs 48 grid steps to "
           "(24.5, 24.5), which is 0.707 from the supernode: 49 hops") {
-    const auto scenario = nm::ohCalibrationScenario(1.0, nm::SupernodePlacement::kQuadrants, 0.3, 0.3);
-    const wsn::common::SensorLayout layout(scenario);
-    const nm::Topology topology(scenario, layout);
+    const nm::Topology topology = nm::ohCalibrationTopology(1.0, nm::SupernodePlacement::kQuadrants);
     REQUIRE(topology.sensorCount() == 10000);
     for (std::uint32_t j = 0; j < 4; ++j) CHECK(topology.groupSize(j) == 2500);
     CHECK(topology.unreachableCount() == 0);
@@ -149,15 +146,13 @@ TEST_CASE("Oh's quadrant grid gives 2500 sensors per group and grid-walk hop cou
     CHECK(topology.hops(2424) == 1);
   }
   SECTION("range sqrt(2): diagonals too, so the corner needs 24 steps + 1 = 25 hops") {
-    const auto scenario = nm::ohCalibrationScenario(std::sqrt(2.0) + 1e-12, nm::SupernodePlacement::kQuadrants, 0.3,
-                                                    0.3);
-    const wsn::common::SensorLayout layout(scenario);
-    const nm::Topology topology(scenario, layout);
+    const nm::Topology topology =
+        nm::ohCalibrationTopology(std::sqrt(2.0) + 1e-12, nm::SupernodePlacement::kQuadrants);
     CHECK(topology.maxHops() == 25);
   }
 }
 
 TEST_CASE("a topology without supernodes is refused", "[network][topology]") {
   const std::vector<Vec2> sensors{{1, 0}};
-  CHECK_THROWS_AS(nm::Topology(sensors, std::vector<Vec2>{}, 1.0), std::invalid_argument);
+  CHECK_THROWS_AS(nm::Topology(nm::TopologyConfig{std::vector<Vec2>{}, 1.0}, sensors), std::invalid_argument);
 }
