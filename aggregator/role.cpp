@@ -4,11 +4,11 @@
 #include <map>
 
 #include "aggregator/association.hpp"
+#include "aggregator/run_files.hpp"
 #include "aggregator/run_scorer.hpp"
 #include "common/dds/codec.hpp"
 #include "common/output.hpp"
 #include "common/provenance.hpp"
-#include "common/track_id.hpp"
 #include "common/truth.hpp"
 
 namespace wsn::aggregator {
@@ -19,19 +19,6 @@ struct SupernodeBatch {
   std::uint32_t observations_in_window = 0;
   std::uint32_t observations_dropped_stale = 0;
 };
-
-/// The track columns of tracks.csv and tracks_supernode.csv: the id, its readable label, the state
-/// and the upper triangle of its covariance over (x, y, vx, vy), as the supernodes published it.
-constexpr const char* kTrackColumns =
-    "track,label,x,y,vx,vy,p_xx,p_xy,p_xvx,p_xvy,p_yy,p_yvx,p_yvy,p_vxvx,p_vxvy,p_vyvy";
-
-std::string trackFields(const common::TrackEstimate& track) {
-  std::string row = std::to_string(track.track) + "," + common::track_id::label(track.track);
-  for (const double value : {track.x, track.y, track.vx, track.vy}) row += "," + common::fixed6(value);
-  for (int i = 0; i < 4; ++i)
-    for (int j = i; j < 4; ++j) row += "," + common::significant9(track.covariance[static_cast<std::size_t>(4 * i + j)]);
-  return row;
-}
 
 }  // namespace
 
@@ -66,8 +53,8 @@ void runAggregatorRole(const dds::RoleContext& context) {
                      context, std::chrono::seconds(30));
     status.ready();
 
-    common::CsvFile supernode_csv(context.run_dir + "/tracks_supernode.csv", std::string("tick,supernode,") + kTrackColumns);
-    common::CsvFile global_csv(context.run_dir + "/tracks.csv", std::string("tick,") + kTrackColumns);
+    common::CsvFile supernode_csv(context.run_dir + "/tracks_supernode.csv", supernodeTracksCsvHeader());
+    common::CsvFile global_csv(context.run_dir + "/tracks.csv", globalTracksCsvHeader());
     common::CsvFile per_tick_csv(context.run_dir + "/metrics_per_tick.csv", scorer.csvHeader());
     // Each supernode reports its running total of stale drops; the run's total is the sum of
     // the last value of each.
@@ -81,14 +68,14 @@ void runAggregatorRole(const dds::RoleContext& context) {
       std::vector<SupernodeTracks> inputs;
       for (auto& [supernode, batch] : inbox.take(t)) {
         for (const auto& track : batch.tracks)
-          supernode_csv.row(std::to_string(t) + "," + std::to_string(supernode) + "," + trackFields(track));
+          supernode_csv.row(supernodeTrackCsvRow(t, supernode, track));
         dropped_stale_by_supernode[supernode] = batch.observations_dropped_stale;
         inputs.push_back({supernode, std::move(batch.tracks)});
       }
       auto global = associator->associate(t, inputs);
       const TickScores scores = scorer.add(t, truth.at(t), global);
       per_tick_csv.row(scorer.csvRow(scores));
-      for (const auto& track : global) global_csv.row(std::to_string(t) + "," + trackFields(track));
+      for (const auto& track : global) global_csv.row(globalTrackCsvRow(t, track));
 
       auto encoded = encode(global);
       wsn_msg_GlobalTrackBatch sample{};
