@@ -241,7 +241,7 @@ wsn::supernode::mcmcda::Problem typicalProblem(std::int32_t scale) {
   std::vector<wsn::supernode::mcmcda::ProblemObservation> observations;
   for (std::int32_t t = typical.oldestTick(); t <= tick; ++t)
     for (const auto& o : typical.slot(t)) observations.push_back({o.tick_generated, o.x, o.y, false, {}});
-  const auto params = wsn::supernode::mcmcda::McmcdaParams::fromScenario(benchScenario());
+  const auto params = wsn::supernode::mcmcda::McmcdaParams::fromContext(wsn::supernode::engineContext(benchScenario(), 0));
   return wsn::supernode::mcmcda::Problem(params.model, std::move(observations), tick);
 }
 

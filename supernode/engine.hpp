@@ -16,11 +16,21 @@
 
 namespace wsn::supernode {
 
-/// What an engine is built from.
+/// What an engine is built from: its own slice of the scenario, split off at the role edge by
+/// engineContext(), never the whole scenario.
 struct EngineContext {
-  const common::Scenario& scenario;  ///< tracker.params resolved (every default present)
-  std::uint32_t supernode = 0;       ///< index of the supernode running the engine
+  std::string engine;                ///< the registered name (tracker.engine)
+  std::uint32_t supernode = 0;       ///< index of the supernode running it: its track-id space
+  common::Rect region;
+  std::uint64_t seed = 0;            ///< run.seed
+  common::DynamicsConfig dynamics;   ///< the targets' motion model, Oh eq. (8)
+  double sensor_spacing = 1.0;       ///< Ds (sensors.spacing): the rule-based engine's length unit
+  std::int32_t window_size = 10;     ///< ws (tracker.window_size)
+  std::map<std::string, common::EngineParam> params;  ///< tracker.params, resolved (every default present)
 };
+
+/// The context of supernode `supernode`'s engine; scenario.tracker.params must be resolved.
+EngineContext engineContext(const common::Scenario& scenario, std::uint32_t supernode);
 
 /// A live track's predicted position at the next tick, for handoff decisions.
 struct TrackPrediction {
@@ -71,7 +81,7 @@ const common::Registry<EngineSpec>& engineRegistry();
 /// value out of range.
 void resolveEngineParams(common::Scenario& scenario);
 
-/// Builds the engine named in the (resolved) scenario.
+/// Builds the engine context.engine names; throws std::invalid_argument for an unknown name.
 std::unique_ptr<Engine> makeEngine(const EngineContext& context);
 
 }  // namespace wsn::supernode

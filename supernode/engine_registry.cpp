@@ -33,11 +33,13 @@ void resolveEngineParams(common::Scenario& scenario) {
   if (spec.check) spec.check(scenario);
 }
 
+EngineContext engineContext(const common::Scenario& scenario, std::uint32_t supernode) {
+  return {scenario.tracker.engine, supernode,        scenario.region, scenario.run.seed, scenario.dynamics,
+          scenario.sensors.spacing, scenario.tracker.window_size, scenario.tracker.params};
+}
+
 std::unique_ptr<Engine> makeEngine(const EngineContext& context) {
-  const auto& scenario = context.scenario;
-  return engineRegistry()
-      .at<common::ScenarioError>(scenario.tracker.engine, where(scenario, scenario.tracker.engine_line))
-      .create(context);
+  return engineRegistry().at(context.engine).create(context);
 }
 
 }  // namespace wsn::supernode

@@ -40,7 +40,7 @@ SupernodeTracker::SupernodeTracker(const common::Scenario& resolved, std::uint32
   if (supernode_index >= std::max<std::size_t>(1, scenario_->supernodes.size()))
     throw std::invalid_argument("supernode index " + std::to_string(supernode_index) + " out of range: the scenario has " +
                                 std::to_string(scenario_->supernodes.size()) + " supernodes");
-  engine_ = makeEngine(EngineContext{*scenario_, supernode_index});
+  engine_ = makeEngine(engineContext(*scenario_, supernode_index));
 }
 
 SupernodeTracker::TickOutput SupernodeTracker::step(std::int32_t tick, std::span<const common::Observation> delivered,

@@ -60,16 +60,16 @@ EngineSpec engineSpec() {
   return spec;
 }
 
-GnnParams GnnParams::fromScenario(const common::Scenario& scenario) {
-  return common::decodeParams(paramTable(), scenario.tracker.params);
+GnnParams GnnParams::fromContext(const EngineContext& context) {
+  return common::decodeParams(paramTable(), context.params);
 }
 
 
 GnnEngine::GnnEngine(const EngineContext& context)
     : supernode_(context.supernode),
-      region_(context.scenario.region),
-      params_(GnnParams::fromScenario(context.scenario)),
-      model_(context.scenario.dynamics.delta, context.scenario.dynamics.process_noise_sigma,
+      region_(context.region),
+      params_(GnnParams::fromContext(context)),
+      model_(context.dynamics.delta, context.dynamics.process_noise_sigma,
              params_.measurement_sigma) {}
 
 void GnnEngine::inject(std::vector<Track>& tracks, const Track& track) {

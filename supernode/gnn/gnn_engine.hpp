@@ -24,8 +24,8 @@ struct GnnParams {
   std::int32_t max_misses = 3;
   double initial_velocity_sigma = 2.0;
 
-  /// Reads scenario.tracker.params (already resolved: every parameter present).
-  static GnnParams fromScenario(const common::Scenario& scenario);
+  /// From the engine context's resolved params (paramTable() decodes them).
+  static GnnParams fromContext(const EngineContext& context);
 };
 
 /// The parameters' one description: key, member, unit, range, default (GnnParams{}) and meaning.

@@ -118,10 +118,10 @@ EngineSpec engineSpec() {
   return spec;
 }
 
-McmcdaParams McmcdaParams::fromScenario(const common::Scenario& scenario) {
-  McmcdaParams p = common::decodeParams(paramTable(), scenario.tracker.params);
-  p.model.process_noise_sigma = scenario.dynamics.process_noise_sigma;
-  p.model.delta = scenario.dynamics.delta;
+McmcdaParams McmcdaParams::fromContext(const EngineContext& context) {
+  McmcdaParams p = common::decodeParams(paramTable(), context.params);
+  p.model.process_noise_sigma = context.dynamics.process_noise_sigma;
+  p.model.delta = context.dynamics.delta;
   return p;
 }
 
@@ -134,8 +134,7 @@ const TrackState& McmcdaEngine::LiveTrack::lastState() const {
 }
 
 McmcdaEngine::McmcdaEngine(const EngineContext& context)
-    : McmcdaEngine(McmcdaParams::fromScenario(context.scenario), context.scenario.region, context.scenario.run.seed,
-                   context.supernode) {}
+    : McmcdaEngine(McmcdaParams::fromContext(context), context.region, context.seed, context.supernode) {}
 
 McmcdaEngine::McmcdaEngine(const McmcdaParams& params, const common::Rect& region, std::uint64_t seed,
                            std::uint32_t id_space)

@@ -24,8 +24,8 @@ struct McmcdaParams {
   double greedy_gate_chi2 = 9.21;        ///< gate of the greedy start for the newest tick
   std::int32_t confirm_observations = 3;  ///< observations (all time) before a track is reported
 
-  /// Reads scenario.tracker.params (resolved) and scenario.dynamics.
-  static McmcdaParams fromScenario(const common::Scenario& scenario);
+  /// From the engine context's resolved params (paramTable() decodes them) and its dynamics.
+  static McmcdaParams fromContext(const EngineContext& context);
 };
 
 /// The parameters' one description: key, member, unit, range, default (McmcdaParams{}) and meaning.

@@ -127,16 +127,16 @@ EngineSpec engineSpec() {
   return spec;
 }
 
-RulebasedParams RulebasedParams::fromScenario(const common::Scenario& scenario) {
-  return common::decodeParams(paramTable(), scenario.tracker.params);
+RulebasedParams RulebasedParams::fromContext(const EngineContext& context) {
+  return common::decodeParams(paramTable(), context.params);
 }
 
 RulebasedEngine::RulebasedEngine(const EngineContext& context)
     : supernode_(context.supernode),
-      region_(context.scenario.region),
-      spacing_(context.scenario.sensors.spacing),
-      delta_(context.scenario.dynamics.delta),
-      params_(RulebasedParams::fromScenario(context.scenario)),
+      region_(context.region),
+      spacing_(context.sensor_spacing),
+      delta_(context.dynamics.delta),
+      params_(RulebasedParams::fromContext(context)),
       persistence_(params_.denoise ? params_.persistence_ticks : 1) {
   // The scenario states q in Ds per tick^2; the filter works in the scenario's lengths.
   noise_config_.q_initial = params_.process_noise * spacing_;

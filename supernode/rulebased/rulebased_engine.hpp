@@ -48,8 +48,8 @@ struct RulebasedParams {
   std::int32_t noise_cluster_sensors = 2;
   bool quick_solution = false;
 
-  /// Reads scenario.tracker.params (already resolved: every parameter present).
-  static RulebasedParams fromScenario(const common::Scenario& scenario);
+  /// From the engine context's resolved params (paramTable() decodes them).
+  static RulebasedParams fromContext(const EngineContext& context);
 };
 
 /// The parameters' one description: key, member, unit, range, default (RulebasedParams{}) and meaning.

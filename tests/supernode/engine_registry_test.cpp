@@ -90,7 +90,7 @@ TEST_CASE("a count parameter must be a whole number", "[registry]") {
 TEST_CASE("makeEngine builds the engine the scenario names", "[registry]") {
   auto s = scenarioFrom("gnn", 1);
   resolveEngineParams(s);
-  const auto engine = makeEngine(EngineContext{s, 0});
+  const auto engine = makeEngine(engineContext(s, 0));
   REQUIRE(engine != nullptr);
   CHECK(dynamic_cast<gnn::GnnEngine*>(engine.get()) != nullptr);
   CHECK(engine->confirmedTracks().empty());

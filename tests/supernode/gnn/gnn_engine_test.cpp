@@ -19,7 +19,7 @@ using test::sensorAt;
 /// A window and a GNN engine of supernode 0, stepped the way SupernodeTracker steps them.
 struct Harness {
   explicit Harness(common::Scenario s)
-      : scenario(std::move(s)), window(scenario.tracker.window_size), engine(EngineContext{scenario, 0}) {}
+      : scenario(std::move(s)), window(scenario.tracker.window_size), engine(engineContext(scenario, 0)) {}
   void step(std::int32_t tick, const std::vector<common::Observation>& delivered = {}) {
     window.advanceTo(tick);
     for (const auto& o : delivered) window.insert(o);

@@ -252,7 +252,7 @@ TEST_CASE("mcmcda counts a handed-over track's misses from when its target was l
 
 TEST_CASE("mcmcda refuses a non-finite handoff and the release of an unknown track", "[mcmcda]") {
   const auto scenario = mcmcdaScenario();
-  McmcdaEngine engine(EngineContext{scenario, 0});
+  McmcdaEngine engine(engineContext(scenario, 0));
   common::TrackHandoff handoff;
   handoff.track = (std::uint64_t{2} << 48) | 1;
   handoff.last_tick = 1;

@@ -91,7 +91,7 @@ common::SensorId firstSensor(std::int32_t tick, const Mover& mover) {
 class Harness {
  public:
   explicit Harness(common::Scenario s)
-      : scenario_(std::move(s)), window_(scenario_.tracker.window_size), engine_(makeEngine({scenario_, 0})) {}
+      : scenario_(std::move(s)), window_(scenario_.tracker.window_size), engine_(makeEngine(engineContext(scenario_, 0))) {}
   Harness(const Harness&) = delete;
   Harness& operator=(const Harness&) = delete;
 
