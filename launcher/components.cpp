@@ -95,15 +95,21 @@ std::string componentsText() {
   return out.str();
 }
 
+std::optional<std::string> unacceptedKind(const std::vector<std::string>& reported,
+                                          const std::vector<std::string>& accepted) {
+  for (const auto& kind : reported)
+    if (std::find(accepted.begin(), accepted.end(), kind) == accepted.end()) return kind;
+  return std::nullopt;
+}
+
 void checkComponentsFit(const common::Scenario& scenario) {
   const auto& model = node::sensorModelRegistry().at(node::sensorModelName(scenario.sensor_model.kind));
   const auto& engine = supernode::engineRegistry().at<common::ScenarioError>(
       scenario.tracker.engine, scenario.source_path + ":" + std::to_string(scenario.tracker.engine_line) + ": ");
-  for (const auto& kind : model.measurement_kinds)
-    if (std::find(engine.accepts.begin(), engine.accepts.end(), kind) == engine.accepts.end())
-      throw common::ScenarioError(scenario.source_path + ":" + std::to_string(std::max(scenario.tracker.engine_line, 1)) +
-                                  ": engine '" + engine.name + "' takes " + joined(engine.accepts) +
-                                  " measurements, but sensor model '" + model.name + "' reports " + kind);
+  if (const auto kind = unacceptedKind(model.measurement_kinds, engine.accepts))
+    throw common::ScenarioError(scenario.source_path + ":" + std::to_string(std::max(scenario.tracker.engine_line, 1)) +
+                                ": engine '" + engine.name + "' takes " + joined(engine.accepts) +
+                                " measurements, but sensor model '" + model.name + "' reports " + *kind);
 }
 
 }  // namespace wsn::launcher

@@ -3,7 +3,9 @@
 // together (an engine takes the measurements its sensor model makes).
 #pragma once
 
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "common/scenario.hpp"
 
@@ -18,6 +20,10 @@ std::string componentsMarkdown();
 
 /// The engines and associations only (`wsntrack engines`, kept for scripts that use it).
 std::string enginesText();
+
+/// The first measurement kind of `reported` that `accepted` lacks, if any.
+std::optional<std::string> unacceptedKind(const std::vector<std::string>& reported,
+                                          const std::vector<std::string>& accepted);
 
 /// Throws common::ScenarioError "file:line: ..." when the scenario's tracker engine does not
 /// accept every measurement kind of its sensor model.

@@ -1,0 +1,67 @@
+#include "launcher/components.hpp"
+
+#include <catch2/catch.hpp>
+
+#include "aggregator/association.hpp"
+#include "aggregator/metric/metric.hpp"
+#include "common/scenario_schema.hpp"
+#include "node/sensor_model_registry.hpp"
+#include "supernode/engine.hpp"
+
+namespace wsn::launcher {
+namespace {
+
+TEST_CASE("wsntrack components lists every registered component of every kind", "[launcher][components]") {
+  const std::string text = componentsText();
+  std::size_t listed = 0;
+  const auto require_listed = [&](const std::string& name) {
+    INFO(name);
+    CHECK(text.find("\n" + name + ": ") != std::string::npos);
+    ++listed;
+  };
+  for (const auto& m : node::sensorModelRegistry()) require_listed(m.name);
+  for (const auto& e : supernode::engineRegistry()) {
+    require_listed(e.name);
+    for (const auto& p : e.params) CHECK(text.find("  " + p.name) != std::string::npos);
+  }
+  for (const auto& a : aggregator::associationRegistry()) require_listed(a.name);
+  for (const auto& m : aggregator::metricRegistry()) require_listed(m.name);
+  CHECK(listed >= 2 + 3 + 2 + 5);  // today's: 2 sensor models, 3 engines, 2 associations, 5 metrics
+}
+
+TEST_CASE("the markdown tables cover every scenario section and every component's parameters",
+          "[launcher][components]") {
+  const std::string markdown = componentsMarkdown();
+  for (const auto& [name, table] : common::schema::markdownTables()) {
+    INFO(name);
+    CHECK(markdown.find("<!-- table: " + name + " -->\n" + table + "<!-- end table -->") != std::string::npos);
+  }
+  for (const auto& e : supernode::engineRegistry())
+    CHECK(markdown.find("<!-- table: tracker.params " + e.name + " -->") != std::string::npos);
+  for (const auto& a : aggregator::associationRegistry())
+    CHECK(markdown.find("<!-- table: aggregator.params " + a.name + " -->") != std::string::npos);
+}
+
+TEST_CASE("a sensor model and an engine fit when the engine accepts every kind the model reports",
+          "[launcher][components]") {
+  common::Scenario s;
+  for (const auto& e : supernode::engineRegistry()) {
+    s.tracker.engine = e.name;
+    INFO(e.name);
+    CHECK_NOTHROW(checkComponentsFit(s));  // every engine today takes positions, every model reports them
+  }
+  s.tracker.engine = "kalman";
+  s.source_path = "s.yaml";
+  s.tracker.engine_line = 4;
+  CHECK_THROWS_WITH(checkComponentsFit(s), Catch::Contains("s.yaml:4: unknown tracker engine 'kalman'"));
+}
+
+TEST_CASE("an engine that lacks a kind the sensor model reports does not fit", "[launcher][components]") {
+  CHECK(unacceptedKind({"position"}, {"position"}) == std::nullopt);
+  CHECK(unacceptedKind({"position", "bearing"}, {"position"}) == "bearing");
+  CHECK(unacceptedKind({"bearing"}, {"position", "bearing"}) == std::nullopt);
+  CHECK(unacceptedKind({}, {"position"}) == std::nullopt);
+}
+
+}  // namespace
+}  // namespace wsn::launcher
