@@ -53,7 +53,7 @@ EngineSpec engineSpec() {
   spec.description =
       "global nearest neighbour: constant-velocity Kalman filters (Oh eq. 8), optimal gated assignment, "
       "M-of-N confirmation; replays the window so delayed observations are used";
-  spec.params = common::paramSpecs(paramTable());;
+  spec.params = common::paramSpecs(paramTable());
   spec.create = [](const EngineContext& context) -> std::unique_ptr<Engine> {
     return std::make_unique<GnnEngine>(context);
   };

@@ -111,7 +111,7 @@ EngineSpec engineSpec() {
   spec.description =
       "sliding-window Markov chain Monte Carlo data association (Oh et al. §VI): samples partitions of the "
       "window's observations into tracks and false alarms under eq. (3), keeps the best";
-  spec.params = common::paramSpecs(paramTable());;
+  spec.params = common::paramSpecs(paramTable());
   spec.create = [](const EngineContext& context) -> std::unique_ptr<Engine> {
     return std::make_unique<McmcdaEngine>(context);
   };

@@ -112,7 +112,7 @@ EngineSpec engineSpec() {
       "rule-based centroid tracker (An et al. 2014): 8-connected clusters of detecting sensors, weighted "
       "centroids, match/merge indicators through merging and splitting, nearest-neighbour Kalman tracks with "
       "NIS-adapted process noise; optional noise mitigation (An et al. 2013). Lengths in sensor separations Ds";
-  spec.params = common::paramSpecs(paramTable());;
+  spec.params = common::paramSpecs(paramTable());
   spec.create = [](const EngineContext& context) -> std::unique_ptr<Engine> {
     return std::make_unique<RulebasedEngine>(context);
   };
