@@ -1,16 +1,9 @@
 #include "common/param_spec.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 
 namespace wsn::common {
-
-std::string formatNumber(double value) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
-}
 
 void resolveParams(const std::string& source_path, const std::string& section, const std::string& owner,
                    const std::vector<ParamSpec>& specs, std::map<std::string, EngineParam>& params) {
@@ -25,11 +18,11 @@ void resolveParams(const std::string& source_path, const std::string& section, c
     }
     const double v = param.value;
     if (!(v >= it->min && v <= it->max))  // also rejects NaN
-      throw ScenarioError(where(param.line) + "'" + section + "." + name + "' must be in [" + formatNumber(it->min) +
-                          ", " + formatNumber(it->max) + "], got " + formatNumber(v));
+      throw ScenarioError(where(param.line) + "'" + section + "." + name + "' must be in [" + config::compactNumber(it->min) +
+                          ", " + config::compactNumber(it->max) + "], got " + config::compactNumber(v));
     if (it->integer && v != std::floor(v))
       throw ScenarioError(where(param.line) + "'" + section + "." + name + "' must be a whole number, got " +
-                          formatNumber(v));
+                          config::compactNumber(v));
   }
   for (const auto& p : specs)
     if (!params.contains(p.name)) params[p.name] = EngineParam{p.default_value, 0};

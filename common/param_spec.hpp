@@ -57,7 +57,4 @@ P decodeParams(const config::FieldTable<P>& table, const std::map<std::string, E
 void resolveParams(const std::string& source_path, const std::string& section, const std::string& owner,
                    const std::vector<ParamSpec>& specs, std::map<std::string, EngineParam>& params);
 
-/// Shortest text that reads back to the same double ("0.5", "9.21", "3").
-std::string formatNumber(double value);
-
 }  // namespace wsn::common

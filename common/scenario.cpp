@@ -1025,8 +1025,7 @@ std::string resolvedScenarioYaml(const Scenario& s) {
     if (noise.preset != "custom") {
       writeFields(out, "    ", schema::environmentalNoise(), noise);
     } else {
-      out << "    components:\n";
-      for (const auto& c : noise.components) out << "      - " << flowMapping(schema::noiseComponent(), c) << "\n";
+      writeList(out, "    ", "components", schema::noiseComponent(), noise.components);
     }
   }
   writeSection(out, "localisation", schema::localisation(), s.localisation);

@@ -237,7 +237,7 @@ TRACK_ID_SHIFT = 48
 
 def track_label(track):
     """The readable id of a numeric track id, as 'wsntrack watch' shows it and newer tracks.csv
-    files write it (common/messages.hpp trackLabel): S:N for serial N of supernode S (ids are
+    files write it (common/track_id.hpp, track_id::label): S:N for serial N of supernode S (ids are
     (S + 1) << 48 | N); S:tTsK when the serial is a birth id T << 24 | K (tick T, sensor K: the GNN
     and rule-based engines); gN for an id the aggregator minted (below 1 << 48)."""
     owner, serial = track >> TRACK_ID_SHIFT, track & ((1 << TRACK_ID_SHIFT) - 1)

@@ -121,7 +121,7 @@ EngineSpec engineSpec() {
     const auto& lag = scenario.tracker.params.at("decision_lag");
     if (lag.value >= scenario.tracker.window_size)
       throw common::ScenarioError(scenario.source_path + ":" + std::to_string(std::max(lag.line, 1)) +
-                                  ": 'tracker.params.decision_lag' " + common::formatNumber(lag.value) +
+                                  ": 'tracker.params.decision_lag' " + common::config::compactNumber(lag.value) +
                                   " must be below 'tracker.window_size' " + std::to_string(scenario.tracker.window_size));
   };
   return spec;

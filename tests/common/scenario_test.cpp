@@ -401,6 +401,14 @@ TEST_CASE("the resolved YAML round-trips scripted targets, a random layout and p
   requireRoundTrip(s);
 }
 
+TEST_CASE("an empty list of noise components round-trips as custom noise of no component", "[scenario][resolved]") {
+  const Scenario s = parse("sensor_model:\n  kind: acoustic_doppler\n  environmental_noise: {components: []}\n");
+  CHECK(s.sensor_model.environmental_noise.preset == "custom");
+  CHECK(s.sensor_model.environmental_noise.components.empty());
+  CHECK(resolvedScenarioYaml(s).find("    components: []\n") != std::string::npos);
+  requireRoundTrip(s);
+}
+
 TEST_CASE("resolved YAML is deterministic and writes params in sorted order", "[scenario][resolved]") {
   const std::string text = "tracker:\n  params: {zeta: 1, alpha: 2, mid: 3}\n";
   const std::string a = resolvedScenarioYaml(parse(text));

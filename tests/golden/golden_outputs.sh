@@ -7,8 +7,9 @@
 #   golden_outputs.sh BIN_DIR SOURCE_DIR WORK_DIR record    rewrite the recorded sums
 #
 # CSV and YAML files are compared byte for byte. JSON files are compared by content: parsed,
-# without "timing" and "provenance" (they describe the run, not its results), every real number
-# written with 6 decimals (the precision the files had when the sums were recorded), keys sorted.
+# without "timing" and "provenance" (they describe the run, not its results), in the file's own
+# key order (readers take keys by position too) and every number exactly (repr), so a change of
+# layout or whitespace alone does not count but any change of a value or of the order does.
 # A difference prints the work directory, whose run directories can be compared with a run of
 # the previous commit.
 set -euo pipefail
@@ -29,9 +30,9 @@ def norm(v):
     if isinstance(v, list):
         return [norm(x) for x in v]
     if isinstance(v, float):
-        return "%.6f" % v
+        return repr(v)
     return v
-print(json.dumps(norm(json.load(open(sys.argv[1]))), sort_keys=True, indent=1))' "$1"
+print(json.dumps(norm(json.load(open(sys.argv[1]))), indent=1))' "$1"
 }
 for scenario in "$source_dir"/scenarios/*.yaml; do
   name=$(basename "$scenario" .yaml)

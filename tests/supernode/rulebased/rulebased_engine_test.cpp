@@ -79,7 +79,7 @@ std::vector<common::Observation> detections(std::int32_t tick, const std::vector
 }
 
 /// The smallest sensor id among the detections of `mover` alone at `tick`: the first sensor of
-/// its cluster, which names the track born from it (gnn::birthTrackId).
+/// its cluster, which names the track born from it (common::track_id::birth).
 common::SensorId firstSensor(std::int32_t tick, const Mover& mover) {
   const auto seen = detections(tick, {mover});
   REQUIRE(!seen.empty());
@@ -165,7 +165,7 @@ TEST_CASE("a single target is tracked within a few metres under one identity", "
   Harness h(fieldScenario());
   const Mover target{{300, 400}, {1.6, 1.2}, 40};
   // Tick 1: a birth candidate; tick 2: confirm_ticks = 2 sightings make the track, named after
-  // the first sighting's tick and smallest sensor id (gnn::birthTrackId).
+  // the first sighting's tick and smallest sensor id (common::track_id::birth).
   h.step(1, std::vector{target});
   CHECK(h.tracks().empty());
   const common::TrackId id = common::track_id::birth(0, 1, firstSensor(1, target));
