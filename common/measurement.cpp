@@ -35,7 +35,8 @@ const KindRow* rowOf(MeasurementKind kind) {
   return i < kKinds.size() ? &kKinds[i] : nullptr;
 }
 
-bool allFinite(const std::vector<double>& v) {
+template <typename Values>
+bool allFinite(const Values& v) {
   return std::all_of(v.begin(), v.end(), [](double d) { return std::isfinite(d); });
 }
 

@@ -7,7 +7,8 @@
 #include <cstdint>
 #include <optional>
 #include <string_view>
-#include <vector>
+
+#include "common/inline_vector.hpp"
 
 namespace wsn::common {
 
@@ -48,14 +49,14 @@ struct SensorPose {
 struct Measurement {
   MeasurementKind kind = MeasurementKind::position;
   /// z in the kind's order; their count is the dimension.
-  std::vector<double> values;
+  InlineVector<double, kMaxMeasurementDimension> values;
   /// R, row-major dimension x dimension. Empty (or all zero) when the sensor does not know it: the
   /// engine's own measurement model applies, which is what the position engines always do.
-  std::vector<double> noise;
+  InlineVector<double, kMaxMeasurementDimension * kMaxMeasurementDimension> noise;
   /// The sensor's pose; every kind but position needs it to relate z to the field.
   std::optional<SensorPose> sensor;
   /// c_k over the scenario's classes (ONERA eq. 19–20); empty when the sensor does not classify.
-  std::vector<double> class_likelihoods;
+  InlineVector<double, kMaxClasses> class_likelihoods;
 
   std::size_t dimension() const { return values.size(); }
   /// True when the sensor gave R (a non-zero one).
