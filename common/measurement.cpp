@@ -35,8 +35,7 @@ const KindRow* rowOf(MeasurementKind kind) {
   return i < kKinds.size() ? &kKinds[i] : nullptr;
 }
 
-template <typename Values>
-bool allFinite(const Values& v) {
+bool allFinite(const std::vector<double>& v) {
   return std::all_of(v.begin(), v.end(), [](double d) { return std::isfinite(d); });
 }
 

@@ -7,8 +7,7 @@
 #include <cstdint>
 #include <optional>
 #include <string_view>
-
-#include "common/inline_vector.hpp"
+#include <vector>
 
 namespace wsn::common {
 
@@ -49,14 +48,14 @@ struct SensorPose {
 struct Measurement {
   MeasurementKind kind = MeasurementKind::position;
   /// z in the kind's order; their count is the dimension.
-  InlineVector<double, kMaxMeasurementDimension> values;
+  std::vector<double> values;
   /// R, row-major dimension x dimension. Empty (or all zero) when the sensor does not know it: the
   /// engine's own measurement model applies, which is what the position engines always do.
-  InlineVector<double, kMaxMeasurementDimension * kMaxMeasurementDimension> noise;
+  std::vector<double> noise;
   /// The sensor's pose; every kind but position needs it to relate z to the field.
   std::optional<SensorPose> sensor;
   /// c_k over the scenario's classes (ONERA eq. 19–20); empty when the sensor does not classify.
-  InlineVector<double, kMaxClasses> class_likelihoods;
+  std::vector<double> class_likelihoods;
 
   std::size_t dimension() const { return values.size(); }
   /// True when the sensor gave R (a non-zero one).

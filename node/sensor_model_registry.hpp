@@ -1,8 +1,7 @@
 // The sensor-model plugin interface: what a node tile runs each tick, whatever its sensors are
 // (signal strength with neighbour fusion, acoustic Doppler, ...), and the registry that maps
-// `sensor_model.kind` to a model. A new model's code is a folder under node/ with one spec and one
-// line in sensor_model_registry.cpp; its configuration is in common/ (docs/ARCHITECTURE.md, "How
-// to add a component").
+// `sensor_model.kind` to a model. A new sensor model is a folder under node/ with one spec and
+// one line in sensor_model_registry.cpp.
 #pragma once
 
 #include <cstdint>

@@ -42,8 +42,8 @@ std::size_t posesOf(const std::vector<Message>& messages) {
 
 /// Appends `values` to `pool` (whose capacity was reserved up front, so earlier views stay valid)
 /// and returns a sequence over the appended part.
-template <typename Values>
-dds_sequence_double appendDoubles(std::vector<double>& pool, const Values& values, std::size_t bound, const char* what) {
+dds_sequence_double appendDoubles(std::vector<double>& pool, const std::vector<double>& values, std::size_t bound,
+                                  const char* what) {
   if (values.size() > bound)
     throw std::length_error(std::string("measurement ") + what + ": " + std::to_string(values.size()) +
                             " values, the wire holds at most " + std::to_string(bound));
@@ -74,24 +74,20 @@ wsn_msg_Measurement encodeMeasurement(const common::Measurement& m, Encoded<Wire
   return w;
 }
 
-/// A received sequence into an inline vector; the IDL bounds equal the vectors' capacities, and a
-/// longer sequence (which Cyclone's bounds check refuses first) throws std::length_error.
-template <typename Values>
-void copyOut(const dds_sequence_double& seq, Values& out) {
-  if (seq._length == 0) return out.clear();
-  out.assign(seq._buffer, seq._buffer + seq._length);
+std::vector<double> copyOut(const dds_sequence_double& seq) {
+  return seq._length == 0 ? std::vector<double>{} : std::vector<double>(seq._buffer, seq._buffer + seq._length);
 }
 
 common::Measurement decodeMeasurement(const wsn_msg_Measurement& w) {
   common::Measurement m;
   m.kind = static_cast<common::MeasurementKind>(w.kind);
-  copyOut(w.values, m.values);
-  copyOut(w.noise, m.noise);
+  m.values = copyOut(w.values);
+  m.noise = copyOut(w.noise);
   if (w.sensor._length > 0) {
     const wsn_msg_SensorPose& pose = w.sensor._buffer[0];
     m.sensor = common::SensorPose{pose.x, pose.y, pose.heading};
   }
-  copyOut(w.class_likelihoods, m.class_likelihoods);
+  m.class_likelihoods = copyOut(w.class_likelihoods);
   return m;
 }
 
