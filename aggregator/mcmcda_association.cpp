@@ -108,7 +108,6 @@ std::vector<common::TrackEstimate> McmcdaAssociator::associate(std::int32_t tick
     o.sensor = id;
     o.x = e.x;
     o.y = e.y;
-    o.measurement = common::Measurement::position(e.x, e.y);
     window_.insert(o);
   }
   std::erase_if(seen_, [&](const auto& entry) {

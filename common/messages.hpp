@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "common/measurement.hpp"
 #include "common/track_id.hpp"
 
 namespace wsn::common {
@@ -34,21 +33,16 @@ struct SensorReading {
 struct Report {
   std::int32_t tick = 0;
   SensorId sensor = 0;
-  /// Where the report lies in the field, which routing, canonical orders and observations.csv
-  /// use: the measured position for kind position, the sensor's believed position otherwise.
   double x = 0.0;
   double y = 0.0;
   TargetId target = kFalseAlarm;
   /// Acoustic detection: ws = floor(Ps / cs) >= 1 (An et al. 2014 eq. 4, 10); 0 for a fused report.
   std::int32_t power_level = 0;
-  /// What the sensor measured. Defaults to the position (x, y), so that a report built from a
-  /// position alone is complete; set it after x, y when assigning members one by one.
-  Measurement measurement = Measurement::position(x, y);
   friend bool operator==(const Report&, const Report&) = default;
 };
 
 /// A report as a supernode receives it: generated at tick_generated, delivered at
-/// tick_delivered >= tick_generated. Position engines read x, y; the others the measurement.
+/// tick_delivered >= tick_generated.
 struct Observation {
   std::int32_t tick_generated = 0;
   std::int32_t tick_delivered = 0;
@@ -57,24 +51,8 @@ struct Observation {
   double y = 0.0;
   TargetId target = kFalseAlarm;
   std::int32_t power_level = 0;  ///< as in Report
-  Measurement measurement = Measurement::position(x, y);  ///< as in Report
   friend bool operator==(const Observation&, const Observation&) = default;
 };
-
-/// True when the report's measurement can be used (common::wellFormed) and agrees with x, y: the
-/// values of a position, the sensor's position for the other kinds.
-inline bool wellFormed(const Report& r) {
-  const Measurement& m = r.measurement;
-  if (!wellFormed(m)) return false;
-  if (m.kind == MeasurementKind::position) return m.values[0] == r.x && m.values[1] == r.y;
-  return m.sensor->x == r.x && m.sensor->y == r.y;
-}
-
-/// The observation a supernode receives when `report` is delivered at tick_delivered.
-inline Observation observationOf(const Report& report, std::int32_t tick_delivered) {
-  return {report.tick,   tick_delivered,     report.sensor,     report.x,
-          report.y,      report.target,      report.power_level, report.measurement};
-}
 
 /// A track's estimate at one tick: the state and its covariance.
 struct TrackEstimate {

@@ -1,7 +1,4 @@
-#include <algorithm>
-#include <stdexcept>
 #include <string>
-#include <string_view>
 
 #include "supernode/engine.hpp"
 #include "supernode/gnn/gnn_engine.hpp"
@@ -43,17 +40,6 @@ EngineContext engineContext(const common::Scenario& scenario, std::uint32_t supe
 
 std::unique_ptr<Engine> makeEngine(const EngineContext& context) {
   return engineRegistry().at(context.engine).create(context);
-}
-
-void requireAccepted(const EngineSpec& engine, const common::Observation& observation) {
-  const std::string_view kind = common::measurementKindName(observation.measurement.kind);
-  if (std::find(engine.accepts.begin(), engine.accepts.end(), kind) != engine.accepts.end()) return;
-  std::string accepted;
-  for (const auto& a : engine.accepts) accepted += (accepted.empty() ? "" : ", ") + a;
-  throw std::logic_error("engine '" + engine.name + "' was handed a measurement of kind '" + std::string(kind) +
-                         "' (sensor " + std::to_string(observation.sensor) + ", tick " +
-                         std::to_string(observation.tick_generated) + ") but accepts only: " + accepted +
-                         "; the scenario check should have rejected this sensor model for it");
 }
 
 }  // namespace wsn::supernode

@@ -8,11 +8,11 @@
 namespace wsn::supernode {
 namespace {
 
-/// Canonical order within a slot: sensor, then position; delivery tick, target and measurement
-/// only break ties between otherwise equal observations so that arrival order never shows.
+/// Canonical order within a slot: sensor, then position; delivery tick and target only break
+/// ties between otherwise equal observations so that arrival order never shows.
 bool canonicalLess(const common::Observation& a, const common::Observation& b) {
-  return std::tie(a.sensor, a.x, a.y, a.tick_delivered, a.target, a.measurement) <
-         std::tie(b.sensor, b.x, b.y, b.tick_delivered, b.target, b.measurement);
+  return std::tie(a.sensor, a.x, a.y, a.tick_delivered, a.target) <
+         std::tie(b.sensor, b.x, b.y, b.tick_delivered, b.target);
 }
 
 }  // namespace

@@ -15,8 +15,8 @@ std::unique_ptr<const common::Scenario> resolvedCopy(const common::Scenario& sce
 }
 
 bool observationLess(const common::Observation& a, const common::Observation& b) {
-  return std::tie(a.tick_generated, a.sensor, a.x, a.y, a.tick_delivered, a.target, a.measurement) <
-         std::tie(b.tick_generated, b.sensor, b.x, b.y, b.tick_delivered, b.target, b.measurement);
+  return std::tie(a.tick_generated, a.sensor, a.x, a.y, a.tick_delivered, a.target) <
+         std::tie(b.tick_generated, b.sensor, b.x, b.y, b.tick_delivered, b.target);
 }
 
 bool handoffLess(const common::TrackHandoff& a, const common::TrackHandoff& b) {
@@ -41,7 +41,6 @@ SupernodeTracker::SupernodeTracker(const common::Scenario& resolved, std::uint32
     throw std::invalid_argument("supernode index " + std::to_string(supernode_index) + " out of range: the scenario has " +
                                 std::to_string(scenario_->supernodes.size()) + " supernodes");
   engine_ = makeEngine(engineContext(*scenario_, supernode_index));
-  engine_spec_ = engineRegistry().find(scenario_->tracker.engine);  // makeEngine found it
 }
 
 SupernodeTracker::TickOutput SupernodeTracker::step(std::int32_t tick, std::span<const common::Observation> delivered,
@@ -49,10 +48,7 @@ SupernodeTracker::TickOutput SupernodeTracker::step(std::int32_t tick, std::span
   window_.advanceTo(tick);
   std::vector<common::Observation> observations(delivered.begin(), delivered.end());
   std::sort(observations.begin(), observations.end(), observationLess);
-  for (const auto& observation : observations) {
-    requireAccepted(*engine_spec_, observation);
-    window_.insert(observation);
-  }
+  for (const auto& observation : observations) window_.insert(observation);
 
   std::vector<common::TrackHandoff> handoffs_in(incoming.begin(), incoming.end());
   std::sort(handoffs_in.begin(), handoffs_in.end(), handoffLess);

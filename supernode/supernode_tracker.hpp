@@ -38,8 +38,7 @@ class SupernodeTracker {
 
   /// Processes tick `tick`: slides the window, files the delivered observations into their slots,
   /// adopts the incoming handoffs, steps the engine and releases the tracks predicted to enter
-  /// another supernode's Voronoi cell. Handoffs addressed to another supernode are ignored; an
-  /// observation of a measurement kind the engine does not accept throws (requireAccepted).
+  /// another supernode's Voronoi cell. Handoffs addressed to another supernode are ignored.
   TickOutput step(std::int32_t tick, std::span<const common::Observation> delivered,
                   std::span<const common::TrackHandoff> incoming);
 
@@ -55,7 +54,6 @@ class SupernodeTracker {
   std::uint32_t index_;
   ObservationWindow window_;
   std::unique_ptr<Engine> engine_;
-  const EngineSpec* engine_spec_ = nullptr;  // in the static registry
   std::uint64_t misaddressed_handoffs_ = 0;
 };
 

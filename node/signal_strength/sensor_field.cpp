@@ -258,10 +258,7 @@ std::vector<common::Report> SensorField::fuse(std::int32_t tick, std::span<const
         target = candidate_target.id;
       }
     }
-    // Oh eq. 6 measures a position; its noise is the engine's measurement model.
-    const common::Vec2 fused{sum_x / sum_z, sum_y / sum_z};
-    reports.push_back(
-        {tick, candidate.sensor, fused.x, fused.y, target, 0, common::Measurement::position(fused.x, fused.y)});
+    reports.push_back({tick, candidate.sensor, sum_x / sum_z, sum_y / sum_z, target});
   }
   std::sort(reports.begin(), reports.end(), [](const auto& a, const auto& b) { return a.sensor < b.sensor; });
   return reports;

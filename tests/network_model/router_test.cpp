@@ -250,33 +250,6 @@ TEST_CASE("malformed reports are rejected and counted, not routed", "[network][r
   CHECK(router.deliveriesDue(3, 0).size() == 1);
 }
 
-TEST_CASE("a report's measurement reaches the supernode as sent, and a malformed one is rejected", "[network][router]") {
-  const nm::Topology topology = lineTopology();
-  nm::Router router(linkConfig(0.0, 0.0, 10), topology);
-  // Sensor 1 stands at (2, 0): a bearing report lies at the sensor.
-  Report bearing{3, 1, 2.0, 0.0, 0};
-  bearing.measurement.kind = wsn::common::MeasurementKind::bearing;
-  bearing.measurement.values = {0.3};
-  bearing.measurement.noise = {0.01};
-  bearing.measurement.sensor = wsn::common::SensorPose{2.0, 0.0, 0.5};
-  bearing.measurement.class_likelihoods = {0.9, 0.1};
-  Report no_pose = bearing;
-  no_pose.sensor = 2;
-  no_pose.measurement.sensor.reset();
-  Report stale_position = reportOf(3, 3);
-  stale_position.x += 1.0;  // the measurement still says the old x
-  const std::vector<Report> reports{bearing, no_pose, stale_position, reportOf(3, 4)};
-
-  const auto fates = router.submit(3, reports);
-  REQUIRE(fates.size() == 2);
-  CHECK(router.counts().rejected == 2);
-  const auto delivered = router.deliveriesDue(3, 0);
-  REQUIRE(delivered.size() == 2);
-  CHECK(delivered[0].sensor == 1);
-  CHECK(delivered[0].measurement == bearing.measurement);
-  CHECK(delivered[1].measurement == wsn::common::Measurement::position(delivered[1].x, delivered[1].y));
-}
-
 TEST_CASE("ticks must move forward and deliveries wait for their tick's submission", "[network][router]") {
   const nm::Topology topology = lineTopology();
   nm::Router router(linkConfig(0.3, 0.3, 10), topology);
@@ -296,7 +269,6 @@ TEST_CASE("two reports from one sensor in one tick are both routed, reproducibly
   Report first = reportOf(1, 4);
   Report second = first;
   second.x += 0.5;
-  second.measurement = wsn::common::Measurement::position(second.x, second.y);  // else rejected as inconsistent
   const std::vector<Report> ab{first, second};
   const std::vector<Report> ba{second, first};
   const auto fa = a.submit(1, ab);
