@@ -70,8 +70,9 @@ parse_yaml = _plot_run.parse_yaml
 #: reader; kept so that analysis scripts that import it still run.
 parse_yaml_subset = parse_yaml
 
-#: ``track_label(id)``: the readable id ``S:N`` or ``gN`` of a numeric track id (ids are
-#: ``(S + 1) << 48 | N``; ids below ``1 << 48`` were minted by the aggregator).
+#: ``track_label(id)``: the readable id of a numeric track id, as common/track_id.hpp writes it:
+#: ``S:N`` (ids ``(S + 1) << 48 | N``), ``S:tTsK`` when N is a birth id ``T << 24 | K`` (tick T,
+#: sensor K) and ``gN`` for ids below ``1 << 48``, minted by the aggregator.
 track_label = _plot_run.track_label
 
 TRUTH_DTYPE = np.dtype([("tick", "i4"), ("target", "i8"), ("x", "f8"), ("y", "f8"), ("vx", "f8"), ("vy", "f8")])
