@@ -12,10 +12,8 @@
 
 namespace wsn::common {
 
-/// Identifies a sensor: its index in the layout (row-major for grids).
-using SensorId = std::uint32_t;
-/// A track's global identity; its bit layout is common/track_id.hpp's.
-using TrackId = std::uint64_t;
+// SensorId (a sensor's index in the layout) and TrackId (a track's global identity) are declared,
+// with the track id's bit layout, in common/track_id.hpp.
 
 /// Ground-truth target id; kFalseAlarm marks a report that no target caused.
 using TargetId = std::int32_t;

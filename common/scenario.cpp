@@ -143,11 +143,6 @@ std::string describe(const YAML::Node& node) {
 
 class Reader {
  public:
-  template <typename C>
-  static std::string pathOf(const FieldTable<C>& table) {
-    return table.section;
-  }
-
   explicit Reader(std::string file) : file_(std::move(file)) {}
 
   [[noreturn]] void fail(int line, const std::string& message) const {
@@ -196,14 +191,6 @@ class Reader {
 
   Section section(const Entry& entry, const std::string& path, std::vector<std::string> allowed) const {
     return section(entry.value, lineOf(entry), path, std::move(allowed));
-  }
-
-  /// A real number in `range`; true when the key was given.
-  bool number(const Section& s, std::string_view key, double& out, const Range& range) const {
-    const Entry* entry = s.find(key);
-    if (entry == nullptr) return false;
-    out = numberValue(*entry, s.pathOf(key), range);
-    return true;
   }
 
   double numberValue(const Entry& entry, const std::string& path, const Range& range) const {
@@ -268,11 +255,11 @@ class Reader {
   /// A mapping whose keys are those of `table`.
   template <typename C>
   Section section(const YAML::Node& node, int line, const FieldTable<C>& table) const {
-    return section(node, line, pathOf(table), table.sortedKeys());
+    return section(node, line, table.section, table.sortedKeys());
   }
   template <typename C>
   Section section(const Entry& entry, const FieldTable<C>& table) const {
-    return section(entry.value, lineOf(entry), pathOf(table), table.sortedKeys());
+    return section(entry.value, lineOf(entry), table.section, table.sortedKeys());
   }
   /// An item of a list, whose keys are those of `table`, at `path` ("supernodes[1]").
   template <typename C>

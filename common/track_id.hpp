@@ -12,8 +12,9 @@
 
 namespace wsn::common {
 
-/// Global track id (see above). Also declared in common/messages.hpp, which carries it.
+/// Global track id (see above).
 using TrackId = std::uint64_t;
+/// Identifies a sensor: its index in the layout (row-major for grids).
 using SensorId = std::uint32_t;
 
 namespace track_id {
