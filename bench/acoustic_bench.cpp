@@ -20,7 +20,12 @@ wsn::common::Scenario scenarioWith(std::int64_t targets, bool noise) {
   auto s = wsn::common::loadScenario(WSN_SCENARIO_DIR "/an2014_scenario3.yaml");
   s.targets.scripted.resize(static_cast<std::size_t>(targets));
   s.run.ticks = 200;
-  if (noise) s.sensor_model.environmental_noise.components = *wsn::common::noisePreset("noise3");
+  if (noise) {
+    auto settings = std::make_shared<wsn::node::acoustic::AcousticSettings>(
+        wsn::common::settingsOf<wsn::node::acoustic::AcousticSettings>(s.sensor_model));
+    settings->environmental_noise.components = *wsn::node::acoustic::noisePreset("noise3");
+    s.sensor_model.settings = settings;
+  }
   return s;
 }
 
@@ -30,7 +35,7 @@ void detectRun(benchmark::State& state, bool noise) {
   const wsn::common::Truth truth(scenario);
   const wsn::common::SensorLayout layout(scenario);
   const auto tiles = wsn::node::makeTiles(layout, 1);
-  const wsn::node::acoustic::AcousticField field(scenario, layout, tiles.front(), truth);
+  const wsn::node::acoustic::AcousticField field(wsn::node::acoustic::fieldConfigOf(scenario), layout, tiles.front(), truth);
   std::size_t detections = 0;
   for (auto _ : state) {
     detections = 0;

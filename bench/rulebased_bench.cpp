@@ -32,7 +32,7 @@ Input loadInput(const std::string& name) {
   const wsn::common::Truth truth(in.scenario);
   const wsn::common::SensorLayout layout(in.scenario);
   const auto tiles = wsn::node::makeTiles(layout, 1);
-  const wsn::node::acoustic::AcousticField field(in.scenario, layout, tiles.front(), truth);
+  const wsn::node::acoustic::AcousticField field(wsn::node::acoustic::fieldConfigOf(in.scenario), layout, tiles.front(), truth);
   in.per_tick.resize(static_cast<std::size_t>(in.scenario.run.ticks) + 1);
   std::size_t total = 0;
   for (std::int32_t t = 1; t <= in.scenario.run.ticks; ++t) {

@@ -4,8 +4,6 @@
 // file's YAML before validating it, and writes a scenario back fully resolved.
 #include "common/scenario.hpp"
 
-#include "common/scenario_schema.hpp"
-
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -22,299 +20,35 @@
 #include <sstream>
 #include <string_view>
 
+#include "common/config/yaml_reader.hpp"
+#include "common/config/yaml_writer.hpp"
+#include "common/scenario_schema.hpp"
+#include "node/sensor_model_registry.hpp"
+
 namespace wsn::common {
 namespace {
 
 using config::compactNumber;
+using config::deriveLeftOut;
+using config::describe;
+using config::Entry;
 using config::FieldKind;
 using config::FieldTable;
+using config::forEachItem;
+using config::keyText;
+using config::lineOr;
 using config::Range;
+using config::Reader;
+using config::Section;
+using config::writeFields;
+using config::writeList;
+using config::writeSection;
 using config::yamlNumber;
 using schema::kMaxBirthsPerTick;
 using schema::kMaxCoordinate;
 using schema::kMaxNameLength;
 using schema::kMaxSensors;
 using schema::kMaxSupernodes;
-
-// ---------------------------------------------------------------------------------------------
-// Parsing scalars. std::from_chars is exact and locale-independent, unlike streams.
-
-std::string_view withoutPlus(std::string_view text) {
-  if (text.size() > 1 && text.front() == '+' && text[1] != '-' && text[1] != '+') text.remove_prefix(1);
-  return text;
-}
-
-std::optional<double> parseDouble(std::string_view text) {
-  text = withoutPlus(text);
-  double value = 0.0;
-  const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (result.ec != std::errc{} || result.ptr != text.data() + text.size() || !std::isfinite(value))
-    return std::nullopt;
-  return value;
-}
-
-/// A whole number written as an integer ("42", "-3", "0x2a") or as a whole float ("1e3", "100.0").
-/// Returns nullopt for anything else; `is_number` tells a fraction (2.5) from a non-number.
-std::optional<long double> parseWhole(std::string_view text, bool& is_number) {
-  text = withoutPlus(text);
-  is_number = false;
-  if (text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X')) {
-    std::uint64_t value = 0;
-    const auto result = std::from_chars(text.data() + 2, text.data() + text.size(), value, 16);
-    if (result.ec == std::errc{} && result.ptr == text.data() + text.size()) {
-      is_number = true;
-      return static_cast<long double>(value);
-    }
-    return std::nullopt;
-  }
-  std::int64_t signed_value = 0;
-  auto result = std::from_chars(text.data(), text.data() + text.size(), signed_value);
-  if (result.ec == std::errc{} && result.ptr == text.data() + text.size()) {
-    is_number = true;
-    return static_cast<long double>(signed_value);
-  }
-  std::uint64_t unsigned_value = 0;
-  result = std::from_chars(text.data(), text.data() + text.size(), unsigned_value);
-  if (result.ec == std::errc{} && result.ptr == text.data() + text.size()) {
-    is_number = true;
-    return static_cast<long double>(unsigned_value);
-  }
-  const auto value = parseDouble(text);
-  if (!value) return std::nullopt;
-  is_number = true;
-  if (*value != std::floor(*value)) return std::nullopt;
-  return static_cast<long double>(*value);
-}
-
-/// A closed integer interval.
-struct IntRange {
-  std::int64_t lo;
-  std::int64_t hi;
-  std::string text() const { return "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]"; }
-};
-
-// ---------------------------------------------------------------------------------------------
-// The reader: YAML nodes to values, with file:line messages.
-
-/// One key: value pair of a mapping.
-struct Entry {
-  YAML::Node key;
-  YAML::Node value;
-};
-
-/// The entries of one mapping in the file, by key, with the mapping's dotted path and line.
-struct Section {
-  std::string path;  ///< "" for the top level
-  int line = 1;
-  std::vector<std::pair<std::string, Entry>> entries;  // file order
-
-  const Entry* find(std::string_view key) const {
-    for (const auto& [name, entry] : entries)
-      if (name == key) return &entry;
-    return nullptr;
-  }
-  std::string pathOf(std::string_view key) const {
-    return path.empty() ? std::string(key) : path + "." + std::string(key);
-  }
-};
-
-std::string join(const std::vector<std::string>& names) {
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
-
-/// A plain scalar, or one explicitly tagged as a number (!!int, !!float); quoted or otherwise
-/// tagged scalars are strings.
-bool isPlainOrNumericTag(const YAML::Node& node) {
-  const std::string& tag = node.Tag();
-  return tag == "?" || tag == "tag:yaml.org,2002:int" || tag == "tag:yaml.org,2002:float";
-}
-
-/// How a node looks, for "got ..." in messages.
-std::string describe(const YAML::Node& node) {
-  if (!node.IsDefined() || node.IsNull()) return "nothing";
-  if (node.IsMap()) return "a mapping";
-  if (node.IsSequence()) return "a list";
-  if (node.Tag() == "!") return "the quoted string '" + node.Scalar() + "'";
-  if (!isPlainOrNumericTag(node)) return "'" + node.Scalar() + "' tagged " + node.Tag();
-  return "'" + node.Scalar() + "'";
-}
-
-class Reader {
- public:
-  explicit Reader(std::string file) : file_(std::move(file)) {}
-
-  [[noreturn]] void fail(int line, const std::string& message) const {
-    throw ScenarioError(file_ + ":" + std::to_string(std::max(line, 1)) + ": " + message);
-  }
-
-  static int lineOf(const YAML::Node& node) {
-    const YAML::Mark mark = node.Mark();
-    return mark.is_null() ? 0 : mark.line + 1;
-  }
-  /// The line of a value; an empty value's mark points past it, so use its key's line.
-  static int lineOf(const Entry& entry) {
-    if (entry.value.IsNull() || lineOf(entry.value) == 0) return lineOf(entry.key);
-    return lineOf(entry.value);
-  }
-
-  /// Reads a mapping (an empty value counts as an empty mapping). `allowed` lists the keys it
-  /// may hold; an empty list allows any name (tracker.params).
-  Section section(const YAML::Node& node, int line, const std::string& path, std::vector<std::string> names) const {
-    Section s;
-    s.path = path;
-    s.line = std::max(line, 1);
-    std::sort(names.begin(), names.end());
-    if (!node.IsDefined() || node.IsNull()) return s;
-    if (!node.IsMap()) {
-      if (path.empty())
-        fail(s.line, "a scenario must be a mapping of sections (" + join(names) + "), got " + describe(node));
-      fail(s.line, "'" + path + "' must be a mapping" + (names.empty() ? "" : " of " + join(names)) + ", got " +
-                       describe(node));
-    }
-    for (auto it = node.begin(); it != node.end(); ++it) {
-      const YAML::Node key = it->first;
-      const int key_line = lineOf(key) > 0 ? lineOf(key) : s.line;
-      if (!key.IsScalar())
-        fail(key_line, "keys " + where(path) + " must be plain names, got " + describe(key));
-      const std::string& name = key.Scalar();
-      if (!names.empty() && !std::binary_search(names.begin(), names.end(), name))
-        fail(key_line, "unknown key '" + name + "' " + where(path) + "; expected one of: " + join(names));
-      if (const Entry* first = s.find(name))
-        fail(key_line, "duplicate key '" + name + "' " + where(path) + " (first given on line " +
-                           std::to_string(lineOf(first->key)) + ")");
-      s.entries.push_back({name, Entry{key, it->second}});
-    }
-    return s;
-  }
-
-  Section section(const Entry& entry, const std::string& path, std::vector<std::string> allowed) const {
-    return section(entry.value, lineOf(entry), path, std::move(allowed));
-  }
-
-  double numberValue(const Entry& entry, const std::string& path, const Range& range) const {
-    const double value = anyNumber(entry, path);
-    if (!range.contains(value))
-      fail(lineOf(entry), "'" + path + "' must be in " + range.text() + ", got " + entry.value.Scalar());
-    return value;
-  }
-
-  /// Any finite real number.
-  double anyNumber(const Entry& entry, const std::string& path) const {
-    const YAML::Node& node = entry.value;
-    std::optional<double> value;
-    if (node.IsScalar() && isPlainOrNumericTag(node)) value = parseDouble(node.Scalar());
-    if (!value) fail(lineOf(entry), "'" + path + "' must be a number, got " + describe(node));
-    return *value;
-  }
-
-  /// A whole number in `range`.
-  std::int64_t integerValue(const Entry& entry, const std::string& path, const IntRange& range) const {
-    const long double value = whole(entry, path);
-    if (value < static_cast<long double>(range.lo) || value > static_cast<long double>(range.hi))
-      fail(lineOf(entry), "'" + path + "' must be in " + range.text() + ", got " + entry.value.Scalar());
-    return static_cast<std::int64_t>(value);
-  }
-
-  /// A whole number in [0, 2^64 - 1] (seeds), converted exactly.
-  std::uint64_t unsigned64Value(const Entry& entry, const std::string& path) const {
-    const YAML::Node& node = entry.value;
-    if (node.IsScalar() && isPlainOrNumericTag(node)) {  // integer text, decimal or hex: exact
-      const std::string_view text = withoutPlus(node.Scalar());
-      const bool hex = text.size() > 2 && text[0] == '0' && (text[1] == 'x' || text[1] == 'X');
-      const char* last = text.data() + text.size();
-      std::uint64_t value = 0;
-      const auto result = std::from_chars(text.data() + (hex ? 2 : 0), last, value, hex ? 16 : 10);
-      if (result.ec == std::errc{} && result.ptr == last) return value;
-    }
-    // Anything else: a whole float (1e3), or an error for a non-number, a fraction or a value
-    // out of range (negative, or 2^64 and beyond).
-    const long double value = whole(entry, path);
-    if (value < 0.0L || value >= 18446744073709551616.0L)
-      fail(lineOf(entry), "'" + path + "' must be in [0, 18446744073709551615], got " + node.Scalar());
-    return static_cast<std::uint64_t>(value);
-  }
-
-  /// A string (any scalar).
-  std::string textValue(const Entry& entry, const std::string& path) const {
-    if (!entry.value.IsScalar()) fail(lineOf(entry), "'" + path + "' must be a string, got " + describe(entry.value));
-    return entry.value.Scalar();
-  }
-
-  /// One of `choices`; returns its index.
-  int choiceIndex(const Entry& entry, const std::string& path, const std::vector<std::string>& choices) const {
-    const YAML::Node& node = entry.value;
-    if (node.IsScalar()) {
-      const auto it = std::find(choices.begin(), choices.end(), node.Scalar());
-      if (it != choices.end()) return static_cast<int>(it - choices.begin());
-    }
-    fail(lineOf(entry), "'" + path + "' must be one of: " + join(choices) + "; got " + describe(node));
-  }
-
-  /// A mapping whose keys are those of `table`.
-  template <typename C>
-  Section section(const YAML::Node& node, int line, const FieldTable<C>& table) const {
-    return section(node, line, table.section, table.sortedKeys());
-  }
-  template <typename C>
-  Section section(const Entry& entry, const FieldTable<C>& table) const {
-    return section(entry.value, lineOf(entry), table.section, table.sortedKeys());
-  }
-  /// An item of a list, whose keys are those of `table`, at `path` ("supernodes[1]").
-  template <typename C>
-  Section item(const YAML::Node& node, int line, const std::string& path, const FieldTable<C>& table) const {
-    return section(node, line, path, table.sortedKeys());
-  }
-
-  /// Reads every value key of `table` that `s` holds into `out`, in table order, each checked
-  /// against its kind and range. Nested keys (sub-sections, lists) are left to the caller.
-  template <typename C>
-  void fields(const Section& s, const FieldTable<C>& table, C& out) const {
-    for (const auto& field : table.fields) {
-      const Entry* entry = s.find(field.key);
-      if (entry == nullptr) continue;
-      const std::string path = s.pathOf(field.key);
-      switch (field.kind) {
-        case FieldKind::kReal: field.set_number(out, numberValue(*entry, path, field.range)); break;
-        case FieldKind::kInteger:
-          field.set_number(out, static_cast<double>(integerValue(
-                                    *entry, path,
-                                    IntRange{static_cast<std::int64_t>(field.range.lo),
-                                             static_cast<std::int64_t>(field.range.hi)})));
-          break;
-        case FieldKind::kUnsigned64: field.set_unsigned(out, unsigned64Value(*entry, path)); break;
-        case FieldKind::kText: field.set_text(out, textValue(*entry, path)); break;
-        case FieldKind::kChoice:
-          field.set_text(out, field.choices[static_cast<std::size_t>(choiceIndex(*entry, path, field.choices))]);
-          break;
-        case FieldKind::kNested: break;
-      }
-    }
-  }
-
-  /// Fails naming the missing keys of an item that needs them.
-  void require(const Section& s, std::initializer_list<const char*> keys, const std::string& what) const {
-    for (const char* key : keys)
-      if (s.find(key) == nullptr) fail(s.line, "'" + s.path + "' needs '" + key + "' (" + what + ")");
-  }
-
- private:
-  static std::string where(const std::string& path) { return path.empty() ? "at the top level" : "in '" + path + "'"; }
-
-  long double whole(const Entry& entry, const std::string& path) const {
-    const YAML::Node& node = entry.value;
-    bool is_number = false;
-    std::optional<long double> value;
-    if (node.IsScalar() && isPlainOrNumericTag(node)) value = parseWhole(node.Scalar(), is_number);
-    if (!value)
-      fail(lineOf(entry), "'" + path + "' must be an integer, got " +
-                              (is_number ? "the fraction " + node.Scalar() : describe(node)));
-    return *value;
-  }
-
-  std::string file_;
-};
 
 std::string regionText(const Rect& r) {
   return "[" + compactNumber(r.x_min) + ", " + compactNumber(r.x_max) + "] x [" + compactNumber(r.y_min) + ", " +
@@ -369,39 +103,6 @@ void gridFitsRegion(const Reader& r, const Scenario& s, int line) {
                      compactNumber(kMaxSensors));
 }
 
-/// Every number of `table` that `given` (the section as written; null when the file has none)
-/// leaves out and that has a derived default: computed from the scenario read so far, checked
-/// against the key's range, and noted in s.derived.
-template <typename C>
-void deriveLeftOut(const Reader& r, const Section* given, const FieldTable<C>& table, C& config, Scenario& s) {
-  for (const auto& field : table.fields) {
-    if (!field.derive || (given != nullptr && given->find(field.key) != nullptr)) continue;
-    const std::string path = table.section + "." + field.key;
-    const double value = field.derive(config, s);
-    if (!field.range.contains(value))
-      r.fail(given != nullptr ? given->line : 1, "'" + path + "' left out is " + field.derivation + " = " +
-                                                     compactNumber(value) + ", outside " + field.range.text() +
-                                                     "; give " + field.key + " explicitly");
-    field.set_number(config, value);
-    s.derived[path] = field.derivation;
-  }
-}
-
-/// sensor_model.acoustic: a tick is a whole number (at most 100000) of detection steps.
-void tickIsWholeDetectionSteps(const Reader& r, const AcousticConfig& ac, int line) {
-  const double steps = ac.tick_s / ac.detection_step_s;
-  if (std::abs(steps - std::round(steps)) > 1e-6 * steps || std::round(steps) > 100000.0)
-    r.fail(line, "'sensor_model.acoustic.tick_s' " + compactNumber(ac.tick_s) +
-                     " must be a whole number (at most 100000) of detection steps of " +
-                     compactNumber(ac.detection_step_s) + " s");
-}
-
-/// A key that only the acoustic model reads, given with another model.
-void onlyAcoustic(const Reader& r, const Scenario& s, const std::string& path, int line) {
-  if (s.sensor_model.kind != SensorModelConfig::Kind::kAcousticDoppler)
-    r.fail(line, "'" + path + "' applies only with 'sensor_model.kind: acoustic_doppler'");
-}
-
 /// targets.birth_rate: at most kMaxBirthsPerTick expected births per tick over the region.
 void birthsPerTickBounded(const Reader& r, const Scenario& s, int line) {
   const double births = s.targets.birth_rate * s.region.area();
@@ -411,39 +112,45 @@ void birthsPerTickBounded(const Reader& r, const Scenario& s, int line) {
                      "); expected at most " + compactNumber(kMaxBirthsPerTick));
 }
 
-/// A scripted target: slower than its sound (acoustic), disappearing after it appears, starting
-/// inside the region.
-void scriptedTargetIsValid(const Reader& r, const Scenario& s, const TargetSpec& spec, const Section& t) {
+bool contains(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+/// The sensor models whose keys (`which`: of sensor_model or of a scripted target) include `key`.
+std::vector<std::string> modelsReading(const std::string& key,
+                                       std::vector<std::string> node::SensorModelSettingsSpec::*which) {
+  std::vector<std::string> names;
+  for (const auto& model : node::sensorModelRegistry())
+    if (contains(model.settings.*which, key)) names.push_back(model.name);
+  return names;
+}
+
+/// "'sensor_model.kind: a'" or "'sensor_model.kind: a' or 'sensor_model.kind: b'".
+std::string kindsText(const std::vector<std::string>& kinds) {
+  std::string text;
+  for (const auto& kind : kinds)
+    text += (text.empty() ? "'" : " or '") + std::string("sensor_model.kind: ") + kind + "'";
+  return text;
+}
+
+/// A scripted target: disappearing after it appears, starting inside the region, and what its
+/// sensor model asks of it.
+void scriptedTargetIsValid(const Reader& r, const Scenario& s, const node::SensorModelSpec& model,
+                           const TargetSpec& spec, const Section& t) {
   const std::string& path = t.path;
-  if (s.sensor_model.kind == SensorModelConfig::Kind::kAcousticDoppler) {
-    // The retarded emission time is unique only while the target is slower than its sound.
-    const auto& ac = s.sensor_model.acoustic;
-    const double target_speed = std::hypot(spec.velocity.x, spec.velocity.y) / ac.tick_s;
-    if (!(target_speed < ac.sound_speed))
-      r.fail(t.line, "'" + path + "' moves at " + compactNumber(target_speed) + " per second, not slower than the " +
-                         "sound speed " + compactNumber(ac.sound_speed) + " of 'sensor_model.acoustic'");
+  for (const auto& [key, entry] : t.entries) {
+    const std::vector<std::string> readers = modelsReading(key, &node::SensorModelSettingsSpec::target_keys);
+    if (!readers.empty() && !contains(model.settings.target_keys, key))
+      r.fail(Reader::lineOf(entry.key), "'" + path + "." + key + "' applies only with " + kindsText(readers));
   }
+  if (model.settings.check_target) model.settings.check_target(r, s, spec, t);
   if (spec.disappear_tick != 0 && spec.disappear_tick <= spec.appear_tick)
     r.fail(Reader::lineOf(*t.find("disappear_tick")),
            "'" + path + ".disappear_tick' must be 0 (never) or greater than appear_tick " +
                std::to_string(spec.appear_tick) + ", got " + std::to_string(spec.disappear_tick));
   if (!s.region.contains(spec.position))
-    r.fail(t.line, "'" + path + "' starts at " + pointText(spec.position) + ", outside the region " +
-                       regionText(s.region));
-}
-
-/// Born targets move at up to the speed class's bound on each axis (common/truth.cpp); with
-/// acoustic sensors they must stay slower than their sound.
-void bornTargetsSlowerThanSound(const Reader& r, const Scenario& s, int line) {
-  if (s.sensor_model.kind != SensorModelConfig::Kind::kAcousticDoppler || !(s.targets.birth_rate > 0.0)) return;
-  const double per_axis = s.targets.speed_class == SpeedClass::kSlow     ? 1.0
-                          : s.targets.speed_class == SpeedClass::kMedium ? 2.0
-                                                                         : 5.0;
-  const double fastest = per_axis * std::sqrt(2.0) / s.sensor_model.acoustic.tick_s;
-  if (!(fastest < s.sensor_model.acoustic.sound_speed))
-    r.fail(line, "'targets.speed_class' lets born targets move at up to " + compactNumber(fastest) +
-                     " per second, not slower than the sound speed " +
-                     compactNumber(s.sensor_model.acoustic.sound_speed) + " of 'sensor_model.acoustic'");
+    r.fail(t.line,
+           "'" + path + "' starts at " + pointText(spec.position) + ", outside the region " + regionText(s.region));
 }
 
 /// A supernode inside the region and apart from every earlier one.
@@ -461,27 +168,9 @@ void nodeProcessesFitCells(const Reader& r, const Scenario& s, int line) {
   const double cells = layoutCellCount(s.region, s.sensor_model.sensing_range);
   if (static_cast<double>(s.run.node_processes) > cells)
     r.fail(line, "'run.node_processes' " + std::to_string(s.run.node_processes) + " exceeds the " +
-                     compactNumber(cells) + " cells of side 2 Rs = " + compactNumber(2.0 * s.sensor_model.sensing_range) +
+                     compactNumber(cells) +
+                     " cells of side 2 Rs = " + compactNumber(2.0 * s.sensor_model.sensing_range) +
                      " that node tiles are made of; expected at most " + compactNumber(cells));
-}
-
-/// The items of a list key: each a mapping read by `read(item, line, path)`.
-template <typename F>
-void forEachItem(const Reader& r, const Entry& list, const std::string& path, const std::string& shape, F&& read) {
-  const int list_line = Reader::lineOf(list);
-  std::size_t i = 0;
-  for (const auto& item : list.value) {
-    const std::string item_path = path + "[" + std::to_string(i++) + "]";
-    const int item_line = Reader::lineOf(item) > 0 ? Reader::lineOf(item) : list_line;
-    if (!item.IsMap()) r.fail(item_line, "'" + item_path + "' must be a mapping " + shape + ", got " + describe(item));
-    read(item, item_line, item_path);
-  }
-}
-
-/// The line of key `key` in `s` when given, else `fallback`.
-int lineOr(const Section& s, std::string_view key, int fallback) {
-  const Entry* e = s.find(key);
-  return e == nullptr ? fallback : Reader::lineOf(*e);
 }
 
 /// A params mapping (tracker.params, aggregator.params): any names, numbers only; the owning
@@ -498,58 +187,42 @@ std::map<std::string, EngineParam> readParams(const Reader& r, const Entry& entr
 // The scenario, section by section. Sections are read in a fixed order (region first) so that
 // checks against the region do not depend on the order of keys in the file.
 
-/// sensor_model (Oh eq. 5, or An et al. 2014 eq. 1-4 for acoustic sensors); returns the line
-/// to blame for sensing_range (fallback when the file does not give it).
-int readSensorModel(const Reader& r, const Section& top, Scenario& s, int fallback_line) {
-  int sensing_range_line = fallback_line;
-  if (top.find("sensor_model") == nullptr) deriveLeftOut(r, nullptr, schema::sensorModel(), s.sensor_model, s);
-  if (const Entry* e = top.find("sensor_model")) {
-    const Section sec = r.section(*e, schema::sensorModel());
-    r.fields(sec, schema::sensorModel(), s.sensor_model);
-    sensing_range_line = lineOr(sec, "sensing_range", sensing_range_line);
-    deriveLeftOut(r, &sec, schema::sensorModel(), s.sensor_model, s);
-    if (const Entry* a = sec.find("acoustic")) {
-      onlyAcoustic(r, s, "sensor_model.acoustic", Reader::lineOf(a->key));
-      const Section asec = r.section(*a, schema::acoustic());
-      r.fields(asec, schema::acoustic(), s.sensor_model.acoustic);
-      tickIsWholeDetectionSteps(r, s.sensor_model.acoustic, asec.line);
-    }
-    if (const Entry* n = sec.find("environmental_noise")) {
-      onlyAcoustic(r, s, "sensor_model.environmental_noise", Reader::lineOf(n->key));
-      const Section nsec = r.section(*n, schema::environmentalNoise());
-      auto& noise = s.sensor_model.environmental_noise;
-      const Entry* components = nsec.find("components");
-      if (nsec.find("preset") != nullptr && components != nullptr)
-        r.fail(nsec.line, "'sensor_model.environmental_noise' takes either 'preset' or 'components', not both");
-      r.fields(nsec, schema::environmentalNoise(), noise);
-      noise.components = *noisePreset(noise.preset);
-      if (components != nullptr && !components->value.IsNull()) {
-        const std::string path = "sensor_model.environmental_noise.components";
-        if (!components->value.IsSequence())
-          r.fail(Reader::lineOf(*components),
-                 "'" + path + "' must be a list of {fraction, duration_s}, got " + describe(components->value));
-        noise.preset = "custom";
-        double total = 0.0;
-        forEachItem(r, *components, path, "{fraction, duration_s}", [&](const YAML::Node& item, int line, auto& p) {
-          const Section c = r.item(item, line, p, schema::noiseComponent());
-          r.require(c, {"fraction", "duration_s"}, "share of the sensors and seconds each hears the noise");
-          NoiseComponent component;
-          r.fields(c, schema::noiseComponent(), component);
-          total += component.fraction;
-          noise.components.push_back(component);
-        });
-        if (total > 1.0)
-          r.fail(Reader::lineOf(*components),
-                 "the fractions of '" + path + "' add up to " + compactNumber(total) + "; expected at most 1");
-      }
-    }
+/// sensor_model: kind and sensing_range here, every other key by the chosen model's own spec
+/// (node/<model>/config.hpp). A key of another model is named as such. Returns the model, and
+/// through `sensing_range_line` the line to blame for Rs (kept when the file does not give it).
+const node::SensorModelSpec& readSensorModel(const Reader& r, const Section& top, Scenario& s,
+                                             int& sensing_range_line) {
+  const auto& models = node::sensorModelRegistry();
+  const Entry* e = top.find("sensor_model");
+  if (e == nullptr) {
+    const auto& model = models.at(s.sensor_model.kind);
+    s.sensor_model.settings = model.settings.read(r, nullptr, s);
+    return model;
   }
-
-  return sensing_range_line;
+  const Section sec = r.section(*e, "sensor_model", {});  // keys checked below, once the kind is known
+  r.fields(sec, schema::sensorModel(), s.sensor_model);
+  sensing_range_line = lineOr(sec, "sensing_range", sensing_range_line);
+  const node::SensorModelSpec* model = models.find(s.sensor_model.kind);
+  if (model == nullptr)
+    r.fail(lineOr(sec, "kind", sec.line),
+           "'sensor_model.kind' must be one of: " + models.names() + "; got '" + s.sensor_model.kind + "'");
+  std::vector<std::string> keys = schema::sensorModel().sortedKeys();
+  keys.insert(keys.end(), model->settings.keys.begin(), model->settings.keys.end());
+  std::sort(keys.begin(), keys.end());
+  for (const auto& [key, entry] : sec.entries) {
+    if (contains(keys, key)) continue;
+    const std::vector<std::string> readers = modelsReading(key, &node::SensorModelSettingsSpec::keys);
+    if (!readers.empty())
+      r.fail(Reader::lineOf(entry.key), "'sensor_model." + key + "' applies only with " + kindsText(readers));
+    r.fail(Reader::lineOf(entry.key), "unknown key '" + key + "' in 'sensor_model' of kind " + model->name +
+                                          "; expected one of: " + config::join(keys));
+  }
+  s.sensor_model.settings = model->settings.read(r, &sec, s);
+  return *model;
 }
 
 /// targets: the random births and the scripted list.
-void readTargets(const Reader& r, const Section& top, Scenario& s) {
+void readTargets(const Reader& r, const Section& top, const node::SensorModelSpec& model, Scenario& s) {
   if (const Entry* e = top.find("targets")) {
     const Section sec = r.section(*e, schema::targets());
     r.fields(sec, schema::targets(), s.targets);
@@ -565,15 +238,13 @@ void readTargets(const Reader& r, const Section& top, Scenario& s) {
         r.require(t, {"vx", "vy"}, "velocity, sensor separations per tick");
         TargetSpec spec;
         r.fields(t, schema::scriptedTarget(), spec);
-        if (const Entry* range = t.find("sensing_range"))
-          onlyAcoustic(r, s, path + ".sensing_range", Reader::lineOf(*range));
-        scriptedTargetIsValid(r, s, spec, t);
+        scriptedTargetIsValid(r, s, model, spec, t);
         s.targets.scripted.push_back(spec);
       });
     }
   }
-  if (const Entry* e = top.find("targets")) bornTargetsSlowerThanSound(r, s, Reader::lineOf(*e));
-
+  if (const Entry* e = top.find("targets"); e != nullptr && model.settings.check_targets)
+    model.settings.check_targets(r, s, Reader::lineOf(*e));
 }
 
 /// supernodes: the listed ones, or one at the centre of the region.
@@ -597,7 +268,6 @@ void readSupernodes(const Reader& r, const Section& top, Scenario& s) {
     s.supernodes = {{0.5 * (s.region.x_min + s.region.x_max), 0.5 * (s.region.y_min + s.region.y_max)}};
     s.derived["supernodes"] = "one supernode at the centre of the region";
   }
-
 }
 
 /// tracker and aggregator: which components, and their parameters as written (the engine and
@@ -622,7 +292,6 @@ void readComponentChoices(const Reader& r, const Section& top, Scenario& s) {
     }
     if (const Entry* params = sec.find("params")) s.aggregator.params = readParams(r, *params, "aggregator.params");
   }
-
 }
 
 Scenario readScenario(const YAML::Node& root, const std::string& file) {
@@ -635,8 +304,8 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
     r.fields(top, schema::topLevel(), s);
     if (!validName(s.name))
       r.fail(Reader::lineOf(*e), "'name' must be 1 to " + std::to_string(kMaxNameLength) +
-                                     " characters from A-Z a-z 0-9 _ - . (it names the run directory), got '" +
-                                     s.name + "'");
+                                     " characters from A-Z a-z 0-9 _ - . (it names the run directory), got '" + s.name +
+                                     "'");
   }
 
   int region_line = 1;
@@ -655,12 +324,13 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
   }
   gridFitsRegion(r, s, layout_line);
 
-  const int sensing_range_line = readSensorModel(r, top, s, region_line);
+  int sensing_range_line = region_line;
+  const node::SensorModelSpec& model = readSensorModel(r, top, s, sensing_range_line);
 
   if (const Entry* e = top.find("localisation"))
     r.fields(r.section(*e, schema::localisation()), schema::localisation(), s.localisation);
 
-  readTargets(r, top, s);
+  readTargets(r, top, model, s);
   if (const Entry* e = top.find("dynamics"))
     r.fields(r.section(*e, schema::dynamics()), schema::dynamics(), s.dynamics);
 
@@ -684,61 +354,6 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
 
 // ---------------------------------------------------------------------------------------------
 // Writing.
-
-/// A mapping key: plain when it is a simple name, quoted otherwise (and when YAML would read the
-/// plain word as null).
-std::string keyText(const std::string& name) {
-  const bool null_word = name == "null" || name == "Null" || name == "NULL";
-  const bool plain = !null_word && !name.empty() &&
-                     (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
-                     std::all_of(name.begin(), name.end(), [](char c) {
-                       return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-                     });
-  return plain ? name : config::yamlQuoted(name);
-}
-
-/// `indent key: value` for every value key of `table` (nested keys are written by the caller).
-/// A derived value's key gets "# derived: how" after its value.
-template <typename C>
-void writeFields(std::ostringstream& out, const std::string& indent, const FieldTable<C>& table, const C& config,
-                 const std::map<std::string, std::string>& derived = {}) {
-  for (const auto& field : table.fields) {
-    if (field.kind == FieldKind::kNested) continue;
-    out << indent << field.key << ": " << field.yamlValue(config);
-    if (const auto it = derived.find(table.section + "." + field.key); it != derived.end())
-      out << "  # derived: " << it->second;
-    out << "\n";
-  }
-}
-
-template <typename C>
-void writeSection(std::ostringstream& out, const std::string& name, const FieldTable<C>& table, const C& config,
-                  const std::map<std::string, std::string>& derived = {}) {
-  out << name << ":\n";
-  writeFields(out, "  ", table, config, derived);
-}
-
-/// "{a: 1, b: 2}": a list item on one line; a key whose zero means "not given" is left out at 0.
-template <typename C>
-std::string flowMapping(const FieldTable<C>& table, const C& config) {
-  std::string text;
-  for (const auto& field : table.fields) {
-    if (field.kind == FieldKind::kNested || (field.zero_means_unset && field.get_number(config) == 0.0)) continue;
-    text += (text.empty() ? "{" : ", ") + field.key + ": " + field.yamlValue(config);
-  }
-  return text + "}";
-}
-
-template <typename C>
-void writeList(std::ostringstream& out, const std::string& indent, const std::string& key, const FieldTable<C>& table,
-               const std::vector<C>& items, const std::string& derivation = "") {
-  if (items.empty()) {
-    out << indent << key << ": []\n";
-    return;
-  }
-  out << indent << key << ":" << (derivation.empty() ? "" : "  # derived: " + derivation) << "\n";
-  for (const auto& item : items) out << indent << "  - " << flowMapping(table, item) << "\n";
-}
 
 void writeParams(std::ostringstream& out, const std::map<std::string, EngineParam>& params) {
   if (params.empty()) {
@@ -786,8 +401,7 @@ std::string readScenarioFile(const std::string& path) {
   char buffer[1 << 16];
   std::size_t n = 0;
   while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) text.append(buffer, n);
-  if (std::ferror(file.get()))
-    throw ScenarioError(path + ": cannot read scenario file (" + std::strerror(errno) + ")");
+  if (std::ferror(file.get())) throw ScenarioError(path + ": cannot read scenario file (" + std::strerror(errno) + ")");
   return text;
 }
 
@@ -805,8 +419,9 @@ struct PathStep {
 /// "supernodes[1].x" -> supernodes, [1], x. Names are anything but '.', '[' and ']'.
 std::vector<PathStep> keyPath(const ScenarioOverride& o) {
   const auto bad = [&o]() {
-    throw OverrideError(o.text() + ": KEY must be a dotted path of names, list items as name[i] "
-                                   "(e.g. network.pte, tracker.params.gate_chi2, supernodes[0].x)");
+    throw OverrideError(o.text() +
+                        ": KEY must be a dotted path of names, list items as name[i] "
+                        "(e.g. network.pte, tracker.params.gate_chi2, supernodes[0].x)");
   };
   std::vector<PathStep> path;
   std::size_t i = 0;
@@ -981,15 +596,6 @@ Scenario applyOverrides(const std::string& yaml_text, const std::string& name_fo
   }
 }
 
-std::optional<std::vector<NoiseComponent>> noisePreset(const std::string& name) {
-  // An et al. 2013 §3.3.1.
-  if (name == "none") return std::vector<NoiseComponent>{};
-  if (name == "noise1") return std::vector<NoiseComponent>{{0.06, 0.1}};
-  if (name == "noise2") return std::vector<NoiseComponent>{{0.05, 0.1}, {0.01, 0.5}};
-  if (name == "noise3") return std::vector<NoiseComponent>{{0.05, 0.1}, {0.01, 1.0}};
-  return std::nullopt;
-}
-
 Scenario loadScenario(const std::string& path, const std::vector<ScenarioOverride>& overrides,
                       const ScenarioCheck& check) {
   return applyOverrides(readScenarioFile(path), path, overrides, check);
@@ -1004,17 +610,7 @@ std::string resolvedScenarioYaml(const Scenario& s) {
   writeSection(out, "region", schema::region(), s.region);
   writeSection(out, "sensors", schema::sensors(), s.sensors);
   writeSection(out, "sensor_model", schema::sensorModel(), s.sensor_model, s.derived);
-  if (s.sensor_model.kind == SensorModelConfig::Kind::kAcousticDoppler) {
-    out << "  acoustic:\n";
-    writeFields(out, "    ", schema::acoustic(), s.sensor_model.acoustic);
-    const auto& noise = s.sensor_model.environmental_noise;
-    out << "  environmental_noise:\n";
-    if (noise.preset != "custom") {
-      writeFields(out, "    ", schema::environmentalNoise(), noise);
-    } else {
-      writeList(out, "    ", "components", schema::noiseComponent(), noise.components);
-    }
-  }
+  node::sensorModelRegistry().at(s.sensor_model.kind).settings.write(out, s);
   writeSection(out, "localisation", schema::localisation(), s.localisation);
   writeSection(out, "targets", schema::targets(), s.targets);
   writeList(out, "  ", "scripted", schema::scriptedTarget(), s.targets.scripted);

@@ -13,17 +13,9 @@
 
 #include "common/geometry.hpp"
 #include "common/scenario_config.hpp"
+#include "common/scenario_error.hpp"
 
 namespace wsn::common {
-
-/// The components of a named preset; nullopt for an unknown name ("none" has none).
-std::optional<std::vector<NoiseComponent>> noisePreset(const std::string& name);
-
-/// A scenario that could not be loaded: what() reads "file:line: what was expected".
-class ScenarioError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 /// Loads and strictly validates a scenario file: unknown keys, wrong types, out-of-range
 /// values and a missing file throw ScenarioError naming file, line and what was expected.

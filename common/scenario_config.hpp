@@ -5,6 +5,8 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -25,53 +27,56 @@ struct SensorLayoutConfig {
   friend bool operator==(const SensorLayoutConfig&, const SensorLayoutConfig&) = default;
 };
 
-/// Acoustic sensors that hear the targets' sound with the Doppler effect, An et al. 2014 eq. (1)-(4).
-/// A target of sensing range SR emits Pt = threshold * SR^alpha every detection step; a sensor
-/// reports (id, floor(Ps / threshold)) when Ps >= threshold (node/acoustic/).
-struct AcousticConfig {
-  double threshold = 1.0;           ///< cs (gamma_s): the sensor threshold, in power units
-  double sound_speed = 343.0;       ///< Vs, length units per second
-  double detection_step_s = 0.005;  ///< Delta t of the detection model (2014 §3.1)
-  double tick_s = 0.1;              ///< seconds per tick: the fusion centre runs once a tick (2014 §5)
-  /// Each emission's power is Pt (1 + f U(-1, 1)), f = power_fluctuation (2014 §5.2: 0, 0.2, 0.4).
-  double power_fluctuation = 0.0;
-  friend bool operator==(const AcousticConfig&, const AcousticConfig&) = default;
+/// A sensor model's own settings: every key of `sensor_model` besides kind and sensing_range.
+/// Each model (a plugin folder under node/, registered in node/sensor_model_registry.cpp) defines
+/// its struct, derived through SensorModelSettingsOf, and its field tables; the loader reads and
+/// writes them through the registry, so a new model adds no field here.
+class SensorModelSettings {
+ public:
+  virtual ~SensorModelSettings() = default;
+  virtual bool equals(const SensorModelSettings& other) const = 0;
 };
 
-/// One kind of sporadic environmental noise, An et al. 2013 §3.1: at any time `fraction` of the
-/// sensors, chosen at random, hear noise of power gamma_s (1 + U(0, 1)) for `duration_s` seconds.
-struct NoiseComponent {
-  double fraction = 0.0;
-  double duration_s = 0.1;
-  friend bool operator==(const NoiseComponent&, const NoiseComponent&) = default;
+/// The base of a model's settings struct S (which defines ==): equality by value within a model.
+template <typename S>
+class SensorModelSettingsOf : public SensorModelSettings {
+ public:
+  bool equals(const SensorModelSettings& other) const override {
+    const auto* same = dynamic_cast<const S*>(&other);
+    return same != nullptr && static_cast<const S&>(*this) == *same;
+  }
+  friend bool operator==(const SensorModelSettingsOf&, const SensorModelSettingsOf&) { return true; }
 };
 
-/// Environmental noise (acoustic sensors only): a named preset of the 2013 paper (noise1: 0.1 s on
-/// 6 %; noise2: 0.1 s on 5 % + 0.5 s on 1 %; noise3: 0.1 s on 5 % + 1 s on 1 %) or explicit components.
-struct EnvironmentalNoiseConfig {
-  std::string preset = "none";  ///< none, noise1, noise2, noise3 or custom (components given)
-  std::vector<NoiseComponent> components;
-  friend bool operator==(const EnvironmentalNoiseConfig&, const EnvironmentalNoiseConfig&) = default;
-};
-
-/// Signal-strength sensor model, Oh eq. (5): z = beta / (1 + gamma |s - x|^alpha) + w within
-/// the sensing range Rs, z = w outside, w ~ N(0, noise_sigma^2); detection when z >= eta.
-/// kind = acoustic_doppler selects An et al.'s acoustic sensors instead (alpha, sensing_range,
-/// acoustic and environmental_noise apply; beta, gamma, eta and noise_sigma do not).
+/// Which sensors the field has (`kind`, a name of the sensor-model registry), how far a sensor
+/// detects a target, and the model's own settings.
 struct SensorModelConfig {
-  enum class Kind { kSignalStrength, kAcousticDoppler };
-  Kind kind = Kind::kSignalStrength;
-  double alpha = 2.0;
-  /// Oh §VII: beta = 3 (1 + gamma Rs^alpha); filled in by the loader when not given.
-  double beta = 9.75;
-  double gamma = 1.0;
-  double eta = 2.0;
+  std::string kind = "signal_strength";
+  /// Rs: a sensor detects a target within it (Oh §VII; acoustic sensors: a target's default
+  /// sensing range SR). Node tiles are made of cells of side 2 Rs (common/sensor_layout.hpp).
   double sensing_range = 1.5;
-  double noise_sigma = 1.0;
-  AcousticConfig acoustic;
-  EnvironmentalNoiseConfig environmental_noise;
-  friend bool operator==(const SensorModelConfig&, const SensorModelConfig&) = default;
+  /// The model's own keys; null in a scenario built in code, which then has the model's defaults.
+  /// Shared and immutable, so copies of a scenario stay cheap.
+  std::shared_ptr<const SensorModelSettings> settings;
+
+  friend bool operator==(const SensorModelConfig& a, const SensorModelConfig& b) {
+    if (a.kind != b.kind || a.sensing_range != b.sensing_range) return false;
+    if (a.settings == nullptr || b.settings == nullptr) return a.settings == b.settings;
+    return a.settings->equals(*b.settings);
+  }
 };
+
+/// The settings of model S in `config`: S's defaults when it holds none; throws std::logic_error
+/// when it holds another model's.
+template <typename S>
+const S& settingsOf(const SensorModelConfig& config) {
+  static const S defaults;
+  if (config.settings == nullptr) return defaults;
+  const auto* settings = dynamic_cast<const S*>(config.settings.get());
+  if (settings == nullptr)
+    throw std::logic_error("sensor_model.kind '" + config.kind + "' holds another model's settings");
+  return *settings;
+}
 
 /// Oh §VII-B: a sensor believes it is at s* + N(0, sigma^2 I).
 struct LocalisationConfig {
@@ -85,7 +90,8 @@ struct TargetSpec {
   std::int32_t disappear_tick = 0;  ///< 0: until the end of the run (or leaving the region)
   Vec2 position;
   Vec2 velocity;  ///< per tick
-  /// Acoustic sensors: this target's sensing range SR (its sound power); 0 = sensor_model.sensing_range.
+  /// This target's sensing range SR (how loud it is), for models that read it (acoustic sensors);
+  /// 0 = sensor_model.sensing_range.
   double sensing_range = 0.0;
   friend bool operator==(const TargetSpec&, const TargetSpec&) = default;
 };
@@ -156,12 +162,12 @@ struct AggregatorConfig {
 
 /// Metric settings. Lengths in region units (sensor separations).
 struct MetricsConfig {
-  double ospa_c = 5.0;  ///< OSPA cut-off c (Schuhmacher, Vo & Vo 2008)
-  double ospa_p = 2.0;  ///< OSPA order p
-  double gospa_c = 5.0;  ///< GOSPA cut-off c (alpha = 2)
-  double gospa_p = 2.0;  ///< GOSPA order p
+  double ospa_c = 5.0;         ///< OSPA cut-off c (Schuhmacher, Vo & Vo 2008)
+  double ospa_p = 2.0;         ///< OSPA order p
+  double gospa_c = 5.0;        ///< GOSPA cut-off c (alpha = 2)
+  double gospa_p = 2.0;        ///< GOSPA order p
   double mot_threshold = 3.0;  ///< CLEAR-MOT match threshold T (Bernardin & Stiefelhagen 2008)
-  double quality_gate = 3.0;  ///< RSE/TLR/<dx>: a track counts for its target only within this distance
+  double quality_gate = 3.0;   ///< RSE/TLR/<dx>: a track counts for its target only within this distance
   /// Boundary events: a target this close to the bisector of its two nearest supernodes is at a
   /// tracking-group boundary (aggregator/boundary.hpp)
   double boundary_band = 5.0;
@@ -172,7 +178,7 @@ struct MetricsConfig {
 struct RunConfig {
   std::int32_t ticks = 100;  ///< T
   std::uint64_t seed = 1;
-  std::int32_t node_processes = 2;  ///< one sensor tile per node process
+  std::int32_t node_processes = 2;       ///< one sensor tile per node process
   std::int32_t max_ticks_in_flight = 4;  ///< back-pressure bound of the lockstep pipeline
   friend bool operator==(const RunConfig&, const RunConfig&) = default;
 };
@@ -200,8 +206,8 @@ struct Scenario {
   /// Equal in every value of the run; where it was loaded from (source_path) does not count.
   friend bool operator==(const Scenario& a, const Scenario& b) {
     const auto values = [](const Scenario& s) {
-      return std::tie(s.name, s.region, s.sensors, s.sensor_model, s.localisation, s.targets, s.dynamics,
-                      s.supernodes, s.network, s.tracker, s.aggregator, s.metrics, s.run);
+      return std::tie(s.name, s.region, s.sensors, s.sensor_model, s.localisation, s.targets, s.dynamics, s.supernodes,
+                      s.network, s.tracker, s.aggregator, s.metrics, s.run);
     };
     return values(a) == values(b);
   }

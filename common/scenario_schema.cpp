@@ -13,9 +13,6 @@ Field<C> unsetWhenZero(Field<C> f) {
   return f;
 }
 
-constexpr Range kPositive = openClosed(0.0, 1e6);
-constexpr Range kNonNegative = closed(0.0, 1e6);
-constexpr Range kProbability = closed(0.0, 1.0);
 constexpr Range kCoordinate = closed(-kMaxCoordinate, kMaxCoordinate);
 
 }  // namespace
@@ -64,74 +61,12 @@ const FieldTable<SensorModelConfig>& sensorModel() {
   static const FieldTable<C> table{
       "sensor_model",
       {
-          choice<C>("kind", &C::kind, {"signal_strength", "acoustic_doppler"}, "which sensors"),
-          real<C>("alpha", &C::alpha, openClosed(0.0, 100.0), "",
-                  "α, decay exponent (§VII; An et al. eq. 3: Ps = Pt / d^α)"),
-          derivedDefault(withNotes(real<C>("beta", &C::beta, openClosed(0.0, 1e12), "signal",
-                                           "β, signal at distance 0. When it is left out, the loader computes it "
-                                           "from the other values of the file as in §VII"),
-                                   "", "3 (1 + γ Rs^α) = 9.75"),
-                         "3 (1 + gamma Rs^alpha)",
-                         // Oh §VII: a signal three times the one at the edge of the range.
-                         [](const C& m, const Scenario&) {
-                           return 3.0 * (1.0 + m.gamma * std::pow(m.sensing_range, m.alpha));
-                         }),
-          real<C>("gamma", &C::gamma, kNonNegative, "1/separation^α", "γ (§VII)"),
-          real<C>("eta", &C::eta, openClosed(0.0, 1e9), "signal", "η, detection threshold (§VII)"),
+          withNotes(text<C>("kind", &C::kind, "which sensors. Each model's own keys follow in its table below"),
+                    "a sensor model of `wsntrack components`"),
           real<C>("sensing_range", &C::sensing_range, kPositive, "separations",
-                  "Rs. §VII-A finds 1.5 best. Acoustic: the default SR of a target, the distance at which one "
-                  "emission of its sound equals cs (Pt = cs SR^α)"),
-          real<C>("noise_sigma", &C::noise_sigma, kNonNegative, "signal",
-                  "standard deviation of w. 0 means no false alarms"),
-          nested<C>("acoustic", "mapping", "see below", "`acoustic_doppler` only", "the acoustic detection model"),
-          nested<C>("environmental_noise", "mapping", "no noise", "`acoustic_doppler` only",
-                    "sporadic noise, An et al. 2013 §3.1"),
-      }};
-  return table;
-}
-
-const FieldTable<AcousticConfig>& acoustic() {
-  using C = AcousticConfig;
-  static const FieldTable<C> table{
-      "sensor_model.acoustic",
-      {
-          real<C>("threshold", &C::threshold, openClosed(0.0, 1e12), "power", "cs (γs), the sensor threshold"),
-          real<C>("sound_speed", &C::sound_speed, kPositive, "length/s",
-                  "Vs. Every target must be slower (the loader checks scripted ones)"),
-          real<C>("detection_step_s", &C::detection_step_s, openClosed(0.0, 10.0), "s", "Δt of the detection model"),
-          withNotes(real<C>("tick_s", &C::tick_s, openClosed(0.0, 1e3), "s",
-                            "the duration of one tick: the fusion centre runs once per tick. Velocities stay per "
-                            "tick"),
-                    "(0, 1000], a whole number of detection steps"),
-          real<C>("power_fluctuation", &C::power_fluctuation, closedOpen(0.0, 1.0), "",
-                  "f: every emission's power is Pt (1 + f U(−1, 1)) (§5.2 studies 0, 0.2, 0.4)"),
-      }};
-  return table;
-}
-
-const FieldTable<EnvironmentalNoiseConfig>& environmentalNoise() {
-  using C = EnvironmentalNoiseConfig;
-  static const FieldTable<C> table{
-      "sensor_model.environmental_noise",
-      {
-          choice<C>("preset", &C::preset, {"none", "noise1", "noise2", "noise3"},
-                    "the paper's noises: Noise 1 = 0.1 s on 6 % of the sensors; Noise 2 = 0.1 s on 5 % + 0.5 s on "
-                    "1 %; Noise 3 = 0.1 s on 5 % + 1 s on 1 %"),
-          nested<C>("components", "list of `{fraction, duration_s}`", "—",
-                    "fractions in [0, 1] adding up to at most 1, durations in (0, 1e6] s",
-                    "at any time `fraction` of the sensors, chosen at random, hear noise of power cs (1 + U(0, 1)) for "
-                    "`duration_s` (rounded to whole ticks, at least one)"),
-      }};
-  return table;
-}
-
-const FieldTable<NoiseComponent>& noiseComponent() {
-  using C = NoiseComponent;
-  static const FieldTable<C> table{
-      "sensor_model.environmental_noise.components[]",
-      {
-          real<C>("fraction", &C::fraction, kProbability, "", "share of the sensors that hear the noise at any time"),
-          real<C>("duration_s", &C::duration_s, openClosed(0.0, 1e6), "s", "how long each of them hears it"),
+                  "Rs, how far a sensor detects a target. §VII-A finds 1.5 best. Acoustic: the default SR of a "
+                  "target, the distance at which one emission of its sound equals cs (Pt = cs SR^α). Node tiles are "
+                  "made of cells of side 2 Rs"),
       }};
   return table;
 }
@@ -188,7 +123,7 @@ const FieldTable<TargetSpec>& scriptedTarget() {
           unsetWhenZero(withNotes(real<C>("sensing_range", &C::sensing_range, kPositive, "separations",
                                           "the target's sensing range SR, i.e. its sound power Pt = cs SR^α (An "
                                           "et al. 2014 Table 1)"),
-                                  "(0, 1e6]; `acoustic_doppler` only", "`sensor_model.sensing_range`")),
+                                  "(0, 1e6]; for models that read it (`acoustic_doppler`)", "`sensor_model.sensing_range`")),
       }};
   return table;
 }
@@ -323,8 +258,6 @@ std::vector<std::pair<std::string, std::string>> markdownTables() {
       {"region", markdownTable(region())},
       {"sensors", markdownTable(sensors())},
       {"sensor_model", markdownTable(sensorModel())},
-      {"sensor_model.acoustic", markdownTable(acoustic())},
-      {"sensor_model.environmental_noise", markdownTable(environmentalNoise())},
       {"localisation", markdownTable(localisation())},
       {"targets", markdownTable(targets())},
       {"targets.scripted[]", markdownTable(scriptedTarget())},

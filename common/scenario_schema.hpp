@@ -16,10 +16,7 @@ using config::FieldTable;
 const FieldTable<Scenario>& topLevel();  ///< name
 const FieldTable<Rect>& region();
 const FieldTable<SensorLayoutConfig>& sensors();
-const FieldTable<SensorModelConfig>& sensorModel();
-const FieldTable<AcousticConfig>& acoustic();
-const FieldTable<EnvironmentalNoiseConfig>& environmentalNoise();  ///< preset (components: a list)
-const FieldTable<NoiseComponent>& noiseComponent();
+const FieldTable<SensorModelConfig>& sensorModel();  ///< kind, sensing_range (the rest: the model's table)
 const FieldTable<LocalisationConfig>& localisation();
 const FieldTable<TargetsConfig>& targets();  ///< scalars (scripted: a list)
 const FieldTable<TargetSpec>& scriptedTarget();

@@ -50,6 +50,14 @@ std::string markdownParamTable(const std::vector<common::ParamSpec>& params) {
   return out;
 }
 
+/// The scenario keys a sensor model reads: sensing_range, its own and those of scripted targets.
+std::vector<std::string> readKeys(const node::SensorModelSpec& model) {
+  std::vector<std::string> keys = {"sensor_model.sensing_range"};
+  for (const auto& key : model.settings.keys) keys.push_back("sensor_model." + key);
+  for (const auto& key : model.settings.target_keys) keys.push_back("targets.scripted[]." + key);
+  return keys;
+}
+
 void markdownBlock(std::ostringstream& out, const std::string& name, const std::string& table) {
   out << "<!-- table: " << name << " -->\n" << table << "<!-- end table -->\n\n";
 }
@@ -59,6 +67,8 @@ void markdownBlock(std::ostringstream& out, const std::string& name, const std::
 std::string componentsMarkdown() {
   std::ostringstream out;
   for (const auto& [name, table] : common::schema::markdownTables()) markdownBlock(out, name, table);
+  for (const auto& model : node::sensorModelRegistry())
+    for (const auto& [name, table] : model.settings.markdown_tables()) markdownBlock(out, name, table);
   for (const auto& engine : supernode::engineRegistry())
     markdownBlock(out, "tracker.params " + engine.name, markdownParamTable(engine.params));
   for (const auto& method : aggregator::associationRegistry())
@@ -76,7 +86,7 @@ std::string componentsText() {
   std::ostringstream out;
   out << "Sensor models (sensor_model.kind):\n";
   for (const auto& model : node::sensorModelRegistry())
-    out << model.name << ": " << model.description << "\n  reads: " << joined(model.config_sections)
+    out << model.name << ": " << model.description << "\n  reads: " << joined(readKeys(model))
         << "\n  measures: " << joined(model.measurement_kinds) << "\n";
   out << "\n";
   printEngines(out);
@@ -103,7 +113,7 @@ std::optional<std::string> unacceptedKind(const std::vector<std::string>& report
 }
 
 void checkComponentsFit(const common::Scenario& scenario) {
-  const auto& model = node::sensorModelRegistry().at(node::sensorModelName(scenario.sensor_model.kind));
+  const auto& model = node::sensorModelRegistry().at(scenario.sensor_model.kind);
   const auto& engine = supernode::engineRegistry().at<common::ScenarioError>(
       scenario.tracker.engine, scenario.source_path + ":" + std::to_string(scenario.tracker.engine_line) + ": ");
   if (const auto kind = unacceptedKind(model.measurement_kinds, engine.accepts))

@@ -2,7 +2,6 @@
 
 #include <stdexcept>
 
-#include "common/scenario_schema.hpp"
 #include "node/acoustic/plugin.hpp"
 #include "node/signal_strength/plugin.hpp"
 
@@ -17,14 +16,8 @@ const common::Registry<SensorModelSpec>& sensorModelRegistry() {
   return registry;
 }
 
-std::string sensorModelName(common::SensorModelConfig::Kind kind) {
-  common::SensorModelConfig config;
-  config.kind = kind;
-  return common::schema::sensorModel().find("kind")->get_text(config);
-}
-
 std::unique_ptr<TileSensors> makeTileSensors(const TileContext& context) {
-  return sensorModelRegistry().at(sensorModelName(context.scenario.sensor_model.kind)).create(context);
+  return sensorModelRegistry().at(context.scenario.sensor_model.kind).create(context);
 }
 
 }  // namespace wsn::node

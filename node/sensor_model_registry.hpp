@@ -1,19 +1,22 @@
-// The sensor-model plugin interface: what a node tile runs each tick, whatever its sensors are
-// (signal strength with neighbour fusion, acoustic Doppler, ...), and the registry that maps
-// `sensor_model.kind` to a model. A new sensor model is a folder under node/ with one spec and
-// one line in sensor_model_registry.cpp.
+// The sensor-model plugin interface: the model's own keys of the scenario's `sensor_model`
+// section (read, checked and written through the spec) and what a node tile runs each tick,
+// whatever its sensors are (signal strength with neighbour fusion, acoustic Doppler, ...); and
+// the registry that maps `sensor_model.kind` to a model. A new sensor model is a folder under
+// node/ with one spec and one line in sensor_model_registry.cpp.
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <ostream>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "common/config/yaml_reader.hpp"
 #include "common/messages.hpp"
 #include "common/registry.hpp"
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
 #include "node/tiling.hpp"
@@ -44,22 +47,43 @@ class TileSensors {
   virtual std::vector<common::Report> report(std::int32_t tick, std::span<const common::SensorReading> foreign) = 0;
 };
 
+/// How a model owns its keys of `sensor_model` (all but kind and sensing_range): the scenario
+/// loader reads, checks and writes them through these, with the same "file:line" messages as
+/// every other section.
+struct SensorModelSettingsSpec {
+  /// Its keys of `sensor_model` (besides kind and sensing_range).
+  std::vector<std::string> keys;
+  /// The keys of a `targets.scripted[]` item it reads beyond position, velocity and lifetime.
+  std::vector<std::string> target_keys;
+  /// Reads its keys from `sensor_model` as written (null when the file has no such section) and
+  /// derives those left out; sensor_model.kind and sensing_range are read already.
+  std::function<std::shared_ptr<const common::SensorModelSettings>(
+      const common::config::Reader&, const common::config::Section* given, common::Scenario&)>
+      read;
+  /// Writes its keys two spaces in, for the resolved scenario.yaml.
+  std::function<void(std::ostream&, const common::Scenario&)> write;
+  /// Optional: a rule between a scripted target (`item` as written) and the model.
+  std::function<void(const common::config::Reader&, const common::Scenario&, const common::TargetSpec&,
+                     const common::config::Section& item)>
+      check_target;
+  /// Optional: a rule between the targets section (at `line`) and the model.
+  std::function<void(const common::config::Reader&, const common::Scenario&, int line)> check_targets;
+  /// Its key tables as Markdown, under their names in scenarios/README.md.
+  std::function<std::vector<std::pair<std::string, std::string>>()> markdown_tables;
+};
+
 /// One registered sensor model.
 struct SensorModelSpec {
   std::string name;  ///< the value of sensor_model.kind
   std::string description;
-  /// The scenario keys it reads besides the layout (for `wsntrack components`).
-  std::vector<std::string> config_sections;
   /// What its reports measure; engines declare the kinds they accept.
   std::vector<std::string> measurement_kinds;
+  SensorModelSettingsSpec settings;
   std::function<std::unique_ptr<TileSensors>(const TileContext&)> create;
 };
 
 /// Every sensor model, in registration order.
 const common::Registry<SensorModelSpec>& sensorModelRegistry();
-
-/// The name sensor_model.kind gives for `kind`.
-std::string sensorModelName(common::SensorModelConfig::Kind kind);
 
 /// Builds the tile's sensors of the scenario's model; throws std::invalid_argument for a kind no
 /// model is registered for.

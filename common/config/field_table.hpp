@@ -46,6 +46,11 @@ constexpr Range closed(double lo, double hi) { return {lo, hi, false, false}; }
 constexpr Range openClosed(double lo, double hi) { return {lo, hi, true, false}; }
 constexpr Range closedOpen(double lo, double hi) { return {lo, hi, false, true}; }
 
+// The ranges most keys share: lengths, rates and probabilities.
+inline constexpr Range kPositive = openClosed(0.0, 1e6);
+inline constexpr Range kNonNegative = closed(0.0, 1e6);
+inline constexpr Range kProbability = closed(0.0, 1.0);
+
 /// What kind of value a key holds (and so how it is read and written).
 enum class FieldKind {
   kReal,        ///< a finite real number in `range`

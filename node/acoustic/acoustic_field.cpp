@@ -88,17 +88,24 @@ std::optional<double> Trajectory::retardedTime(common::Vec2 listener, double tim
 // ---------------------------------------------------------------------------------------------
 // AcousticField
 
-AcousticField::AcousticField(const common::Scenario& scenario, const common::SensorLayout& layout, const Tile& tile,
-                             const common::Truth& truth)
-    : layout_(&layout), truth_(&truth), scenario_(scenario), tile_(tile) {
-  if (scenario.sensor_model.kind != common::SensorModelConfig::Kind::kAcousticDoppler)
+AcousticFieldConfig fieldConfigOf(const common::Scenario& scenario) {
+  if (scenario.sensor_model.kind != "acoustic_doppler")
     throw std::invalid_argument("AcousticField: the scenario's sensor_model.kind is not acoustic_doppler");
+  AcousticFieldConfig config{common::settingsOf<AcousticSettings>(scenario.sensor_model),
+                             scenario.sensor_model.sensing_range, {}, scenario.run.seed};
+  for (const auto& spec : scenario.targets.scripted) config.scripted_sensing_ranges.push_back(spec.sensing_range);
+  return config;
+}
+
+AcousticField::AcousticField(AcousticFieldConfig config, const common::SensorLayout& layout, const Tile& tile,
+                             const common::Truth& truth)
+    : layout_(&layout), truth_(&truth), config_(std::move(config)), tile_(tile) {
   if (tile.cell_col_begin < 0 || tile.cell_col_end > layout.cellColumns() || tile.cell_col_begin >= tile.cell_col_end ||
       tile.cell_row_begin < 0 || tile.cell_row_end > layout.cellRows() || tile.cell_row_begin >= tile.cell_row_end)
     throw std::invalid_argument("AcousticField: tile " + std::to_string(tile.index) +
                                 " is empty or outside the sensor cell grid");
-  const auto& ac = scenario.sensor_model.acoustic;
-  const auto& components = scenario.sensor_model.environmental_noise.components;
+  const auto& ac = config_.settings.acoustic;
+  const auto& components = config_.settings.environmental_noise.components;
   if (components.size() > kMaxNoiseComponents)
     throw std::invalid_argument("AcousticField: " + std::to_string(components.size()) +
                                 " environmental noise components; at most " + std::to_string(kMaxNoiseComponents));
@@ -114,8 +121,8 @@ AcousticField::AcousticField(const common::Scenario& scenario, const common::Sen
 
   // Bounds over the whole run: the fastest target, the largest sensing range, every target.
   double fastest = 0.0;
-  double widest = scenario.sensor_model.sensing_range;
-  for (const auto& spec : scenario.targets.scripted) widest = std::max(widest, spec.sensing_range);
+  double widest = config_.sensing_range;
+  for (const double range : config_.scripted_sensing_ranges) widest = std::max(widest, range);
   for (std::int32_t t = 1; t <= truth.ticks(); ++t)
     for (const auto& s : truth.at(t)) fastest = std::max(fastest, std::hypot(s.vx, s.vy) / ac.tick_s);
   // Emissions heard within one step: at most floor(Vs / (Vs - v)) + 1, since consecutive steps'
@@ -123,20 +130,19 @@ AcousticField::AcousticField(const common::Scenario& scenario, const common::Sen
   emissions_per_step_ = std::floor(ac.sound_speed / std::max(ac.sound_speed - fastest, 1e-9)) + 1.0;
   const double all = std::max(1, truth.targetCount());
   const double far = widest * std::pow(emissions_per_step_ * (1.0 + ac.power_fluctuation) * all / kNegligibleShare,
-                                       1.0 / scenario.sensor_model.alpha);
+                                       1.0 / config_.settings.alpha);
   history_ticks_ = std::min(kMaxHistoryTicks, static_cast<std::int32_t>(std::ceil(far / (ac.sound_speed * ac.tick_s))) + 1);
 }
 
 double AcousticField::sourcePower(common::TargetId id) const {
-  const auto& scripted = scenario_.targets.scripted;
-  const double range = id >= 0 && static_cast<std::size_t>(id) < scripted.size() && scripted[static_cast<std::size_t>(id)].sensing_range > 0.0
-                           ? scripted[static_cast<std::size_t>(id)].sensing_range
-                           : scenario_.sensor_model.sensing_range;
-  return scenario_.sensor_model.acoustic.threshold * std::pow(range, scenario_.sensor_model.alpha);
+  const auto& scripted = config_.scripted_sensing_ranges;
+  const auto index = static_cast<std::size_t>(id);
+  const double range = id >= 0 && index < scripted.size() && scripted[index] > 0.0 ? scripted[index] : config_.sensing_range;
+  return config_.settings.acoustic.threshold * std::pow(range, config_.settings.alpha);
 }
 
 std::vector<AcousticField::Source> AcousticField::sources(std::int32_t tick) const {
-  const auto& ac = scenario_.sensor_model.acoustic;
+  const auto& ac = config_.settings.acoustic;
   // Paths over the last history_ticks_ ticks, by target id (ordered: sums are in id order).
   std::map<common::TargetId, std::pair<std::int32_t, std::vector<common::Vec2>>> paths;
   for (std::int32_t t = std::max(1, tick - history_ticks_); t <= tick; ++t)
@@ -153,13 +159,13 @@ std::vector<AcousticField::Source> AcousticField::sources(std::int32_t tick) con
   const double k = static_cast<double>(std::max<std::size_t>(out.size(), 1));
   for (auto& source : out)
     source.reach = std::pow(emissions_per_step_ * (1.0 + ac.power_fluctuation) * source.power * k / ac.threshold,
-                            1.0 / scenario_.sensor_model.alpha);
+                            1.0 / config_.settings.alpha);
   return out;
 }
 
 double AcousticField::noisePower(common::SensorId sensor, std::int32_t tick) const {
-  const auto& components = scenario_.sensor_model.environmental_noise.components;
-  const std::uint64_t seed = scenario_.run.seed;
+  const auto& components = config_.settings.environmental_noise.components;
+  const std::uint64_t seed = config_.seed;
   double total = 0.0;
   for (std::size_t c = 0; c < components.size(); ++c) {
     const std::uint64_t key = std::uint64_t{sensor} * kMaxNoiseComponents + c;
@@ -168,7 +174,7 @@ double AcousticField::noisePower(common::SensorId sensor, std::int32_t tick) con
     const std::uint64_t episode = (static_cast<std::uint64_t>(std::max(tick, 0)) + phase.below(duration)) / duration;
     common::Stream noise(seed, common::Purpose::kEnvironmentalNoise, key, static_cast<std::int64_t>(episode));
     if (noise.uniform() < components[c].fraction)
-      total += scenario_.sensor_model.acoustic.threshold * (1.0 + noise.uniform());  // 2013 eq. (6)
+      total += config_.settings.acoustic.threshold * (1.0 + noise.uniform());  // 2013 eq. (6)
   }
   return total;
 }
@@ -180,9 +186,9 @@ std::pair<double, common::TargetId> AcousticField::targetPower(common::Vec2 list
 
 std::pair<double, common::TargetId> AcousticField::targetPower(common::Vec2 listener, std::int32_t tick,
                                                                std::span<const Source> all) const {
-  const auto& ac = scenario_.sensor_model.acoustic;
+  const auto& ac = config_.settings.acoustic;
   const double dt = ac.detection_step_s;
-  const double alpha = scenario_.sensor_model.alpha;
+  const double alpha = config_.settings.alpha;
   const double nearest = 0.5 * ac.sound_speed * dt;  // eq. (3) resolves no wavefront finer
   const std::int64_t first_step = static_cast<std::int64_t>(tick - 1) * steps_per_tick_ + 1;
   double total = 0.0;
@@ -203,7 +209,7 @@ std::pair<double, common::TargetId> AcousticField::targetPower(common::Vec2 list
     for (std::int64_t j = lo; j <= hi; ++j) {
       double pt = source.power;
       if (ac.power_fluctuation > 0.0) {
-        common::Stream fluctuation(scenario_.run.seed, common::Purpose::kAcousticPower,
+        common::Stream fluctuation(config_.seed, common::Purpose::kAcousticPower,
                                    static_cast<std::uint64_t>(source.id), j);
         pt *= 1.0 + ac.power_fluctuation * fluctuation.uniform(-1.0, 1.0);
       }
@@ -221,7 +227,7 @@ std::pair<double, common::TargetId> AcousticField::targetPower(common::Vec2 list
 }
 
 std::vector<common::Report> AcousticField::detect(std::int32_t tick) const {
-  const auto& ac = scenario_.sensor_model.acoustic;
+  const auto& ac = config_.settings.acoustic;
   const auto all = sources(tick);
 
   // Candidates: the tile's sensors within reach of some target's path, and the noisy ones.

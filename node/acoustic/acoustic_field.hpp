@@ -9,7 +9,8 @@
 
 #include "common/geometry.hpp"
 #include "common/messages.hpp"
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
+#include "node/acoustic/config.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
 #include "node/tiling.hpp"
@@ -47,11 +48,24 @@ class Trajectory {
 /// Pt,i (1 + f U(-1, 1)) / max(d_s,j, Vs dt / 2)^alpha with Pt,i = cs SR_i^alpha (eq. 4); its
 /// target power for the tick is the largest step power, P_s = max_k Ps,k. It detects when
 /// P_s + noise >= cs and reports floor((P_s + noise) / cs).
+/// What the acoustic sensors of a run are made of: the model's settings, the default sensing
+/// range SR, each scripted target's own SR (0: the default) and the seed.
+struct AcousticFieldConfig {
+  AcousticSettings settings;
+  double sensing_range = 1.5;
+  std::vector<double> scripted_sensing_ranges;
+  std::uint64_t seed = 1;
+};
+
+/// The part of `scenario` the acoustic field reads; throws std::invalid_argument when its
+/// sensors are not acoustic.
+AcousticFieldConfig fieldConfigOf(const common::Scenario& scenario);
+
 class AcousticField {
  public:
-  /// Throws std::invalid_argument when the scenario's sensors are not acoustic or the tile does not
-  /// lie in the layout's cell grid. Holds references to the layout and truth, which must outlive it.
-  AcousticField(const common::Scenario& scenario, const common::SensorLayout& layout, const Tile& tile,
+  /// Throws std::invalid_argument when the tile does not lie in the layout's cell grid. Holds
+  /// references to the layout and truth, which must outlive it.
+  AcousticField(AcousticFieldConfig config, const common::SensorLayout& layout, const Tile& tile,
                 const common::Truth& truth);
 
   /// This tile's detections at `tick`, sorted by sensor id.
@@ -79,7 +93,7 @@ class AcousticField {
 
   const common::SensorLayout* layout_;
   const common::Truth* truth_;
-  common::Scenario scenario_;
+  AcousticFieldConfig config_;
   Tile tile_;
   std::vector<common::SensorId> owned_;  ///< this tile's sensors, sorted
   std::int64_t steps_per_tick_ = 20;

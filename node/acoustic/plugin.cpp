@@ -1,6 +1,7 @@
 #include "node/acoustic/plugin.hpp"
 
 #include "node/acoustic/acoustic_field.hpp"
+#include "node/acoustic/config.hpp"
 
 namespace wsn::node::acoustic {
 namespace {
@@ -10,7 +11,7 @@ namespace {
 class AcousticTile final : public TileSensors {
  public:
   explicit AcousticTile(const TileContext& context)
-      : field_(context.scenario, context.layout, context.tile, context.truth) {}
+      : field_(fieldConfigOf(context.scenario), context.layout, context.tile, context.truth) {}
 
   bool exchangesReadings() const override { return false; }
   std::vector<common::SensorReading> sense(std::int32_t) override { return {}; }
@@ -28,9 +29,8 @@ SensorModelSpec sensorModelSpec() {
   return {"acoustic_doppler",
           "An et al. 2014 eq. (1)-(4): sensors hear the targets' sound with the Doppler effect and report "
           "(id, floor(Ps / cs)) when Ps >= cs, under the sporadic environmental noise of An et al. 2013",
-          {"sensor_model.alpha", "sensor_model.sensing_range", "sensor_model.acoustic",
-           "sensor_model.environmental_noise", "targets.scripted[].sensing_range"},
           {"position"},
+          settingsSpec(),
           [](const TileContext& context) -> std::unique_ptr<TileSensors> {
             return std::make_unique<AcousticTile>(context);
           }};

@@ -1,5 +1,6 @@
 #include "node/signal_strength/plugin.hpp"
 
+#include "node/signal_strength/config.hpp"
 #include "node/signal_strength/sensor_field.hpp"
 
 namespace wsn::node::signal_strength {
@@ -9,7 +10,8 @@ namespace {
 class SignalStrengthTile final : public TileSensors {
  public:
   explicit SignalStrengthTile(const TileContext& context)
-      : truth_(context.truth), field_(context.scenario, context.layout, context.tile) {}
+      : truth_(context.truth), field_(common::settingsOf<SignalStrengthSettings>(context.scenario.sensor_model),
+               context.scenario.sensor_model.sensing_range, context.scenario.run.seed, context.layout, context.tile) {}
 
   bool exchangesReadings() const override { return true; }
 
@@ -34,9 +36,8 @@ SensorModelSpec sensorModelSpec() {
   return {"signal_strength",
           "Oh et al. eq. (5): z = beta / (1 + gamma d^alpha) + w within Rs, detection when z >= eta; each "
           "detecting sensor that beats its neighbours within 2 Rs reports their z-weighted centre of mass (eq. 6)",
-          {"sensor_model.alpha", "sensor_model.beta", "sensor_model.gamma", "sensor_model.eta",
-           "sensor_model.sensing_range", "sensor_model.noise_sigma", "localisation"},
           {"position"},
+          settingsSpec(),
           [](const TileContext& context) -> std::unique_ptr<TileSensors> {
             return std::make_unique<SignalStrengthTile>(context);
           }};

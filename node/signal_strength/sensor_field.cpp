@@ -45,9 +45,10 @@ struct Heard {
 
 }  // namespace
 
-SensorField::SensorField(const common::Scenario& scenario, const common::SensorLayout& layout, const Tile& tile)
-    : layout_(&layout), model_(scenario.sensor_model), seed_(scenario.run.seed), tile_(tile),
-      q_(noiseExceedanceProbability(scenario.sensor_model)), skips_(q_) {
+SensorField::SensorField(const signal_strength::SignalStrengthSettings& model, double sensing_range,
+                         std::uint64_t seed, const common::SensorLayout& layout, const Tile& tile)
+    : layout_(&layout), model_(model), sensing_range_(sensing_range), seed_(seed), tile_(tile),
+      q_(noiseExceedanceProbability(model)), skips_(q_) {
   if (tile.cell_col_begin < 0 || tile.cell_col_end > layout.cellColumns() || tile.cell_col_begin >= tile.cell_col_end ||
       tile.cell_row_begin < 0 || tile.cell_row_end > layout.cellRows() || tile.cell_row_begin >= tile.cell_row_end)
     throw std::invalid_argument("SensorField: tile " + std::to_string(tile.index) +
@@ -79,8 +80,8 @@ std::vector<common::SensorReading> SensorField::detect(std::int32_t tick, std::s
   std::vector<common::SensorId> found;
   for (std::size_t k = 0; k < sorted_targets.size(); ++k) {
     const common::Vec2 x{sorted_targets[k].x, sorted_targets[k].y};
-    if (tile_.bounds.distanceTo(x) > withSlack(model_.sensing_range, model_.sensing_range)) continue;
-    layout.collectWithin(x, model_.sensing_range, found);
+    if (tile_.bounds.distanceTo(x) > withSlack(sensing_range_, sensing_range_)) continue;
+    layout.collectWithin(x, sensing_range_, found);
     for (common::SensorId id : found)
       if (ownsSensor(id)) in_range.emplace_back(id, k);
   }
@@ -148,7 +149,7 @@ std::vector<common::SensorReading> SensorField::detect(std::int32_t tick, std::s
 bool SensorField::isBoundarySensor(common::SensorId id) const {
   if (id >= layout_->size()) return false;
   const common::Vec2 p = layout_->truePosition(id);
-  const double reach = boundaryReach(model_.sensing_range);
+  const double reach = boundaryReach(sensing_range_);
   const common::Rect& b = tile_.bounds;
   return (inner_left_ && p.x - b.x_min <= reach) || (inner_right_ && b.x_max - p.x <= reach) ||
          (inner_bottom_ && p.y - b.y_min <= reach) || (inner_top_ && b.y_max - p.y <= reach);
@@ -166,9 +167,9 @@ std::vector<common::Report> SensorField::fuse(std::int32_t tick, std::span<const
                                               std::span<const common::SensorReading> foreign,
                                               std::span<const common::TargetState> targets) const {
   const common::SensorLayout& layout = *layout_;
-  const double hearing = 2.0 * model_.sensing_range;
+  const double hearing = 2.0 * sensing_range_;
   const double hearing2 = hearing * hearing;
-  const double reach = boundaryReach(model_.sensing_range);
+  const double reach = boundaryReach(sensing_range_);
 
   // Everything the tile's sensors can hear, in canonical (cell, sensor) order. A sensor that
   // appears twice (malformed input) keeps its largest value.
@@ -191,7 +192,7 @@ std::vector<common::Report> SensorField::fuse(std::int32_t tick, std::span<const
               heard.end());
 
   const auto sorted_targets = canonicalTargets(targets);
-  const double range2 = model_.sensing_range * model_.sensing_range;
+  const double range2 = sensing_range_ * sensing_range_;
   const std::int32_t columns = layout.cellColumns();
   const std::int32_t rows = layout.cellRows();
 

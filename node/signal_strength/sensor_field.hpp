@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "common/messages.hpp"
-#include "common/scenario.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
 #include "node/signal_strength/sensor_model.hpp"
@@ -32,8 +31,10 @@ struct DetectStats {
 /// The sensors of one tile. Holds a reference to the layout, which must outlive it.
 class SensorField {
  public:
+  /// Sensors of `model` detecting within `sensing_range` (Rs), their noise drawn from `seed`.
   /// Throws std::invalid_argument when the tile does not lie in the layout's cell grid.
-  SensorField(const common::Scenario& scenario, const common::SensorLayout& layout, const Tile& tile);
+  SensorField(const signal_strength::SignalStrengthSettings& model, double sensing_range, std::uint64_t seed,
+              const common::SensorLayout& layout, const Tile& tile);
 
   /// The tile this field simulates.
   const Tile& tile() const { return tile_; }
@@ -70,7 +71,8 @@ class SensorField {
 
  private:
   const common::SensorLayout* layout_;
-  common::SensorModelConfig model_;
+  signal_strength::SignalStrengthSettings model_;
+  double sensing_range_ = 1.5;
   std::uint64_t seed_ = 0;
   Tile tile_;
   double q_ = 0.0;

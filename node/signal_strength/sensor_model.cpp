@@ -6,11 +6,11 @@
 
 namespace wsn::node {
 
-double signalStrength(const common::SensorModelConfig& model, double distance) {
+double signalStrength(const signal_strength::SignalStrengthSettings& model, double distance) {
   return model.beta / (1.0 + model.gamma * std::pow(distance, model.alpha));
 }
 
-double noiseExceedanceProbability(const common::SensorModelConfig& model) {
+double noiseExceedanceProbability(const signal_strength::SignalStrengthSettings& model) {
   if (!(model.noise_sigma > 0.0)) return model.eta <= 0.0 ? 1.0 : 0.0;
   return 0.5 * std::erfc(model.eta / (model.noise_sigma * std::numbers::sqrt2));
 }

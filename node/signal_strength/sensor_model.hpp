@@ -6,17 +6,17 @@
 #include <vector>
 
 #include "common/rng.hpp"
-#include "common/scenario.hpp"
+#include "node/signal_strength/config.hpp"
 
 namespace wsn::node {
 
 /// Oh et al., eq. 5: the noise-free signal beta / (1 + gamma d^alpha) of a target at distance d
 /// (the caller applies the range test d <= Rs).
-double signalStrength(const common::SensorModelConfig& model, double distance);
+double signalStrength(const signal_strength::SignalStrengthSettings& model, double distance);
 
 /// q = P(sigma w >= eta), w ~ N(0, 1): the probability that a sensor no target is near reports
 /// a false detection. sigma = 0 gives 1 when eta <= 0 (z = 0 passes) and 0 otherwise.
-double noiseExceedanceProbability(const common::SensorModelConfig& model);
+double noiseExceedanceProbability(const signal_strength::SignalStrengthSettings& model);
 
 /// One draw of w ~ N(0, 1) conditioned on w >= a. For a >= 0: Robert (1995) exponential
 /// rejection, proposal a + Exp(lambda) with lambda = (a + sqrt(a^2 + 4)) / 2, accepted with

@@ -2,6 +2,9 @@
 
 #include <catch2/catch.hpp>
 
+#include "node/acoustic/config.hpp"
+#include "node/signal_strength/config.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -11,6 +14,16 @@
 
 namespace wsn::common {
 namespace {
+
+using node::acoustic::AcousticSettings;
+using node::acoustic::NoiseComponent;
+using node::acoustic::noisePreset;
+using node::signal_strength::SignalStrengthSettings;
+
+/// The signal-strength model's own settings of a scenario.
+const SignalStrengthSettings& signalModel(const Scenario& s) { return settingsOf<SignalStrengthSettings>(s.sensor_model); }
+/// The acoustic model's own settings of a scenario.
+const AcousticSettings& acousticModel(const Scenario& s) { return settingsOf<AcousticSettings>(s.sensor_model); }
 
 /// parseScenario with the file name "s.yaml" used in every expected message below.
 Scenario parse(const std::string& text) { return parseScenario(text, "s.yaml"); }
@@ -82,7 +95,7 @@ void requireRoundTrip(const Scenario& s) {
 
 TEST_CASE("a value left out and derived is noted in the resolved file, a given one is not", "[scenario]") {
   const Scenario derived = parse("sensor_model: {gamma: 2, sensing_range: 2, alpha: 2}\n");
-  CHECK(derived.sensor_model.beta == 3.0 * (1.0 + 2.0 * 4.0));  // Oh §VII: 3 (1 + gamma Rs^alpha) = 27
+  CHECK(signalModel(derived).beta == 3.0 * (1.0 + 2.0 * 4.0));  // Oh §VII: 3 (1 + gamma Rs^alpha) = 27
   CHECK(derived.derived.at("sensor_model.beta") == "3 (1 + gamma Rs^alpha)");
   CHECK(derived.derived.at("supernodes") == "one supernode at the centre of the region");
   const std::string yaml = resolvedScenarioYaml(derived);
@@ -94,7 +107,7 @@ TEST_CASE("a value left out and derived is noted in the resolved file, a given o
   CHECK(resolvedScenarioYaml(given).find("  # derived: ") == std::string::npos);
   // Left out without a sensor_model section at all, it is derived from the defaults: 9.75.
   CHECK(parse("").derived.at("sensor_model.beta") == "3 (1 + gamma Rs^alpha)");
-  CHECK(parse("").sensor_model.beta == 9.75);
+  CHECK(signalModel(parse("")).beta == 9.75);
 }
 
 TEST_CASE("an empty file or {} gives the paper's defaults", "[scenario]") {
@@ -112,12 +125,12 @@ TEST_CASE("an empty file or {} gives the paper's defaults", "[scenario]") {
     CHECK(s.sensors.spacing == 1.0);
     CHECK(s.sensors.count == 10000u);
     // Oh §VII: alpha 2, gamma 1, eta 2, Rs 1.5 (§VII-A), beta = 3 (1 + 1 * 1.5^2) = 9.75.
-    CHECK(s.sensor_model.alpha == 2.0);
-    CHECK(s.sensor_model.gamma == 1.0);
-    CHECK(s.sensor_model.eta == 2.0);
+    CHECK(signalModel(s).alpha == 2.0);
+    CHECK(signalModel(s).gamma == 1.0);
+    CHECK(signalModel(s).eta == 2.0);
     CHECK(s.sensor_model.sensing_range == 1.5);
-    CHECK(s.sensor_model.beta == 9.75);
-    CHECK(s.sensor_model.noise_sigma == 1.0);
+    CHECK(signalModel(s).beta == 9.75);
+    CHECK(signalModel(s).noise_sigma == 1.0);
     CHECK(s.localisation.sigma == 0.0);
     CHECK(s.targets.scripted.empty());
     CHECK(s.targets.birth_rate == 0.0);
@@ -193,11 +206,11 @@ TEST_CASE("a seed takes the whole uint64 range exactly", "[scenario]") {
 TEST_CASE("beta left out is filled in as 3 (1 + gamma Rs^alpha), Oh §VII", "[scenario]") {
   // 3 (1 + 0.5 * 2^3) = 3 * 5 = 15.
   const Scenario s = parse("sensor_model: {sensing_range: 2, gamma: 0.5, alpha: 3}\n");
-  CHECK(s.sensor_model.beta == 15.0);
+  CHECK(signalModel(s).beta == 15.0);
   // Rs = 1 with the default gamma 1, alpha 2: 3 (1 + 1) = 6.
-  CHECK(parse("sensor_model: {sensing_range: 1}\n").sensor_model.beta == 6.0);
+  CHECK(signalModel(parse("sensor_model: {sensing_range: 1}\n")).beta == 6.0);
   // A given beta is kept whatever the other parameters.
-  CHECK(parse("sensor_model: {sensing_range: 2, beta: 4.5}\n").sensor_model.beta == 4.5);
+  CHECK(signalModel(parse("sensor_model: {sensing_range: 2, beta: 4.5}\n")).beta == 4.5);
 }
 
 // ------------------------------------------------------------------------------------------
@@ -389,7 +402,9 @@ TEST_CASE("the resolved YAML round-trips scripted targets, a random layout and p
       "metrics: {ospa_c: 10, ospa_p: 1}\n"
       "run: {ticks: 250, seed: 18446744073709551615, node_processes: 3, max_ticks_in_flight: 8}\n");
   // Values without a short decimal form survive too.
-  s.sensor_model.beta = 0.1 + 0.2;  // 0.30000000000000004
+  auto model = std::make_shared<SignalStrengthSettings>(signalModel(s));
+  model->beta = 0.1 + 0.2;  // 0.30000000000000004
+  s.sensor_model.settings = model;
   s.network.pte = 1.0 / 3.0;
   s.targets.scripted[1].position.x = 1000.0 + 1e-10;
   s.name = "quote\"and\\back";  // escaped in the file, though the loader would reject it as a name
@@ -403,8 +418,8 @@ TEST_CASE("the resolved YAML round-trips scripted targets, a random layout and p
 
 TEST_CASE("an empty list of noise components round-trips as custom noise of no component", "[scenario][resolved]") {
   const Scenario s = parse("sensor_model:\n  kind: acoustic_doppler\n  environmental_noise: {components: []}\n");
-  CHECK(s.sensor_model.environmental_noise.preset == "custom");
-  CHECK(s.sensor_model.environmental_noise.components.empty());
+  CHECK(acousticModel(s).environmental_noise.preset == "custom");
+  CHECK(acousticModel(s).environmental_noise.components.empty());
   CHECK(resolvedScenarioYaml(s).find("    components: []\n") != std::string::npos);
   requireRoundTrip(s);
 }
@@ -437,7 +452,7 @@ TEST_CASE("scenarios/oh_quadrants.yaml is Oh §VII-E", "[scenario][shipped]") {
   CHECK(s.region.x_max == 100.0);
   CHECK(s.sensors.kind == SensorLayoutConfig::Kind::kGrid);
   CHECK(s.sensors.spacing == 1.0);
-  CHECK(s.sensor_model.beta == 9.75);  // 3 (1 + 1.5^2), filled in
+  CHECK(signalModel(s).beta == 9.75);  // 3 (1 + 1.5^2), filled in
   CHECK(s.supernodes == std::vector<Vec2>{{25, 25}, {75, 25}, {25, 75}, {75, 75}});
   CHECK(s.targets.scripted.size() == 10);
   CHECK(s.targets.birth_rate == 0.0);
@@ -453,7 +468,7 @@ TEST_CASE("scenarios/oh_quadrants.yaml is Oh §VII-E", "[scenario][shipped]") {
   }
   // 8 targets of 60 ticks + ticks 45..100 (56) + 50..100 (51): near the paper's 571 target reports.
   CHECK(target_ticks == 587);
-  CHECK(s.sensor_model.noise_sigma == 0.62);  // calibrated to §VII-E's 603 false alarms
+  CHECK(signalModel(s).noise_sigma == 0.62);  // calibrated to §VII-E's 603 false alarms
   CHECK(s.network.pte == 0.3);
   CHECK(s.network.pde == 0.3);
   CHECK(s.network.communication_range == 11.6);  // docs/NETWORK.md calibration
@@ -469,7 +484,7 @@ TEST_CASE("scenarios/oh_single_supernode.yaml is the setting of Oh §VII-C/D", "
   CHECK(s.supernodes == std::vector<Vec2>{{50, 50}});
   CHECK(s.network.pte == 0.0);
   CHECK(s.network.pde == 0.0);
-  CHECK(s.sensor_model.noise_sigma == 0.0);  // no false alarms
+  CHECK(signalModel(s).noise_sigma == 0.0);  // no false alarms
   // 10 expected births over T = 50 ticks on 10^4 units of area: 2e-5 * 10^4 * 50 = 10.
   CHECK(s.targets.birth_rate * s.region.area() * s.run.ticks == Approx(10.0).margin(1e-9));
   requireRoundTrip(s);
@@ -487,14 +502,14 @@ TEST_CASE("acoustic sensors: kind, acoustic parameters, noise presets and per-ta
       "  scripted:\n"
       "    - {x: 10, y: 10, vx: 1, vy: 0, sensing_range: 30}\n"
       "    - {x: 20, y: 10, vx: 1, vy: 0}\n");
-  CHECK(s.sensor_model.kind == SensorModelConfig::Kind::kAcousticDoppler);
-  CHECK(s.sensor_model.acoustic.threshold == 2.0);
-  CHECK(s.sensor_model.acoustic.sound_speed == 340.0);
-  CHECK(s.sensor_model.acoustic.tick_s == 0.2);
-  CHECK(s.sensor_model.acoustic.power_fluctuation == 0.2);
+  CHECK(s.sensor_model.kind == "acoustic_doppler");
+  CHECK(acousticModel(s).acoustic.threshold == 2.0);
+  CHECK(acousticModel(s).acoustic.sound_speed == 340.0);
+  CHECK(acousticModel(s).acoustic.tick_s == 0.2);
+  CHECK(acousticModel(s).acoustic.power_fluctuation == 0.2);
   // An et al. 2013 §3.3.1, Noise 2: 0.1 s on 5 % and 0.5 s on 1 %.
-  CHECK(s.sensor_model.environmental_noise.preset == "noise2");
-  CHECK(s.sensor_model.environmental_noise.components == std::vector<NoiseComponent>{{0.05, 0.1}, {0.01, 0.5}});
+  CHECK(acousticModel(s).environmental_noise.preset == "noise2");
+  CHECK(acousticModel(s).environmental_noise.components == std::vector<NoiseComponent>{{0.05, 0.1}, {0.01, 0.5}});
   CHECK(s.targets.scripted[0].sensing_range == 30.0);
   CHECK(s.targets.scripted[1].sensing_range == 0.0);  // takes sensor_model.sensing_range
   requireRoundTrip(s);
@@ -502,8 +517,8 @@ TEST_CASE("acoustic sensors: kind, acoustic parameters, noise presets and per-ta
   const Scenario custom = parse(
       "sensor_model:\n  kind: acoustic_doppler\n"
       "  environmental_noise:\n    components:\n      - {fraction: 0.02, duration_s: 0.3}\n");
-  CHECK(custom.sensor_model.environmental_noise.preset == "custom");
-  CHECK(custom.sensor_model.environmental_noise.components == std::vector<NoiseComponent>{{0.02, 0.3}});
+  CHECK(acousticModel(custom).environmental_noise.preset == "custom");
+  CHECK(acousticModel(custom).environmental_noise.components == std::vector<NoiseComponent>{{0.02, 0.3}});
   requireRoundTrip(custom);
 
   CHECK(noisePreset("noise1") == std::vector<NoiseComponent>{{0.06, 0.1}});
@@ -517,6 +532,16 @@ TEST_CASE("acoustic keys are rejected where they do not apply or do not fit", "[
         "s.yaml:2: 'sensor_model.acoustic' applies only with 'sensor_model.kind: acoustic_doppler'");
   CHECK(errorOf("sensor_model:\n  environmental_noise: {preset: noise1}\n") ==
         "s.yaml:2: 'sensor_model.environmental_noise' applies only with 'sensor_model.kind: acoustic_doppler'");
+  // Each model owns its keys: the signal-strength keys are not silently ignored by acoustic sensors.
+  CHECK(errorOf("sensor_model:\n  kind: acoustic_doppler\n  beta: 3\n") ==
+        "s.yaml:3: 'sensor_model.beta' applies only with 'sensor_model.kind: signal_strength'");
+  CHECK(errorOf("sensor_model:\n  kind: acoustic_doppler\n  noise_sigma: 0\n") ==
+        "s.yaml:3: 'sensor_model.noise_sigma' applies only with 'sensor_model.kind: signal_strength'");
+  CHECK(errorOf("sensor_model:\n  kind: acoustic_doppler\n  loudness: 3\n") ==
+        "s.yaml:3: unknown key 'loudness' in 'sensor_model' of kind acoustic_doppler; expected one of: acoustic, "
+        "alpha, environmental_noise, kind, sensing_range");
+  CHECK(errorOf("targets:\n  scripted:\n    - {x: 1, y: 1, vx: 0, vy: 0, sensing_range: 3}\n") ==
+        "s.yaml:3: 'targets.scripted[0].sensing_range' applies only with 'sensor_model.kind: acoustic_doppler'");
   CHECK_THAT(errorOf("sensor_model:\n  kind: acoustic\n"),
              Catch::StartsWith("s.yaml:2: 'sensor_model.kind' must be one of: signal_strength, acoustic_doppler"));
   CHECK_THAT(errorOf("sensor_model:\n  kind: acoustic_doppler\n  environmental_noise: {preset: noise9}\n"),
@@ -550,7 +575,7 @@ TEST_CASE("scenarios/an2014_scenario*.yaml are An et al. 2014 Table 1", "[scenar
     INFO(name);
     const Scenario s = loadScenario(std::string(WSN_SCENARIO_DIR "/") + name + ".yaml");
     CHECK(s.name == name);
-    CHECK(s.sensor_model.kind == SensorModelConfig::Kind::kAcousticDoppler);
+    CHECK(s.sensor_model.kind == "acoustic_doppler");
     CHECK(s.sensors.spacing == 25.0);  // Ds = 25 m on a 50 x 50 grid
     CHECK(s.region.width() / s.sensors.spacing == 50.0);
     CHECK(s.tracker.engine == "rulebased");
@@ -565,13 +590,13 @@ TEST_CASE("scenarios/an2014_scenario*.yaml are An et al. 2014 Table 1", "[scenar
   }
   CHECK(loadScenario(WSN_SCENARIO_DIR "/an2014_scenario3.yaml").targets.scripted.size() == 5);
   for (const char* preset : {"noise1", "noise2"})
-    CHECK(loadScenario(std::string(WSN_SCENARIO_DIR "/an2013_") + preset + ".yaml").sensor_model.environmental_noise.preset ==
-          preset);
+    CHECK(acousticModel(loadScenario(std::string(WSN_SCENARIO_DIR "/an2013_") + preset + ".yaml"))
+              .environmental_noise.preset == preset);
   const Scenario two = loadScenario(WSN_SCENARIO_DIR "/an2014_two_centres.yaml");
   CHECK(two.supernodes.size() == 2);
   requireRoundTrip(two);
   const Scenario noise = loadScenario(WSN_SCENARIO_DIR "/an2013_noise3.yaml");
-  CHECK(noise.sensor_model.environmental_noise.preset == "noise3");
+  CHECK(acousticModel(noise).environmental_noise.preset == "noise3");
   REQUIRE(noise.targets.scripted.size() == 1);
   // 20 m/s: |(1.6, 1.2)| m per tick of 0.1 s.
   CHECK(std::hypot(noise.targets.scripted[0].velocity.x, noise.targets.scripted[0].velocity.y) / 0.1 ==

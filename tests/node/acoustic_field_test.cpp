@@ -34,7 +34,7 @@ common::Scenario acousticScenario(const std::string& targets, const std::string&
 struct World {
   explicit World(common::Scenario s)
       : scenario(std::move(s)), truth(scenario), layout(scenario), tiles(makeTiles(layout, 1)),
-        field(scenario, layout, tiles.front(), truth) {}
+        field(fieldConfigOf(scenario), layout, tiles.front(), truth) {}
   common::Scenario scenario;
   common::Truth truth;
   common::SensorLayout layout;
@@ -215,11 +215,11 @@ TEST_CASE("the detections do not depend on the tiling and are deterministic", "[
   const common::Truth truth(scenario);
   const common::SensorLayout layout(scenario);
   const auto one = makeTiles(layout, 1);
-  const AcousticField whole(scenario, layout, one.front(), truth);
+  const AcousticField whole(fieldConfigOf(scenario), layout, one.front(), truth);
   for (const int count : {2, 4}) {
     const auto tiles = makeTiles(layout, count);
     std::vector<AcousticField> fields;
-    for (const auto& tile : tiles) fields.emplace_back(scenario, layout, tile, truth);
+    for (const auto& tile : tiles) fields.emplace_back(fieldConfigOf(scenario), layout, tile, truth);
     for (const int tick : {5, 30}) {
       std::vector<common::Report> joined;
       for (const auto& f : fields) {
@@ -230,7 +230,7 @@ TEST_CASE("the detections do not depend on the tiling and are deterministic", "[
       CHECK(joined == whole.detect(tick));
     }
   }
-  const AcousticField again(scenario, layout, one.front(), truth);
+  const AcousticField again(fieldConfigOf(scenario), layout, one.front(), truth);
   CHECK(again.detect(30) == whole.detect(30));
 }
 
@@ -238,14 +238,15 @@ TEST_CASE("the acoustic field refuses a non-acoustic scenario and more than 8 no
   const auto scenario = common::parseScenario("run: {ticks: 5}\n", "plain.yaml");
   const common::Truth truth(scenario);
   const common::SensorLayout layout(scenario);
-  CHECK_THROWS_AS(AcousticField(scenario, layout, makeTiles(layout, 1).front(), truth), std::invalid_argument);
+  CHECK_THROWS_AS(fieldConfigOf(scenario), std::invalid_argument);
 
   // Noise streams are keyed by sensor * 8 + component: a ninth component would share them.
   auto crowded = acousticScenario("    - {x: 10, y: 10, vx: 0, vy: 0}\n");
-  crowded.sensor_model.environmental_noise.components.assign(9, {0.01, 0.1});
+  auto crowded_config = fieldConfigOf(crowded);
+  crowded_config.settings.environmental_noise.components.assign(9, {0.01, 0.1});
   const common::Truth crowded_truth(crowded);
   const common::SensorLayout crowded_layout(crowded);
-  CHECK_THROWS_WITH(AcousticField(crowded, crowded_layout, makeTiles(crowded_layout, 1).front(), crowded_truth),
+  CHECK_THROWS_WITH(AcousticField(crowded_config, crowded_layout, makeTiles(crowded_layout, 1).front(), crowded_truth),
                     Catch::Contains("9 environmental noise components; at most 8"));
 }
 

@@ -29,8 +29,16 @@ using wsn::node::Tile;
 Scenario defaultScenario(double noise_sigma, std::uint64_t seed = 5) {
   Scenario s;
   s.run.seed = seed;
-  s.sensor_model.noise_sigma = noise_sigma;
+  auto model = std::make_shared<wsn::node::signal_strength::SignalStrengthSettings>();
+  model->noise_sigma = noise_sigma;
+  s.sensor_model.settings = model;
   return s;
+}
+
+/// The signal-strength field of scenario `s` over `tile`.
+SensorField fieldOf(const Scenario& s, const SensorLayout& layout, const Tile& tile) {
+  return SensorField(wsn::common::settingsOf<wsn::node::signal_strength::SignalStrengthSettings>(s.sensor_model),
+                     s.sensor_model.sensing_range, s.run.seed, layout, tile);
 }
 
 SensorId gridId(int column, int row) { return static_cast<SensorId>(row * 100 + column); }
@@ -44,7 +52,7 @@ const SensorReading* findReading(const std::vector<SensorReading>& readings, Sen
 
 /// The field as a single tile.
 struct WholeField {
-  explicit WholeField(const Scenario& s) : layout(s), tiles(makeTiles(layout, 1)), field(s, layout, tiles[0]) {}
+  explicit WholeField(const Scenario& s) : layout(s), tiles(makeTiles(layout, 1)), field(fieldOf(s, layout, tiles[0])) {}
   SensorLayout layout;
   std::vector<Tile> tiles;
   SensorField field;
@@ -227,7 +235,7 @@ TEST_CASE("fuse lets foreign readings within 2 Rs win and ignores the rest", "[n
   const Scenario s = defaultScenario(1.0);
   const SensorLayout layout(s);
   const auto tiles = makeTiles(layout, 2);  // boundary at x = 51
-  const SensorField left(s, layout, tiles[0]);
+  const SensorField left = fieldOf(s, layout, tiles[0]);
   // Own sensor (50,20) at x = 50.5; foreign (51,20) at x = 51.5 is 1 away and stronger: it wins.
   const std::vector<SensorReading> own{{gridId(50, 20), 4.0}};
   CHECK(left.fuse(1, own, std::vector<SensorReading>{{gridId(51, 20), 4.5}}, {}).empty());
@@ -247,7 +255,7 @@ TEST_CASE("boundaryReadings keeps exactly the readings within 2 Rs of another ti
   const Scenario s = defaultScenario(1.0);
   const SensorLayout layout(s);
   const auto tiles = makeTiles(layout, 4);  // 2 x 2, split at x = 51 and y = 51
-  const SensorField lower_left(s, layout, tiles[0]);
+  const SensorField lower_left = fieldOf(s, layout, tiles[0]);
   // Columns 48..50 have x = 48.5..50.5, within 3 of x = 51; column 47 (x = 47.5) is 3.5 away.
   // Likewise for rows against y = 51. Region edges (x = 0, y = 0) border no tile.
   const std::vector<SensorReading> own{{gridId(0, 0), 3.0},   {gridId(10, 10), 3.0}, {gridId(47, 10), 3.0},
@@ -260,7 +268,7 @@ TEST_CASE("boundaryReadings keeps exactly the readings within 2 Rs of another ti
 
   // A single tile has no neighbours and sends nothing.
   const auto whole = makeTiles(layout, 1);
-  CHECK(SensorField(s, layout, whole[0]).boundaryReadings(own).empty());
+  CHECK(fieldOf(s, layout, whole[0]).boundaryReadings(own).empty());
 }
 
 TEST_CASE("reports are the same for 1, 2, 3, 4, 6 and 8 tiles with targets on the tile boundaries",
@@ -291,7 +299,7 @@ TEST_CASE("reports are the same for 1, 2, 3, 4, 6 and 8 tiles with targets on th
   auto run = [&](int count, std::int32_t tick) {
     const auto tiles = makeTiles(layout, count);
     std::vector<SensorField> fields;
-    for (const Tile& tile : tiles) fields.emplace_back(s, layout, tile);
+    for (const Tile& tile : tiles) fields.push_back(fieldOf(s, layout, tile));
     const auto targets = targetsAt(tick);
     std::vector<std::vector<SensorReading>> own(tiles.size());
     std::vector<std::vector<SensorReading>> boundary(tiles.size());

@@ -9,11 +9,11 @@
 #include "common/rng.hpp"
 
 using wsn::common::Purpose;
-using wsn::common::SensorModelConfig;
+using wsn::node::signal_strength::SignalStrengthSettings;
 using wsn::common::Stream;
 
 TEST_CASE("signalStrength follows Oh eq. 5", "[node][sensor_model]") {
-  const SensorModelConfig model;  // alpha 2, beta 9.75, gamma 1
+  const SignalStrengthSettings model;  // alpha 2, beta 9.75, gamma 1
   // beta / (1 + gamma d^alpha): d = 0 -> 9.75; d = 1 -> 9.75 / 2; d = 1.2 -> 9.75 / 2.44; d = Rs = 1.5
   // -> 9.75 / 3.25 = 3, which is why Oh §VII picks beta = 3 (1 + gamma Rs^alpha).
   CHECK(wsn::node::signalStrength(model, 0.0) == Approx(9.75).margin(1e-12));
@@ -23,7 +23,7 @@ TEST_CASE("signalStrength follows Oh eq. 5", "[node][sensor_model]") {
 }
 
 TEST_CASE("noiseExceedanceProbability is the Gaussian tail beyond eta / sigma", "[node][sensor_model]") {
-  SensorModelConfig model;
+  SignalStrengthSettings model;
   // Q(2) = 0.5 erfc(2 / sqrt 2) = 0.0227501319.
   CHECK(wsn::node::noiseExceedanceProbability(model) == Approx(0.0227501319).margin(1e-9));
   model.noise_sigma = 2.0;  // Q(1) = 0.1586552539

@@ -76,7 +76,7 @@ class AcousticScenario(WrittenScenario, unittest.TestCase):
     scenario = "an2014_scenario1"
 
     def test_nested_mappings(self):
-        self.expect("  kind: acoustic_doppler", ("sensor_model", "kind"), "acoustic_doppler")
+        self.expect('  kind: "acoustic_doppler"', ("sensor_model", "kind"), "acoustic_doppler")
         self.expect("    sound_speed: 343", ("sensor_model", "acoustic", "sound_speed"), 343)
         self.expect("    detection_step_s: 0.005", ("sensor_model", "acoustic", "detection_step_s"), 0.005)
         self.expect("    preset: none", ("sensor_model", "environmental_noise", "preset"), "none")
