@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "common/measurement.hpp"
 #include "common/track_id.hpp"
 
 namespace wsn::common {
@@ -31,16 +32,20 @@ struct SensorReading {
 struct Report {
   std::int32_t tick = 0;
   SensorId sensor = 0;
+  /// Where the report lies in the field, which routing, canonical orders and observations.csv
+  /// use: the measured position for kind position, the sensor's believed position otherwise.
   double x = 0.0;
   double y = 0.0;
   TargetId target = kFalseAlarm;
   /// Acoustic detection: ws = floor(Ps / cs) >= 1 (An et al. 2014 eq. 4, 10); 0 for a fused report.
   std::int32_t power_level = 0;
+  /// What the sensor measured: null (the default) for the position (x, y) with the engine's noise.
+  MeasurementRef measurement = {};
   friend bool operator==(const Report&, const Report&) = default;
 };
 
 /// A report as a supernode receives it: generated at tick_generated, delivered at
-/// tick_delivered >= tick_generated.
+/// tick_delivered >= tick_generated. Position engines read x, y; the others the measurement.
 struct Observation {
   std::int32_t tick_generated = 0;
   std::int32_t tick_delivered = 0;
@@ -49,8 +54,30 @@ struct Observation {
   double y = 0.0;
   TargetId target = kFalseAlarm;
   std::int32_t power_level = 0;  ///< as in Report
+  MeasurementRef measurement = {};  ///< as in Report
   friend bool operator==(const Observation&, const Observation&) = default;
 };
+
+/// True when the report's measurement can be used (common::wellFormed) and agrees with x, y: the
+/// values of a position, the sensor's position for the other kinds.
+inline bool wellFormed(const Report& r) {
+  if (!r.measurement) return true;  // the position (x, y)
+  const Measurement& m = *r.measurement;
+  if (!wellFormed(m)) return false;
+  if (m.kind == MeasurementKind::position) return m.values[0] == r.x && m.values[1] == r.y;
+  return m.sensor->x == r.x && m.sensor->y == r.y;
+}
+
+/// The observation a supernode receives when `report` is delivered at tick_delivered.
+inline Observation observationOf(const Report& report, std::int32_t tick_delivered) {
+  return {report.tick,   tick_delivered,     report.sensor,     report.x,
+          report.y,      report.target,      report.power_level, report.measurement};
+}
+
+/// What `o` measured, in full: its measurement, or the position (x, y) for a plain one.
+inline Measurement measurementOf(const Observation& o) {
+  return o.measurement ? *o.measurement : Measurement::position(o.x, o.y);
+}
 
 /// A track's estimate at one tick: the state and its covariance.
 struct TrackEstimate {

@@ -51,7 +51,7 @@ void runNetworkRole(const dds::RoleContext& context) {
         sample.run_id = context.run_id;
         sample.supernode = j;
         sample.tick = t;
-        sample.observations = sequenceView<dds_sequence_wsn_msg_Observation>(due);
+        sample.observations = sequenceView<dds_sequence_wsn_msg_Observation>(due.items);
         delivery_writer.write(sample);
       }
     }

@@ -14,14 +14,15 @@
 namespace wsn::network_model {
 namespace {
 
-/// Canonical report order: by sensor, then by content, so duplicates also sort reproducibly.
+/// Canonical report order: by sensor, then by content, so duplicates also sort reproducibly (the
+/// measurement last: it only differs where x, y agree for reports of non-position kinds).
 bool reportBefore(const common::Report& a, const common::Report& b) {
-  return std::tie(a.sensor, a.x, a.y, a.target) < std::tie(b.sensor, b.x, b.y, b.target);
+  return std::tie(a.sensor, a.x, a.y, a.target, a.measurement) < std::tie(b.sensor, b.x, b.y, b.target, b.measurement);
 }
 
 bool observationBefore(const common::Observation& a, const common::Observation& b) {
-  return std::tie(a.tick_generated, a.sensor, a.x, a.y, a.target) <
-         std::tie(b.tick_generated, b.sensor, b.x, b.y, b.target);
+  return std::tie(a.tick_generated, a.sensor, a.x, a.y, a.target, a.measurement) <
+         std::tie(b.tick_generated, b.sensor, b.x, b.y, b.target, b.measurement);
 }
 
 }  // namespace
@@ -59,7 +60,7 @@ std::span<const ReportFate> Router::submit(std::int32_t tick, std::span<const co
   ordered.reserve(reports.size());
   for (const common::Report& report : reports) {
     const bool valid = report.tick == tick && report.sensor < topology_->sensorCount() &&
-                       std::isfinite(report.x) && std::isfinite(report.y);
+                       std::isfinite(report.x) && std::isfinite(report.y) && common::wellFormed(report);
     if (valid)
       ordered.push_back(report);
     else
@@ -105,8 +106,7 @@ std::span<const ReportFate> Router::submit(std::int32_t tick, std::span<const co
         ++group.delivered;
         if (d > 0) ++group.delayed;
         if (d >= config_.window_size) ++group.beyond_window;
-        pending_[fate.supernode][fate.tick_delivered].push_back(common::Observation{
-            report.tick, fate.tick_delivered, report.sensor, report.x, report.y, report.target, report.power_level});
+        pending_[fate.supernode][fate.tick_delivered].push_back(common::observationOf(report, fate.tick_delivered));
         ++pending_count_;
       }
     }

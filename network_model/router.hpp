@@ -45,7 +45,8 @@ struct NetworkCounts {
   std::uint64_t delayed = 0;        ///< delivered with d > 0
   std::uint64_t beyond_window = 0;  ///< delivered with d >= window_size
   std::uint64_t after_end = 0;      ///< not lost, but tick + d > run.ticks
-  std::uint64_t rejected = 0;       ///< malformed (wrong tick, unknown sensor, non-finite position); total only
+  std::uint64_t rejected = 0;       ///< malformed (wrong tick, unknown sensor, non-finite position,
+                                    ///< measurement not common::wellFormed); total only
   NetworkCounts& operator+=(const NetworkCounts& other);
   friend bool operator==(const NetworkCounts&, const NetworkCounts&) = default;
 };

@@ -71,7 +71,7 @@ void runNodeRole(const dds::RoleContext& context) {
       report_sample.run_id = context.run_id;
       report_sample.tile = context.index;
       report_sample.tick = t;
-      report_sample.reports = sequenceView<dds_sequence_wsn_msg_Report>(reports);
+      report_sample.reports = sequenceView<dds_sequence_wsn_msg_Report>(reports.items);
       report_writer.write(report_sample);
     }
     progress.waitForCompleted(ticks);

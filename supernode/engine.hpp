@@ -84,4 +84,13 @@ void resolveEngineParams(common::Scenario& scenario);
 /// Builds the engine context.engine names; throws std::invalid_argument for an unknown name.
 std::unique_ptr<Engine> makeEngine(const EngineContext& context);
 
+/// Throws std::logic_error naming the engine and the kind when `observation` measures a kind
+/// `engine` does not declare in `accepts`. The scenario check rejects such pairings, so this only
+/// fires on a bug; it fails loudly rather than letting a position engine read a bearing as x, y.
+void requireAccepted(const EngineSpec& engine, const common::Observation& observation);
+
+/// The kinds `engine` accepts as a bit set (bit k for MeasurementKind k), so that the per-observation
+/// check in a supernode's tick is one test instead of a search by name.
+std::uint32_t acceptedKindMask(const EngineSpec& engine);
+
 }  // namespace wsn::supernode

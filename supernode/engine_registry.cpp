@@ -1,4 +1,7 @@
+#include <algorithm>
+#include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "supernode/engine.hpp"
 #include "supernode/gnn/gnn_engine.hpp"
@@ -40,6 +43,24 @@ EngineContext engineContext(const common::Scenario& scenario, std::uint32_t supe
 
 std::unique_ptr<Engine> makeEngine(const EngineContext& context) {
   return engineRegistry().at(context.engine).create(context);
+}
+
+void requireAccepted(const EngineSpec& engine, const common::Observation& observation) {
+  const std::string_view kind = common::measurementKindName(observation.measurement.kind());
+  if (std::find(engine.accepts.begin(), engine.accepts.end(), kind) != engine.accepts.end()) return;
+  std::string accepted;
+  for (const auto& a : engine.accepts) accepted += (accepted.empty() ? "" : ", ") + a;
+  throw std::logic_error("engine '" + engine.name + "' was handed a measurement of kind '" + std::string(kind) +
+                         "' (sensor " + std::to_string(observation.sensor) + ", tick " +
+                         std::to_string(observation.tick_generated) + ") but accepts only: " + accepted +
+                         "; the scenario check should have rejected this sensor model for it");
+}
+
+std::uint32_t acceptedKindMask(const EngineSpec& engine) {
+  std::uint32_t mask = 0;
+  for (const auto& name : engine.accepts)
+    if (const auto kind = common::measurementKindNamed(name)) mask |= 1u << static_cast<unsigned>(*kind);
+  return mask;
 }
 
 }  // namespace wsn::supernode

@@ -4,15 +4,17 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <utility>
 
 namespace wsn::supernode {
 namespace {
 
-/// Canonical order within a slot: sensor, then position; delivery tick and target only break
-/// ties between otherwise equal observations so that arrival order never shows.
+/// Canonical order within a slot: sensor, then position; delivery tick, target, power level and
+/// measurement only break ties. The order is total over every field an engine reads, so a slot's
+/// contents never show the order in which observations arrived.
 bool canonicalLess(const common::Observation& a, const common::Observation& b) {
-  return std::tie(a.sensor, a.x, a.y, a.tick_delivered, a.target) <
-         std::tie(b.sensor, b.x, b.y, b.tick_delivered, b.target);
+  return std::tie(a.sensor, a.x, a.y, a.tick_delivered, a.target, a.power_level, a.measurement) <
+         std::tie(b.sensor, b.x, b.y, b.tick_delivered, b.target, b.power_level, b.measurement);
 }
 
 }  // namespace
@@ -36,14 +38,15 @@ void ObservationWindow::advanceTo(std::int32_t tick) {
   while (slots_.size() < wanted) slots_.emplace_back();
 }
 
-bool ObservationWindow::insert(const common::Observation& observation) {
+bool ObservationWindow::insert(common::Observation observation) {
   const std::int32_t t = observation.tick_generated;
   if (slots_.empty() || t < oldestTick() || t > newest_tick_) {
     ++dropped_stale_;
     return false;
   }
   auto& slot = slots_[static_cast<std::size_t>(t - oldestTick())];
-  slot.insert(std::upper_bound(slot.begin(), slot.end(), observation, canonicalLess), observation);
+  const auto at = std::upper_bound(slot.begin(), slot.end(), observation, canonicalLess);
+  slot.insert(at, std::move(observation));
   return true;
 }
 

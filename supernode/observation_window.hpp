@@ -19,7 +19,7 @@ class ObservationWindow {
   void advanceTo(std::int32_t tick);
   /// Puts an observation into the slot of its tick_generated; returns false (and counts it)
   /// when that tick already left the window or lies in the future.
-  bool insert(const common::Observation& observation);
+  bool insert(common::Observation observation);
 
   std::int32_t windowSize() const { return window_size_; }
   std::int32_t newestTick() const { return newest_tick_; }

@@ -14,11 +14,6 @@ std::unique_ptr<const common::Scenario> resolvedCopy(const common::Scenario& sce
   return copy;
 }
 
-bool observationLess(const common::Observation& a, const common::Observation& b) {
-  return std::tie(a.tick_generated, a.sensor, a.x, a.y, a.tick_delivered, a.target) <
-         std::tie(b.tick_generated, b.sensor, b.x, b.y, b.tick_delivered, b.target);
-}
-
 bool handoffLess(const common::TrackHandoff& a, const common::TrackHandoff& b) {
   return std::tie(a.track, a.last_tick, a.to_supernode, a.state, a.covariance, a.hits, a.misses, a.confirmed) <
          std::tie(b.track, b.last_tick, b.to_supernode, b.state, b.covariance, b.hits, b.misses, b.confirmed);
@@ -41,14 +36,21 @@ SupernodeTracker::SupernodeTracker(const common::Scenario& resolved, std::uint32
     throw std::invalid_argument("supernode index " + std::to_string(supernode_index) + " out of range: the scenario has " +
                                 std::to_string(scenario_->supernodes.size()) + " supernodes");
   engine_ = makeEngine(engineContext(*scenario_, supernode_index));
+  engine_spec_ = engineRegistry().find(scenario_->tracker.engine);  // makeEngine found it
+  accepted_kinds_ = acceptedKindMask(*engine_spec_);
 }
 
 SupernodeTracker::TickOutput SupernodeTracker::step(std::int32_t tick, std::span<const common::Observation> delivered,
                                                     std::span<const common::TrackHandoff> incoming) {
   window_.advanceTo(tick);
-  std::vector<common::Observation> observations(delivered.begin(), delivered.end());
-  std::sort(observations.begin(), observations.end(), observationLess);
-  for (const auto& observation : observations) window_.insert(observation);
+  // No sort first: the window files each observation at its canonical place in its slot, and
+  // canonical order is total, so the slots come out the same in any arrival order.
+  for (const auto& observation : delivered) {
+    const auto kind = static_cast<unsigned>(observation.measurement.kind());
+    const std::uint32_t kind_bit = kind < 32 ? 1u << kind : 0;  // an unknown kind is never accepted
+    if ((accepted_kinds_ & kind_bit) == 0) requireAccepted(*engine_spec_, observation);  // throws
+    window_.insert(observation);
+  }
 
   std::vector<common::TrackHandoff> handoffs_in(incoming.begin(), incoming.end());
   std::sort(handoffs_in.begin(), handoffs_in.end(), handoffLess);

@@ -38,7 +38,8 @@ class SupernodeTracker {
 
   /// Processes tick `tick`: slides the window, files the delivered observations into their slots,
   /// adopts the incoming handoffs, steps the engine and releases the tracks predicted to enter
-  /// another supernode's Voronoi cell. Handoffs addressed to another supernode are ignored.
+  /// another supernode's Voronoi cell. Handoffs addressed to another supernode are ignored; an
+  /// observation of a measurement kind the engine does not accept throws (requireAccepted).
   TickOutput step(std::int32_t tick, std::span<const common::Observation> delivered,
                   std::span<const common::TrackHandoff> incoming);
 
@@ -54,6 +55,8 @@ class SupernodeTracker {
   std::uint32_t index_;
   ObservationWindow window_;
   std::unique_ptr<Engine> engine_;
+  const EngineSpec* engine_spec_ = nullptr;  // in the static registry
+  std::uint32_t accepted_kinds_ = 0;         // acceptedKindMask(*engine_spec_)
   std::uint64_t misaddressed_handoffs_ = 0;
 };
 

@@ -1,6 +1,7 @@
 // Conversions between the wire types generated from idl/wsntrack.idl and the plain C++
-// messages of common/messages.hpp. Encoding borrows the C++ vectors' storage (no copies, no
-// ownership handed to Cyclone); decoding copies out of the loaned sample.
+// messages of common/messages.hpp. Encoding hands no ownership to Cyclone: flat items are returned
+// by value, and nested sequences (a report's measurement) point into storage the result owns;
+// decoding copies out of the loaned sample.
 #pragma once
 
 #include <cstdint>
@@ -34,10 +35,29 @@ Seq sequenceView(std::vector<T>& items) {
 std::vector<wsn_msg_SensorReading> encode(const std::vector<common::SensorReading>& readings);
 std::vector<common::SensorReading> decode(const dds_sequence_wsn_msg_SensorReading& seq);
 
-std::vector<wsn_msg_Report> encode(const std::vector<common::Report>& reports);
+/// Wire items with the storage their nested sequences point into, so that the messages they were
+/// encoded from may go before the write. Move-only: a moved vector keeps its buffer where it was,
+/// a copied one would leave the items pointing into the original.
+template <typename Wire>
+struct Encoded {
+  std::vector<Wire> items;
+  std::vector<double> doubles;            ///< every measurement's values, noise, class likelihoods
+  std::vector<wsn_msg_SensorPose> poses;  ///< the measurements' sensor poses
+
+  Encoded() = default;
+  Encoded(Encoded&&) noexcept = default;
+  Encoded& operator=(Encoded&&) noexcept = default;
+  Encoded(const Encoded&) = delete;
+  Encoded& operator=(const Encoded&) = delete;
+};
+
+/// Throws std::length_error when a measurement exceeds the wire's bounds (kMaxMeasurementDimension,
+/// kMaxClasses), which Cyclone would only report as a failed write.
+Encoded<wsn_msg_Report> encode(const std::vector<common::Report>& reports);
 std::vector<common::Report> decode(const dds_sequence_wsn_msg_Report& seq, std::int32_t tick);
 
-std::vector<wsn_msg_Observation> encode(const std::vector<common::Observation>& observations);
+/// As for reports.
+Encoded<wsn_msg_Observation> encode(const std::vector<common::Observation>& observations);
 std::vector<common::Observation> decode(const dds_sequence_wsn_msg_Observation& seq, std::int32_t tick_delivered);
 
 std::vector<wsn_msg_TrackEstimate> encode(const std::vector<common::TrackEstimate>& tracks);

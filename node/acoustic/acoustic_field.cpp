@@ -269,6 +269,7 @@ std::vector<common::Report> AcousticField::detect(std::int32_t tick) const {
     if (!(total >= ac.threshold)) continue;
     const double level = std::floor(total / ac.threshold);
     const common::Vec2 believed = layout_->believedPosition(id);
+    // A detection (An et al. 2014 eq. 4) places the target at the sensor: a plain position report.
     out.push_back({tick, id, believed.x, believed.y, target,
                    level >= static_cast<double>(std::numeric_limits<std::int32_t>::max())
                        ? std::numeric_limits<std::int32_t>::max()

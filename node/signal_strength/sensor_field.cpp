@@ -259,6 +259,7 @@ std::vector<common::Report> SensorField::fuse(std::int32_t tick, std::span<const
         target = candidate_target.id;
       }
     }
+    // Oh eq. 6 measures a position whose noise is the engine's model: a plain position report.
     reports.push_back({tick, candidate.sensor, sum_x / sum_z, sum_y / sum_z, target});
   }
   std::sort(reports.begin(), reports.end(), [](const auto& a, const auto& b) { return a.sensor < b.sensor; });

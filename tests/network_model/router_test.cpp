@@ -250,6 +250,37 @@ TEST_CASE("malformed reports are rejected and counted, not routed", "[network][r
   CHECK(router.deliveriesDue(3, 0).size() == 1);
 }
 
+TEST_CASE("a report's measurement reaches the supernode as sent, and a malformed one is rejected", "[network][router]") {
+  const nm::Topology topology = lineTopology();
+  nm::Router router(linkConfig(0.0, 0.0, 10), topology);
+  // Sensor 1 stands at (2, 0): a bearing report lies at the sensor.
+  wsn::common::Measurement measured;
+  measured.kind = wsn::common::MeasurementKind::bearing;
+  measured.values = {0.3};
+  measured.noise = {0.01};
+  measured.sensor = wsn::common::SensorPose{2.0, 0.0, 0.5};
+  measured.class_likelihoods = {0.9, 0.1};
+  Report bearing{3, 1, 2.0, 0.0, 0, 0, wsn::common::MeasurementRef(measured)};
+  Report no_pose = bearing;
+  no_pose.sensor = 2;
+  measured.sensor.reset();
+  no_pose.measurement = wsn::common::MeasurementRef(measured);
+  Report stale_position = reportOf(3, 3);
+  stale_position.measurement =
+      wsn::common::MeasurementRef(wsn::common::Measurement::position(stale_position.x, stale_position.y));
+  stale_position.x += 1.0;  // the measurement still says the old x
+  const std::vector<Report> reports{bearing, no_pose, stale_position, reportOf(3, 4)};
+
+  const auto fates = router.submit(3, reports);
+  REQUIRE(fates.size() == 2);
+  CHECK(router.counts().rejected == 2);
+  const auto delivered = router.deliveriesDue(3, 0);
+  REQUIRE(delivered.size() == 2);
+  CHECK(delivered[0].sensor == 1);
+  CHECK(delivered[0].measurement == bearing.measurement);
+  CHECK(delivered[1].measurement.get() == nullptr);  // a plain position stays plain
+}
+
 TEST_CASE("ticks must move forward and deliveries wait for their tick's submission", "[network][router]") {
   const nm::Topology topology = lineTopology();
   nm::Router router(linkConfig(0.3, 0.3, 10), topology);

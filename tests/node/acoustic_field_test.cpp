@@ -93,6 +93,8 @@ TEST_CASE("a stationary target is heard once per step at Pt / d^alpha, so exactl
     const double d = common::distance(w.layout.truePosition(r.sensor), {612.5, 600.0});
     CHECK(r.power_level == static_cast<int>(std::floor(1600.0 / (d * d))));
     CHECK(r.target == 0);
+    // A detection measures a position, the sensor's, with the engine's own noise model.
+    CHECK(r.measurement.get() == nullptr);  // a plain position
   }
   CHECK(detected == expected);
   // Rows y = 587.5 and 612.5 at x = 587.5, 612.5, 637.5 (12.5 or 27.95 m) and (612.5, 562.5),

@@ -117,6 +117,8 @@ TEST_CASE("a single target on a sensor with noise off gives one report at that s
   CHECK(reports[0].target == 9);
   CHECK(reports[0].x == Approx(50.5).margin(1e-12));
   CHECK(reports[0].y == Approx(50.5).margin(1e-12));
+  // Eq. 6 measures a position: kind position, dimension 2, values (x, y), no noise of its own.
+  CHECK(reports[0].measurement.get() == nullptr);  // a plain position
 }
 
 TEST_CASE("equal readings within 2 Rs elect the smaller sensor id", "[node][sensor_field]") {

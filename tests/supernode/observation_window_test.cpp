@@ -1,7 +1,9 @@
 #include "supernode/observation_window.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <stdexcept>
+#include <vector>
 
 #include "tests/supernode/test_support.hpp"
 
@@ -47,6 +49,39 @@ TEST_CASE("an observation goes into the slot of the tick it was generated, in ca
   CHECK(window.slot(3).empty());
   CHECK(window.size() == 5);
   CHECK(window.droppedStale() == 0);
+}
+
+TEST_CASE("a slot holds the same observations in the same order for every arrival order", "[window]") {
+  // Observations that differ only in a tie-breaking field (delivery tick, target, power level,
+  // measurement) too: the supernode files deliveries unsorted, so the order must be total.
+  common::Measurement bearing;
+  bearing.kind = common::MeasurementKind::bearing;
+  bearing.values = {0.5};
+  bearing.sensor = common::SensorPose{1.0, 1.0, 0.0};
+  std::vector<common::Observation> arrivals = {
+      withSensor(4, 3, 1.0, 1.0), withSensor(4, 3, 1.0, 1.0), withSensor(4, 1, 2.0, 2.0), withSensor(4, 3, 1.0, 1.0),
+      withSensor(4, 3, 1.0, 1.0), withSensor(4, 3, 1.0, 1.0)};
+  arrivals[1].tick_delivered = 5;
+  arrivals[3].power_level = 2;
+  arrivals[4].measurement = common::MeasurementRef(bearing);
+  arrivals[5].target = 9;
+
+  std::vector<std::size_t> order(arrivals.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::vector<common::Observation> first;
+  int permutations = 0;
+  do {
+    ObservationWindow window(3);
+    window.advanceTo(5);
+    for (const std::size_t i : order) window.insert(arrivals[i]);
+    const auto slot = window.slot(4);
+    const std::vector<common::Observation> filed(slot.begin(), slot.end());
+    if (first.empty()) first = filed;
+    REQUIRE(filed == first);
+    ++permutations;
+  } while (std::next_permutation(order.begin(), order.end()));
+  CHECK(permutations == 720);  // 6!
+  CHECK(first.front().sensor == 1);
 }
 
 TEST_CASE("observations older than the window or from the future are dropped and counted", "[window]") {

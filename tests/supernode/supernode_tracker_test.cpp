@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "common/rng.hpp"
@@ -164,6 +165,37 @@ TEST_CASE("a handoff addressed to another supernode is ignored and counted", "[t
   const auto out = tracker.step(2, {}, std::vector{h});
   CHECK(out.tracks.empty());
   CHECK(tracker.misaddressedHandoffs() == 1);
+}
+
+}  // namespace
+}  // namespace wsn::supernode
+
+namespace wsn::supernode {
+namespace {
+
+TEST_CASE("every position engine handed a bearing observation fails naming itself and the kind", "[tracker]") {
+  common::Measurement measured;
+  measured.kind = common::MeasurementKind::bearing;
+  measured.values = {0.4};
+  measured.sensor = common::SensorPose{20.0, 30.0, 0.0};
+  REQUIRE(common::wellFormed(measured));  // well formed, only of the wrong kind
+  common::Observation bearing{3, 3, test::sensorAt(20.0, 30.0), 20.0, 30.0, 0, 0, common::MeasurementRef(measured)};
+
+  for (const char* engine : {"gnn", "mcmcda", "rulebased"}) {
+    INFO(engine);
+    auto s = test::gnnScenario();
+    s.tracker.engine = engine;
+    s.tracker.params.clear();
+    resolveEngineParams(s);
+    SupernodeTracker tracker(s, 0);
+    const std::vector<common::Observation> position{test::observation(2, 2, 20.0, 30.0)};
+    tracker.step(2, position, {});  // what it declared in `accepts` goes through
+    const std::vector<common::Observation> delivered{bearing};
+    CHECK_THROWS_AS(tracker.step(3, delivered, {}), std::logic_error);
+    CHECK_THROWS_WITH(tracker.step(4, delivered, {}), Catch::Contains("engine '" + std::string(engine) + "'") &&
+                                                          Catch::Contains("kind 'bearing'") &&
+                                                          Catch::Contains("accepts only: position"));
+  }
 }
 
 }  // namespace
