@@ -61,8 +61,10 @@ McmcdaAssociator::McmcdaAssociator(const common::Scenario& scenario)
           scenario.region, scenario.run.seed, static_cast<std::uint32_t>(scenario.supernodes.size())) {}
 
 McmcdaAssociator::McmcdaAssociator(const McmcdaAssociationParams& params, const common::Rect& region,
-                                   std::uint64_t seed, std::uint32_t id_space)
-    : engine_(std::make_unique<McmcdaEngine>(params.engine, region, seed, id_space)), window_(params.window_size) {
+                                   std::uint64_t seed, std::uint32_t stream_key)
+    : engine_(std::make_unique<McmcdaEngine>(params.engine, region, seed, stream_key,
+                                             common::track_id::Space::ofAggregator())),
+      window_(params.window_size) {
   const auto source_of = [this](const McmcdaEngine::ObservationKey& key) -> common::TrackId {
     const auto it = source_.find(key.sensor);
     return it == source_.end() ? 0 : it->second;

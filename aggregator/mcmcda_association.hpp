@@ -94,9 +94,11 @@ class McmcdaAssociator final : public TrackAssociator {
   /// `scenario.aggregator.params` must be resolved against mcmcdaAssociationSpec(); the motion
   /// model is the scenario's dynamics, and ids are minted in the space after the last supernode's.
   explicit McmcdaAssociator(const common::Scenario& scenario);
-  /// From its own parameters: `id_space` is the supernode index whose id space new global ids use.
+  /// From its own parameters: the run's seed and the key of its random stream (the scenario's
+  /// supernode count, one past the last supernode's). New global ids are the aggregator's "gN",
+  /// like the gated merge's.
   McmcdaAssociator(const McmcdaAssociationParams& params, const common::Rect& region, std::uint64_t seed,
-                   std::uint32_t id_space);
+                   std::uint32_t stream_key);
 
   std::vector<common::TrackEstimate> associate(std::int32_t tick, const std::vector<SupernodeTracks>& inputs) override;
   std::uint64_t droppedNonFinite() const override { return dropped_non_finite_; }

@@ -19,6 +19,12 @@ TrackId birth(std::uint32_t supernode, std::int32_t tick, SensorId sensor) {
   return supernodeSerial(supernode, (static_cast<std::uint64_t>(tick) << kBirthTickShift) | sensor);
 }
 
+TrackId Space::mint(std::uint64_t serial) const {
+  if (owner_ != 0) return supernodeSerial(static_cast<std::uint32_t>(owner_ - 1), serial);
+  if (serial >= kSerialLimit) throw std::out_of_range("track id: serial " + std::to_string(serial) + " exceeds 48 bits");
+  return serial;
+}
+
 std::string label(TrackId id) {
   if (!ownedBySupernode(id)) return "g" + std::to_string(serialOf(id));
   const std::string supernode = std::to_string(supernodeOf(id)) + ":";

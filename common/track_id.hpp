@@ -41,6 +41,22 @@ inline bool isBirth(TrackId id) { return ownedBySupernode(id) && serialOf(id) >=
 inline std::int32_t birthTick(TrackId id) { return static_cast<std::int32_t>(serialOf(id) >> kBirthTickShift); }
 inline SensorId birthSensor(TrackId id) { return static_cast<SensorId>(serialOf(id) & (kBirthSerialFloor - 1)); }
 
+/// Where an engine's new track ids come from: a supernode's serials, or the aggregator's global
+/// ids ("gN"), the one space every track association mints in.
+class Space {
+ public:
+  static Space ofSupernode(std::uint32_t supernode) { return Space(std::uint64_t{supernode} + 1); }
+  static Space ofAggregator() { return Space(0); }
+  /// The id of serial `serial` in this space; throws std::out_of_range when it does not fit.
+  TrackId mint(std::uint64_t serial) const;
+  bool isAggregator() const { return owner_ == 0; }
+  friend bool operator==(const Space&, const Space&) = default;
+
+ private:
+  explicit Space(std::uint64_t owner) : owner_(owner) {}
+  std::uint64_t owner_;  ///< supernode + 1, or 0 for the aggregator
+};
+
 /// A track id as people read it: "S:N" for serial N of supernode S; "S:tTsK" for a track that
 /// supernode S started at tick T from sensor K's report; "gN" for an id the aggregator minted.
 std::string label(TrackId id);

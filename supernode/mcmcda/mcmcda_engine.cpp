@@ -134,15 +134,14 @@ const TrackState& McmcdaEngine::LiveTrack::lastState() const {
 }
 
 McmcdaEngine::McmcdaEngine(const EngineContext& context)
-    : McmcdaEngine(McmcdaParams::fromContext(context), context.region, context.seed, context.supernode) {}
+    : McmcdaEngine(McmcdaParams::fromContext(context), context.region, context.seed, context.supernode,
+                   common::track_id::Space::ofSupernode(context.supernode)) {}
 
 McmcdaEngine::McmcdaEngine(const McmcdaParams& params, const common::Rect& region, std::uint64_t seed,
-                           std::uint32_t id_space)
-    : supernode_(id_space), seed_(seed), region_(region), params_(params), motion_(params_.model) {}
+                           std::uint32_t stream_key, common::track_id::Space ids)
+    : stream_key_(stream_key), ids_(ids), seed_(seed), region_(region), params_(params), motion_(params_.model) {}
 
-common::TrackId McmcdaEngine::mintId() {
-  return common::track_id::supernodeSerial(supernode_, next_serial_++);
-}
+common::TrackId McmcdaEngine::mintId() { return ids_.mint(next_serial_++); }
 
 bool McmcdaEngine::canContinue(const LiveTrack& track, std::int32_t oldest) const {
   // A report generated up to d-bar ticks after the last one continues the track, and it may
@@ -190,7 +189,7 @@ void McmcdaEngine::step(const ObservationWindow& window) {
   // Algorithm 1: nmc iterations from there, keeping the best partition.
   Sampler sampler(wp.problem);
   sampler.setState(start);
-  common::Stream rng(seed_, common::Purpose::kTracker, supernode_, newest);
+  common::Stream rng(seed_, common::Purpose::kTracker, stream_key_, newest);
   sampler.run(params_.iterations, rng);
   const Partition best = sampler.bestState();
   last_step_ = StepStats{wp.problem.size(), static_cast<std::int32_t>(best.size()), sampler.bestLogPosterior(),

@@ -42,8 +42,10 @@ class McmcdaEngine final : public Engine {
  public:
   explicit McmcdaEngine(const EngineContext& context);
   /// From its own configuration: resolved parameters (with the motion model), the region, the
-  /// run's seed and the supernode index whose id space its new track ids come from.
-  McmcdaEngine(const McmcdaParams& params, const common::Rect& region, std::uint64_t seed, std::uint32_t id_space);
+  /// run's seed, the key of its random stream (a supernode's index) and the id space its new
+  /// track ids come from.
+  McmcdaEngine(const McmcdaParams& params, const common::Rect& region, std::uint64_t seed, std::uint32_t stream_key,
+               common::track_id::Space ids);
 
   void adopt(const common::TrackHandoff& handoff) override;
   void step(const ObservationWindow& window) override;
@@ -153,7 +155,8 @@ class McmcdaEngine final : public Engine {
   void learnDelivery(const ObservationWindow& window, const Problem& problem, const Partition& best);
   common::TrackId mintId();
 
-  std::uint32_t supernode_;
+  std::uint32_t stream_key_;
+  common::track_id::Space ids_;
   std::uint64_t seed_;
   common::Rect region_;  ///< the surveillance region
   McmcdaParams params_;
