@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,13 +33,25 @@ class TrackAssociator {
   virtual std::uint64_t droppedNonFinite() const = 0;
 };
 
+/// What an association method is built from, split off the scenario at the role edge.
+struct AssociationContext {
+  std::string association;                ///< the registered name (aggregator.association)
+  common::Rect region;
+  std::uint64_t seed = 0;                 ///< run.seed
+  common::DynamicsConfig dynamics;        ///< the targets' motion model, Oh eq. (8)
+  std::uint32_t supernode_count = 0;      ///< the scenario's supernodes
+  std::map<std::string, common::EngineParam> params;  ///< aggregator.params, resolved
+};
+
+/// The association context of `resolved`, whose aggregator.params are resolved.
+AssociationContext associationContext(const common::Scenario& resolved);
+
 /// One registered association method.
 struct AssociationSpec {
   std::string name;
   std::string description;
   std::vector<common::ParamSpec> params;
-  /// Builds the method from a scenario whose aggregator.params are resolved.
-  std::function<std::unique_ptr<TrackAssociator>(const common::Scenario&)> create;
+  std::function<std::unique_ptr<TrackAssociator>(const AssociationContext&)> create;
 };
 
 /// All methods, in registration order.
@@ -49,7 +62,7 @@ const common::Registry<AssociationSpec>& associationRegistry();
 /// a value out of range.
 void resolveAssociationParams(common::Scenario& scenario);
 
-/// Builds the method named in the scenario (params resolved here if they were not).
-std::unique_ptr<TrackAssociator> makeAssociator(const common::Scenario& scenario);
+/// Builds the method context.association names; throws std::invalid_argument for an unknown name.
+std::unique_ptr<TrackAssociator> makeAssociator(const AssociationContext& context);
 
 }  // namespace wsn::aggregator

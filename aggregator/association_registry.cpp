@@ -21,10 +21,13 @@ void resolveAssociationParams(common::Scenario& scenario) {
                         aggregator.params);
 }
 
-std::unique_ptr<TrackAssociator> makeAssociator(const common::Scenario& scenario) {
-  common::Scenario resolved = scenario;
-  resolveAssociationParams(resolved);
-  return associationRegistry().at(resolved.aggregator.association).create(resolved);
+AssociationContext associationContext(const common::Scenario& resolved) {
+  return {resolved.aggregator.association, resolved.region, resolved.run.seed, resolved.dynamics,
+          static_cast<std::uint32_t>(resolved.supernodes.size()), resolved.aggregator.params};
+}
+
+std::unique_ptr<TrackAssociator> makeAssociator(const AssociationContext& context) {
+  return associationRegistry().at(context.association).create(context);
 }
 
 }  // namespace wsn::aggregator

@@ -44,21 +44,21 @@ AssociationSpec mcmcdaAssociationSpec() {
       "track-level MCMCDA (Oh et al. §VI): the supernodes' tracks at the ticks they were observed form Yc, "
       "a sliding-window MCMCDA over the whole region links them into global tracks";
   spec.params = common::paramSpecs(mcmcdaAssociationParamTable());
-  spec.create = [](const common::Scenario& scenario) -> std::unique_ptr<TrackAssociator> {
-    return std::make_unique<McmcdaAssociator>(scenario);
+  spec.create = [](const AssociationContext& context) -> std::unique_ptr<TrackAssociator> {
+    return std::make_unique<McmcdaAssociator>(context);
   };
   return spec;
 }
 
-McmcdaAssociator::McmcdaAssociator(const common::Scenario& scenario)
+McmcdaAssociator::McmcdaAssociator(const AssociationContext& context)
     : McmcdaAssociator(
           [&] {
-            auto p = common::decodeParams(mcmcdaAssociationParamTable(), scenario.aggregator.params);
-            p.engine.model.process_noise_sigma = scenario.dynamics.process_noise_sigma;
-            p.engine.model.delta = scenario.dynamics.delta;
+            auto p = common::decodeParams(mcmcdaAssociationParamTable(), context.params);
+            p.engine.model.process_noise_sigma = context.dynamics.process_noise_sigma;
+            p.engine.model.delta = context.dynamics.delta;
             return p;
           }(),
-          scenario.region, scenario.run.seed, static_cast<std::uint32_t>(scenario.supernodes.size())) {}
+          context.region, context.seed, context.supernode_count) {}
 
 McmcdaAssociator::McmcdaAssociator(const McmcdaAssociationParams& params, const common::Rect& region,
                                    std::uint64_t seed, std::uint32_t stream_key)

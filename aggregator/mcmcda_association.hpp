@@ -93,7 +93,7 @@ class McmcdaAssociator final : public TrackAssociator {
  public:
   /// `scenario.aggregator.params` must be resolved against mcmcdaAssociationSpec(); the motion
   /// model is the scenario's dynamics, and ids are minted in the space after the last supernode's.
-  explicit McmcdaAssociator(const common::Scenario& scenario);
+  explicit McmcdaAssociator(const AssociationContext& context);
   /// From its own parameters: the run's seed and the key of its random stream (the scenario's
   /// supernode count, one past the last supernode's). New global ids are the aggregator's "gN",
   /// like the gated merge's.

@@ -28,7 +28,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
   runRole(context, [&](const Participant& participant, const RunTopics& topics, StatusPublisher& status) {
     const auto& scenario = context.scenario;
     const common::Truth truth(scenario);
-    const auto associator = makeAssociator(scenario);
+    const auto associator = makeAssociator(associationContext(scenario));
     // Read now, not after the run: a malformed run.json must not cost the run's metrics.json.
     const std::string provenance = common::readRunProvenance(context.run_dir + "/run.json");
     RunScorer scorer(kLiveStream, scenario.metrics, scenario.supernodes);

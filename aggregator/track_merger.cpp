@@ -91,9 +91,8 @@ const common::config::FieldTable<TrackMergerConfig>& gatedMergeParamTable() {
 AssociationSpec gatedMergeSpec() {
   return {"gated", "one-scan gated merge of the supernodes' tracks of each tick (complete linkage, ids by memory)",
           common::paramSpecs(gatedMergeParamTable()),
-          [](const common::Scenario& scenario) -> std::unique_ptr<TrackAssociator> {
-            return std::make_unique<TrackMerger>(
-                common::decodeParams(gatedMergeParamTable(), scenario.aggregator.params));
+          [](const AssociationContext& context) -> std::unique_ptr<TrackAssociator> {
+            return std::make_unique<TrackMerger>(common::decodeParams(gatedMergeParamTable(), context.params));
           }};
 }
 

@@ -179,7 +179,7 @@ const Load& loadAt(std::int32_t scale) {
 
 /// A fresh tracker stepped through ticks 1..kWarmUpTicks; returns the next tick to step.
 std::int32_t warmUp(std::unique_ptr<wsn::supernode::SupernodeTracker>& tracker, const Load& load) {
-  tracker = std::make_unique<wsn::supernode::SupernodeTracker>(benchScenario(), 0);
+  tracker = std::make_unique<wsn::supernode::SupernodeTracker>(wsn::supernode::supernodeConfig(benchScenario(), 0));
   for (std::int32_t t = 1; t <= kWarmUpTicks; ++t) tracker->step(t, load.at(t), {});
   return kWarmUpTicks + 1;
 }

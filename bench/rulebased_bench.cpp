@@ -29,6 +29,7 @@ struct Input {
 Input loadInput(const std::string& name) {
   Input in;
   in.scenario = wsn::common::loadScenario(std::string(WSN_SCENARIO_DIR "/") + name + ".yaml");
+  wsn::supernode::resolveEngineParams(in.scenario);
   const wsn::common::Truth truth(in.scenario);
   const wsn::common::SensorLayout layout(in.scenario);
   const auto tiles = wsn::node::makeTiles(layout, 1);
@@ -49,7 +50,7 @@ void runScenario(benchmark::State& state, const std::string& name) {
   const Input in = loadInput(name);
   const auto ticks = in.scenario.run.ticks;
   for (auto _ : state) {
-    wsn::supernode::SupernodeTracker tracker(in.scenario, 0);
+    wsn::supernode::SupernodeTracker tracker(wsn::supernode::supernodeConfig(in.scenario, 0));
     std::size_t tracks = 0;
     for (std::int32_t t = 1; t <= ticks; ++t) tracks += tracker.step(t, in.per_tick[static_cast<std::size_t>(t)], {}).tracks.size();
     benchmark::DoNotOptimize(tracks);

@@ -13,7 +13,7 @@ void runSupernodeRole(const dds::RoleContext& context) {
     const auto& scenario = context.scenario;
     const std::uint32_t self = context.index;
     const auto supernodes = static_cast<std::uint32_t>(context.shape.supernodes);
-    SupernodeTracker tracker(scenario, self);
+    SupernodeTracker tracker(supernodeConfig(scenario, self));
 
     Reader<wsn_msg_DeliveryBatch> delivery_reader(participant, topics.delivery_batch, Qos::reliableKeepAll());
     Reader<wsn_msg_HandoffBatch> handoff_reader(participant, topics.handoff_batch, Qos::reliableKeepAll());

@@ -4,15 +4,10 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <utility>
 
 namespace wsn::supernode {
 namespace {
-
-std::unique_ptr<const common::Scenario> resolvedCopy(const common::Scenario& scenario) {
-  auto copy = std::make_unique<common::Scenario>(scenario);
-  resolveEngineParams(*copy);
-  return copy;
-}
 
 bool handoffLess(const common::TrackHandoff& a, const common::TrackHandoff& b) {
   return std::tie(a.track, a.last_tick, a.to_supernode, a.state, a.covariance, a.hits, a.misses, a.confirmed) <
@@ -29,14 +24,18 @@ std::uint32_t nearestSupernode(const std::vector<common::Vec2>& supernodes, comm
   return best;
 }
 
-SupernodeTracker::SupernodeTracker(const common::Scenario& resolved, std::uint32_t supernode_index)
-    : scenario_(resolvedCopy(resolved)), index_(supernode_index), window_(scenario_->tracker.window_size) {
+SupernodeConfig supernodeConfig(const common::Scenario& resolved, std::uint32_t index) {
+  return {engineContext(resolved, index), resolved.supernodes};
+}
+
+SupernodeTracker::SupernodeTracker(SupernodeConfig config)
+    : supernodes_(std::move(config.supernodes)), index_(config.engine.supernode), window_(config.engine.window_size) {
   // Without supernodes in the scenario there is a single tracking group, index 0.
-  if (supernode_index >= std::max<std::size_t>(1, scenario_->supernodes.size()))
-    throw std::invalid_argument("supernode index " + std::to_string(supernode_index) + " out of range: the scenario has " +
-                                std::to_string(scenario_->supernodes.size()) + " supernodes");
-  engine_ = makeEngine(engineContext(*scenario_, supernode_index));
-  engine_spec_ = engineRegistry().find(scenario_->tracker.engine);  // makeEngine found it
+  if (index_ >= std::max<std::size_t>(1, supernodes_.size()))
+    throw std::invalid_argument("supernode index " + std::to_string(index_) + " out of range: the scenario has " +
+                                std::to_string(supernodes_.size()) + " supernodes");
+  engine_ = makeEngine(config.engine);
+  engine_spec_ = engineRegistry().find(config.engine.engine);  // makeEngine found it
   accepted_kinds_ = acceptedKindMask(*engine_spec_);
 }
 
@@ -70,7 +69,7 @@ SupernodeTracker::TickOutput SupernodeTracker::step(std::int32_t tick, std::span
   // Oh §VI: a track whose predicted next state lies in another supernode's tracking group is
   // passed to that supernode.
   for (const auto& prediction : engine_->predictions()) {  // sorted by id
-    const std::uint32_t owner = nearestSupernode(scenario_->supernodes, prediction.next_position);
+    const std::uint32_t owner = nearestSupernode(supernodes_, prediction.next_position);
     if (owner != index_) out.handoffs.push_back(engine_->release(prediction.track, owner));
   }
   out.observations_in_window = static_cast<std::uint32_t>(window_.size());

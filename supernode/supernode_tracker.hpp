@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "common/messages.hpp"
-#include "common/scenario.hpp"
 #include "supernode/engine.hpp"
 #include "supernode/observation_window.hpp"
 
@@ -18,7 +17,17 @@ namespace wsn::supernode {
 /// 0 when there are no supernodes.
 std::uint32_t nearestSupernode(const std::vector<common::Vec2>& supernodes, common::Vec2 position);
 
-/// Window + engine + handoff decision of supernode `supernode_index`; pure and deterministic.
+/// What one supernode's tracker runs with, split off the scenario at the role edge.
+struct SupernodeConfig {
+  EngineContext engine;                  ///< its engine, with resolved parameters; engine.supernode is its index
+  std::vector<common::Vec2> supernodes;  ///< every supernode: the tracking groups a track may enter
+};
+
+/// The config of supernode `index` of `resolved` (whose tracker.params are resolved, as the
+/// launcher resolves them and the run directory's scenario.yaml writes them out).
+SupernodeConfig supernodeConfig(const common::Scenario& resolved, std::uint32_t index);
+
+/// Window + engine + handoff decision of one supernode; pure and deterministic.
 class SupernodeTracker {
  public:
   /// What one tick produced.
@@ -31,10 +40,10 @@ class SupernodeTracker {
     friend bool operator==(const TickOutput&, const TickOutput&) = default;
   };
 
-  /// `resolved`: the scenario (its tracker params are resolved again here, which is idempotent;
-  /// a bad engine or parameter throws common::ScenarioError). Throws std::invalid_argument when
-  /// supernode_index names no supernode of the scenario.
-  SupernodeTracker(const common::Scenario& resolved, std::uint32_t supernode_index);
+  /// Throws std::invalid_argument when config.engine.supernode names no supernode of
+  /// config.supernodes (index 0 is the single tracking group when there are none), and what
+  /// makeEngine throws for an unknown engine or unresolved parameters.
+  explicit SupernodeTracker(SupernodeConfig config);
 
   /// Processes tick `tick`: slides the window, files the delivered observations into their slots,
   /// adopts the incoming handoffs, steps the engine and releases the tracks predicted to enter
@@ -50,8 +59,7 @@ class SupernodeTracker {
   std::uint64_t misaddressedHandoffs() const { return misaddressed_handoffs_; }
 
  private:
-  // Owned on the heap so that the engine's reference to it survives a move of the tracker.
-  std::unique_ptr<const common::Scenario> scenario_;
+  std::vector<common::Vec2> supernodes_;
   std::uint32_t index_;
   ObservationWindow window_;
   std::unique_ptr<Engine> engine_;

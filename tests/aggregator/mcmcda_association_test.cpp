@@ -26,13 +26,14 @@ namespace {
 /// A supernode's track id, as common/messages.hpp defines it.
 TrackId id(std::uint32_t supernode, std::uint64_t serial) { return (TrackId{supernode} + 1) << 48 | serial; }
 
-Scenario twoSupernodes(const std::string& association = "mcmcda") {
+/// The association context of a scenario with two supernodes, parameters resolved.
+wsn::aggregator::AssociationContext twoSupernodes(const std::string& association = "mcmcda") {
   Scenario s;
   s.source_path = "test.yaml";
   s.supernodes = {{25.0, 50.0}, {75.0, 50.0}};
   s.aggregator.association = association;
   resolveAssociationParams(s);
-  return s;
+  return wsn::aggregator::associationContext(s);
 }
 
 /// A target moving along x at 1 separation per tick: x = 40 + t, y = 50.
@@ -164,10 +165,11 @@ TEST_CASE("The association registry names its methods and checks their parameter
   CHECK(dynamic_cast<McmcdaAssociator*>(makeAssociator(twoSupernodes("mcmcda")).get()) != nullptr);
   CHECK(dynamic_cast<TrackMerger*>(makeAssociator(twoSupernodes("gated")).get()) != nullptr);
 
-  Scenario s = twoSupernodes();
-  CHECK(s.aggregator.params.at("confirm_observations").value == 2);
-  CHECK(s.aggregator.params.at("false_alarm_density").value == 1e-5);
-  CHECK(s.aggregator.params.at("window_size").value == 10);
+  const auto context = twoSupernodes();
+  CHECK(context.supernode_count == 2);
+  CHECK(context.params.at("confirm_observations").value == 2);
+  CHECK(context.params.at("false_alarm_density").value == 1e-5);
+  CHECK(context.params.at("window_size").value == 10);
 
   Scenario unknown;
   unknown.source_path = "s.yaml";

@@ -26,9 +26,9 @@ TEST_CASE("the nearest supernode decides the tracking group, ties going to the l
 
 TEST_CASE("a supernode index outside the scenario is rejected", "[tracker]") {
   auto s = test::gnnScenario();  // one supernode
-  CHECK_THROWS_AS(SupernodeTracker(s, 1), std::invalid_argument);
+  CHECK_THROWS_AS(test::trackerFor(s, 1), std::invalid_argument);
   s.tracker.engine = "nope";
-  CHECK_THROWS_AS(SupernodeTracker(s, 0), common::ScenarioError);
+  CHECK_THROWS_AS(test::trackerFor(s, 0), common::ScenarioError);
 }
 
 /// Two supernodes with the Voronoi boundary at x = 50.
@@ -41,7 +41,7 @@ common::Scenario twoSupernodes() {
 /// Runs two trackers that exchange handoffs in memory: observations go to the supernode of their
 /// position, a handoff released at tick t is adopted at tick t + 1.
 struct Pair {
-  explicit Pair(const common::Scenario& s) : scenario(s), trackers{SupernodeTracker(s, 0), SupernodeTracker(s, 1)} {}
+  explicit Pair(const common::Scenario& s) : scenario(s), trackers{test::trackerFor(s, 0), test::trackerFor(s, 1)} {}
   std::array<SupernodeTracker::TickOutput, 2> step(std::int32_t tick, const std::vector<common::Observation>& all) {
     std::array<std::vector<common::Observation>, 2> delivered;
     for (const auto& o : all) delivered[nearestSupernode(scenario.supernodes, {o.x, o.y})].push_back(o);
@@ -144,7 +144,7 @@ TEST_CASE("two runs on the same inputs are identical, whatever the arrival order
 }
 
 TEST_CASE("the tick output reports the window's contents and the stale drops", "[tracker]") {
-  SupernodeTracker tracker(test::gnnScenario(3), 0);
+  auto tracker = test::trackerFor(test::gnnScenario(3), 0);
   tracker.step(1, std::vector{observation(1, 1, 10.0, 10.0)}, {});
   const auto out = tracker.step(5, std::vector{observation(1, 5, 10.0, 10.0), observation(4, 5, 12.0, 10.0),
                                                observation(5, 5, 13.0, 10.0)},
@@ -155,7 +155,7 @@ TEST_CASE("the tick output reports the window's contents and the stale drops", "
 }
 
 TEST_CASE("a handoff addressed to another supernode is ignored and counted", "[tracker]") {
-  SupernodeTracker tracker(twoSupernodes(), 0);
+  auto tracker = test::trackerFor(twoSupernodes(), 0);
   common::TrackHandoff h;
   h.track = common::track_id::birth(1, 1, 1);
   h.to_supernode = 1;
@@ -187,7 +187,7 @@ TEST_CASE("every position engine handed a bearing observation fails naming itsel
     s.tracker.engine = engine;
     s.tracker.params.clear();
     resolveEngineParams(s);
-    SupernodeTracker tracker(s, 0);
+    auto tracker = test::trackerFor(s, 0);
     const std::vector<common::Observation> position{test::observation(2, 2, 20.0, 30.0)};
     tracker.step(2, position, {});  // what it declared in `accepts` goes through
     const std::vector<common::Observation> delivered{bearing};

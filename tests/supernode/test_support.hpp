@@ -8,6 +8,7 @@
 #include "common/messages.hpp"
 #include "common/scenario.hpp"
 #include "supernode/engine.hpp"
+#include "supernode/supernode_tracker.hpp"
 
 namespace wsn::supernode::test {
 
@@ -20,6 +21,13 @@ inline common::Scenario gnnScenario(std::int32_t window_size = 10) {
   s.tracker.window_size = window_size;
   resolveEngineParams(s);
   return s;
+}
+
+/// The tracker of supernode `index` of `scenario`, its parameters resolved first as the launcher
+/// resolves them (a bad engine or parameter throws common::ScenarioError).
+inline SupernodeTracker trackerFor(common::Scenario scenario, std::uint32_t index) {
+  resolveEngineParams(scenario);
+  return SupernodeTracker(supernodeConfig(scenario, index));
 }
 
 /// Row-major sensor id of the grid cell holding (x, y) on a 100 x 100 grid of spacing 1.

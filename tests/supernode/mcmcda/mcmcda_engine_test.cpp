@@ -51,7 +51,7 @@ double jitter(std::uint64_t key, std::int32_t tick, double sigma) {
 /// Runs ticks 1..T through one supernode; `observations_at(t)` gives what is delivered at t.
 template <class Deliver>
 std::vector<SupernodeTracker::TickOutput> run(const common::Scenario& scenario, std::int32_t ticks, Deliver deliver) {
-  SupernodeTracker tracker(scenario, 0);
+  auto tracker = test::trackerFor(scenario, 0);
   std::vector<SupernodeTracker::TickOutput> outputs;
   for (std::int32_t t = 1; t <= ticks; ++t) outputs.push_back(tracker.step(t, deliver(t), {}));
   return outputs;
@@ -172,7 +172,7 @@ TEST_CASE("mcmcda keeps a track's id after its first observations leave the wind
 
 TEST_CASE("mcmcda continues a handed-over track under its id", "[mcmcda]") {
   const auto scenario = mcmcdaScenario();
-  SupernodeTracker tracker(scenario, 0);
+  auto tracker = test::trackerFor(scenario, 0);
   const Target target{30, 30, 1.0, 0.0};
   common::TrackHandoff handoff;
   handoff.track = (std::uint64_t{3} << 48) | 17;  // minted by supernode 2
@@ -199,7 +199,7 @@ TEST_CASE("mcmcda continues a handed-over track under its id", "[mcmcda]") {
 TEST_CASE("mcmcda hands a crossing target to the next supernode, which continues it under its id", "[mcmcda]") {
   auto scenario = mcmcdaScenario();
   scenario.supernodes = {{25.0, 50.0}, {75.0, 50.0}};
-  std::array<SupernodeTracker, 2> trackers{SupernodeTracker(scenario, 0), SupernodeTracker(scenario, 1)};
+  std::array<SupernodeTracker, 2> trackers{test::trackerFor(scenario, 0), test::trackerFor(scenario, 1)};
   std::vector<common::TrackHandoff> in_flight;
   const Target target{40.5, 50.0, 1.0, 0.2};  // crosses x = 50 between ticks 10 and 11
   std::set<common::TrackId> ids;
@@ -228,7 +228,7 @@ TEST_CASE("mcmcda counts a handed-over track's misses from when its target was l
   // at tick 1, so with d-bar = 5 only reports generated up to tick 6 can continue the track. It
   // must not be reported as if it had been seen at tick 4, and it is gone once tick 6 has left
   // the window (ws = 10: from tick 16 on).
-  SupernodeTracker tracker(mcmcdaScenario(), 0);
+  auto tracker = test::trackerFor(mcmcdaScenario(), 0);
   common::TrackHandoff handoff;
   handoff.track = (std::uint64_t{3} << 48) | 5;
   handoff.to_supernode = 0;
