@@ -27,7 +27,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
   using Clock = std::chrono::steady_clock;
   runRole(context, [&](const Participant& participant, const RunTopics& topics, StatusPublisher& status) {
     const auto& scenario = context.scenario;
-    const common::Truth truth(scenario);
+    const common::Truth truth(truthConfig(scenario));
     const auto associator = makeAssociator(associationContext(scenario));
     // Read now, not after the run: a malformed run.json must not cost the run's metrics.json.
     const std::string provenance = common::readRunProvenance(context.run_dir + "/run.json");

@@ -32,8 +32,8 @@ wsn::common::Scenario scenarioWith(std::int64_t targets, bool noise) {
 /// One iteration: detect() for every tick of the 20 s run; the counter gives seconds per 20-s run.
 void detectRun(benchmark::State& state, bool noise) {
   const auto scenario = scenarioWith(state.range(0), noise);
-  const wsn::common::Truth truth(scenario);
-  const wsn::common::SensorLayout layout(scenario);
+  const wsn::common::Truth truth(truthConfig(scenario));
+  const wsn::common::SensorLayout layout(sensorFieldConfig(scenario));
   const auto tiles = wsn::node::makeTiles(layout, 1);
   const wsn::node::acoustic::AcousticField field(wsn::node::acoustic::fieldConfigOf(scenario), layout, tiles.front(), truth);
   std::size_t detections = 0;

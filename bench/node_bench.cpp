@@ -19,7 +19,7 @@ using wsn::common::TargetState;
 
 /// A square field of side `side` (spacing 1) with the paper's sensor model, as one tile.
 struct Field {
-  explicit Field(double side) : scenario(makeScenario(side)), layout(scenario), tiles(wsn::node::makeTiles(layout, 1)),
+  explicit Field(double side) : scenario(makeScenario(side)), layout(sensorFieldConfig(scenario)), tiles(wsn::node::makeTiles(layout, 1)),
                                 field(wsn::node::signal_strength::SignalStrengthSettings{}, scenario.sensor_model.sensing_range,
                                       scenario.run.seed, layout, tiles[0]) {}
   static wsn::common::Scenario makeScenario(double side) {

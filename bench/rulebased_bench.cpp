@@ -30,8 +30,8 @@ Input loadInput(const std::string& name) {
   Input in;
   in.scenario = wsn::common::loadScenario(std::string(WSN_SCENARIO_DIR "/") + name + ".yaml");
   wsn::supernode::resolveEngineParams(in.scenario);
-  const wsn::common::Truth truth(in.scenario);
-  const wsn::common::SensorLayout layout(in.scenario);
+  const wsn::common::Truth truth(truthConfig(in.scenario));
+  const wsn::common::SensorLayout layout(sensorFieldConfig(in.scenario));
   const auto tiles = wsn::node::makeTiles(layout, 1);
   const wsn::node::acoustic::AcousticField field(wsn::node::acoustic::fieldConfigOf(in.scenario), layout, tiles.front(), truth);
   in.per_tick.resize(static_cast<std::size_t>(in.scenario.run.ticks) + 1);

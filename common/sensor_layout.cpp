@@ -7,8 +7,13 @@
 
 namespace wsn::common {
 
-SensorLayout::SensorLayout(const Scenario& scenario) : region_(scenario.region) {
-  const auto& config = scenario.sensors;
+SensorFieldConfig sensorFieldConfig(const Scenario& scenario) {
+  return {scenario.region, scenario.sensors, scenario.localisation.sigma, scenario.sensor_model.sensing_range,
+          scenario.run.seed};
+}
+
+SensorLayout::SensorLayout(const SensorFieldConfig& field) : region_(field.region) {
+  const auto& config = field.sensors;
   if (config.kind == SensorLayoutConfig::Kind::kGrid) {
     const auto columns = static_cast<std::uint32_t>(std::floor(region_.width() / config.spacing + 1e-9));
     const auto rows = static_cast<std::uint32_t>(std::floor(region_.height() / config.spacing + 1e-9));
@@ -19,7 +24,7 @@ SensorLayout::SensorLayout(const Scenario& scenario) : region_(scenario.region) 
   } else {
     true_positions_.reserve(config.count);
     for (std::uint32_t id = 0; id < config.count; ++id) {
-      Stream place(scenario.run.seed, Purpose::kSensorPlacement, id, 0);
+      Stream place(field.seed, Purpose::kSensorPlacement, id, 0);
       const double x = place.uniform(region_.x_min, region_.x_max);
       const double y = place.uniform(region_.y_min, region_.y_max);
       true_positions_.push_back({x, y});
@@ -27,17 +32,17 @@ SensorLayout::SensorLayout(const Scenario& scenario) : region_(scenario.region) 
   }
 
   believed_positions_ = true_positions_;
-  if (scenario.localisation.sigma > 0.0) {
+  if (field.localisation_sigma > 0.0) {
     for (SensorId id = 0; id < believed_positions_.size(); ++id) {
-      Stream error(scenario.run.seed, Purpose::kSensorLocalisation, id, 0);
-      const double ex = scenario.localisation.sigma * error.normal();
-      const double ey = scenario.localisation.sigma * error.normal();
+      Stream error(field.seed, Purpose::kSensorLocalisation, id, 0);
+      const double ex = field.localisation_sigma * error.normal();
+      const double ey = field.localisation_sigma * error.normal();
       believed_positions_[id] = true_positions_[id] + Vec2{ex, ey};
     }
   }
 
   // Cells of side 2 Rs: a 2 Rs neighbourhood touches at most 3 x 3 cells.
-  cell_size_ = std::max(2.0 * scenario.sensor_model.sensing_range, 1e-6);
+  cell_size_ = std::max(2.0 * field.sensing_range, 1e-6);
   columns_ = std::max(1, static_cast<std::int32_t>(std::ceil(region_.width() / cell_size_ - 1e-9)));
   rows_ = std::max(1, static_cast<std::int32_t>(std::ceil(region_.height() / cell_size_ - 1e-9)));
   cells_.assign(static_cast<std::size_t>(columns_) * rows_, {});

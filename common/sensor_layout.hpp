@@ -7,13 +7,25 @@
 
 #include "common/geometry.hpp"
 #include "common/messages.hpp"
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
 
 namespace wsn::common {
 
+/// What the sensor field is a function of.
+struct SensorFieldConfig {
+  Rect region;
+  SensorLayoutConfig sensors;
+  double localisation_sigma = 0.0;  ///< Oh §VII-B: a sensor believes it is at s* + N(0, sigma^2 I)
+  double sensing_range = 1.5;       ///< Rs: the index's cells have side 2 Rs
+  std::uint64_t seed = 1;           ///< run.seed (random placement, localisation error)
+};
+
+/// The sensor-field config of `scenario`: split off at the role edge.
+SensorFieldConfig sensorFieldConfig(const Scenario& scenario);
+
 class SensorLayout {
  public:
-  explicit SensorLayout(const Scenario& scenario);
+  explicit SensorLayout(const SensorFieldConfig& field);
 
   std::size_t size() const { return true_positions_.size(); }
   Vec2 truePosition(SensorId id) const { return true_positions_[id]; }

@@ -42,19 +42,23 @@ void propagate(TargetState& s, const DynamicsConfig& dynamics, Stream& noise) {
 
 }  // namespace
 
-Truth::Truth(const Scenario& scenario) {
-  const std::int32_t ticks = scenario.run.ticks;
-  const std::uint64_t seed = scenario.run.seed;
+TruthConfig truthConfig(const Scenario& scenario) {
+  return {scenario.region, scenario.targets, scenario.dynamics, scenario.run.seed, scenario.run.ticks};
+}
+
+Truth::Truth(const TruthConfig& config) {
+  const std::int32_t ticks = config.ticks;
+  const std::uint64_t seed = config.seed;
   per_tick_.assign(static_cast<std::size_t>(ticks) + 1, {});
 
   std::vector<LiveTarget> live;
   TargetId next_id = 0;
   // Scripted targets keep ids 0..n-1 in file order; random births follow.
   std::vector<std::pair<TargetSpec, TargetId>> scripted;
-  for (const auto& spec : scenario.targets.scripted) scripted.emplace_back(spec, next_id++);
+  for (const auto& spec : config.targets.scripted) scripted.emplace_back(spec, next_id++);
 
-  const Interval speed = speedInterval(scenario.targets.speed_class);
-  const double birth_mean = scenario.targets.birth_rate * scenario.region.area();
+  const Interval speed = speedInterval(config.targets.speed_class);
+  const double birth_mean = config.targets.birth_rate * config.region.area();
 
   for (std::int32_t t = 1; t <= ticks; ++t) {
     // Move everyone alive at t-1 to t, then retire the dead and the departed.
@@ -63,11 +67,11 @@ Truth::Truth(const Scenario& scenario) {
       if (t >= target.disappear_tick) continue;
       if (target.mortal) {
         Stream death(seed, Purpose::kTruthDeath, static_cast<std::uint64_t>(target.state.id), t);
-        if (death.bernoulli(scenario.targets.death_probability)) continue;
+        if (death.bernoulli(config.targets.death_probability)) continue;
       }
       Stream noise(seed, Purpose::kTruthProcessNoise, static_cast<std::uint64_t>(target.state.id), t);
-      propagate(target.state, scenario.dynamics, noise);
-      if (!scenario.region.contains({target.state.x, target.state.y})) continue;
+      propagate(target.state, config.dynamics, noise);
+      if (!config.region.contains({target.state.x, target.state.y})) continue;
       next.push_back(target);
     }
     live = std::move(next);
@@ -83,8 +87,8 @@ Truth::Truth(const Scenario& scenario) {
     for (std::uint64_t j = 0; j < born; ++j) {
       const TargetId id = next_id++;
       Stream init(seed, Purpose::kTruthInitial, static_cast<std::uint64_t>(id), t);
-      TargetState s{id, init.uniform(scenario.region.x_min, scenario.region.x_max),
-                    init.uniform(scenario.region.y_min, scenario.region.y_max), 0.0, 0.0};
+      TargetState s{id, init.uniform(config.region.x_min, config.region.x_max),
+                    init.uniform(config.region.y_min, config.region.y_max), 0.0, 0.0};
       s.vx = init.uniform(speed.min, speed.max) * (init.bernoulli(0.5) ? 1.0 : -1.0);
       s.vy = init.uniform(speed.min, speed.max) * (init.bernoulli(0.5) ? 1.0 : -1.0);
       live.push_back({s, INT32_MAX, true});

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "common/messages.hpp"
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
 
 namespace wsn::common {
 
@@ -20,10 +20,22 @@ struct TargetState {
   friend bool operator==(const TargetState&, const TargetState&) = default;
 };
 
+/// What the ground truth is a function of: the scenario's world, its seed and length.
+struct TruthConfig {
+  Rect region;
+  TargetsConfig targets;
+  DynamicsConfig dynamics;
+  std::uint64_t seed = 1;    ///< run.seed
+  std::int32_t ticks = 100;  ///< run.ticks (T)
+};
+
+/// The truth config of `scenario`: split off at the role edge.
+TruthConfig truthConfig(const Scenario& scenario);
+
 /// All targets alive at each tick 1..T, sorted by id.
 class Truth {
  public:
-  explicit Truth(const Scenario& scenario);
+  explicit Truth(const TruthConfig& config);
   /// Targets alive at `tick` (empty outside 1..T).
   const std::vector<TargetState>& at(std::int32_t tick) const;
   std::int32_t ticks() const { return static_cast<std::int32_t>(per_tick_.size()) - 1; }

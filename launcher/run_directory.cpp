@@ -100,7 +100,7 @@ void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario
   common::writeTextFile(run_dir + "/scenario.yaml", common::resolvedScenarioYaml(scenario));
   common::writeTextFile(run_dir + "/cyclonedds.xml", dds::cycloneConfigTemplate(identity.run_id, participants));
 
-  const common::Truth truth(scenario);
+  const common::Truth truth(truthConfig(scenario));
   common::CsvFile csv(run_dir + "/truth.csv", "tick,target,x,y,vx,vy");
   for (std::int32_t t = 1; t <= scenario.run.ticks; ++t)
     for (const auto& target : truth.at(t))
@@ -109,7 +109,7 @@ void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario
   csv.close();
 
   if (scenario.sensors.kind == common::SensorLayoutConfig::Kind::kRandom) {
-    const common::SensorLayout layout(scenario);
+    const common::SensorLayout layout(sensorFieldConfig(scenario));
     common::CsvFile sensors(run_dir + "/sensors.csv", "sensor,x,y");
     for (common::SensorId id = 0; id < layout.size(); ++id) {
       const auto p = layout.truePosition(id);

@@ -58,7 +58,7 @@ TopologyConfig ohTopologyConfig(double communication_range, SupernodePlacement p
 
 Topology ohCalibrationTopology(double communication_range, SupernodePlacement placement) {
   // The grid comes from SensorLayout so that it stays the one a run with these settings uses.
-  common::Scenario grid;
+  common::SensorFieldConfig grid;
   grid.region = {0.0, 0.0, 100.0, 100.0};
   grid.sensors.kind = common::SensorLayoutConfig::Kind::kGrid;
   grid.sensors.spacing = 1.0;

@@ -14,7 +14,7 @@ void runNetworkRole(const dds::RoleContext& context) {
   using namespace wsn::dds;
   runRole(context, [&](const Participant& participant, const RunTopics& topics, StatusPublisher& status) {
     const auto& scenario = context.scenario;
-    const common::SensorLayout layout(scenario);
+    const common::SensorLayout layout(sensorFieldConfig(scenario));
     const Topology topology(topologyConfig(scenario), layout.truePositions());
     Router router(routerConfig(scenario), topology);
 

@@ -12,10 +12,11 @@ void runNodeRole(const dds::RoleContext& context) {
   using namespace wsn::dds;
   runRole(context, [&](const Participant& participant, const RunTopics& topics, StatusPublisher& status) {
     const auto& scenario = context.scenario;
-    const common::Truth truth(scenario);
-    const common::SensorLayout layout(scenario);
+    const common::Truth truth(truthConfig(scenario));
+    const common::SensorLayout layout(sensorFieldConfig(scenario));
     const auto tiles = makeTiles(layout, context.shape.tiles);
-    const auto sensors = makeTileSensors({scenario, layout, tiles.at(context.index), truth});
+    const auto sensors = makeTileSensors(
+        {scenario.sensor_model, scenario.run.seed, scenario.targets.scripted, layout, tiles.at(context.index), truth});
 
     Writer<wsn_msg_SensorBoundary> boundary_writer(participant, topics.sensor_boundary, Qos::reliableKeepAll());
     Writer<wsn_msg_ReportBatch> report_writer(participant, topics.report_batch, Qos::reliableKeepAll());

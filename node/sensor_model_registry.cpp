@@ -17,7 +17,7 @@ const common::Registry<SensorModelSpec>& sensorModelRegistry() {
 }
 
 std::unique_ptr<TileSensors> makeTileSensors(const TileContext& context) {
-  return sensorModelRegistry().at(context.scenario.sensor_model.kind).create(context);
+  return sensorModelRegistry().at(context.sensor_model.kind).create(context);
 }
 
 }  // namespace wsn::node

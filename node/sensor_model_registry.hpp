@@ -25,7 +25,10 @@ namespace wsn::node {
 
 /// What a tile's sensors are built from. References must outlive the model.
 struct TileContext {
-  const common::Scenario& scenario;
+  const common::SensorModelConfig& sensor_model;  ///< kind, Rs and the model's own settings
+  std::uint64_t seed = 1;                         ///< run.seed
+  /// The scripted targets, for models with per-target keys (the acoustic model's sensing range).
+  const std::vector<common::TargetSpec>& scripted_targets;
   const common::SensorLayout& layout;
   const Tile& tile;
   const common::Truth& truth;

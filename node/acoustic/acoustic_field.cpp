@@ -88,13 +88,17 @@ std::optional<double> Trajectory::retardedTime(common::Vec2 listener, double tim
 // ---------------------------------------------------------------------------------------------
 // AcousticField
 
-AcousticFieldConfig fieldConfigOf(const common::Scenario& scenario) {
-  if (scenario.sensor_model.kind != "acoustic_doppler")
+AcousticFieldConfig fieldConfigOf(const common::SensorModelConfig& sensor_model, std::uint64_t seed,
+                                  const std::vector<common::TargetSpec>& scripted_targets) {
+  if (sensor_model.kind != "acoustic_doppler")
     throw std::invalid_argument("AcousticField: the scenario's sensor_model.kind is not acoustic_doppler");
-  AcousticFieldConfig config{common::settingsOf<AcousticSettings>(scenario.sensor_model),
-                             scenario.sensor_model.sensing_range, {}, scenario.run.seed};
-  for (const auto& spec : scenario.targets.scripted) config.scripted_sensing_ranges.push_back(spec.sensing_range);
+  AcousticFieldConfig config{common::settingsOf<AcousticSettings>(sensor_model), sensor_model.sensing_range, {}, seed};
+  for (const auto& spec : scripted_targets) config.scripted_sensing_ranges.push_back(spec.sensing_range);
   return config;
+}
+
+AcousticFieldConfig fieldConfigOf(const common::Scenario& scenario) {
+  return fieldConfigOf(scenario.sensor_model, scenario.run.seed, scenario.targets.scripted);
 }
 
 AcousticField::AcousticField(AcousticFieldConfig config, const common::SensorLayout& layout, const Tile& tile,

@@ -57,8 +57,11 @@ struct AcousticFieldConfig {
   std::uint64_t seed = 1;
 };
 
-/// The part of `scenario` the acoustic field reads; throws std::invalid_argument when its
-/// sensors are not acoustic.
+/// What the acoustic field reads of the sensor model, the seed and the scripted targets; throws
+/// std::invalid_argument when the sensors are not acoustic.
+AcousticFieldConfig fieldConfigOf(const common::SensorModelConfig& sensor_model, std::uint64_t seed,
+                                  const std::vector<common::TargetSpec>& scripted_targets);
+/// The same, split off a whole scenario (tests and benchmarks).
 AcousticFieldConfig fieldConfigOf(const common::Scenario& scenario);
 
 class AcousticField {

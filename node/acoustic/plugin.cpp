@@ -11,7 +11,7 @@ namespace {
 class AcousticTile final : public TileSensors {
  public:
   explicit AcousticTile(const TileContext& context)
-      : field_(fieldConfigOf(context.scenario), context.layout, context.tile, context.truth) {}
+      : field_(fieldConfigOf(context.sensor_model, context.seed, context.scripted_targets), context.layout, context.tile, context.truth) {}
 
   bool exchangesReadings() const override { return false; }
   std::vector<common::SensorReading> sense(std::int32_t) override { return {}; }

@@ -10,8 +10,8 @@ namespace {
 class SignalStrengthTile final : public TileSensors {
  public:
   explicit SignalStrengthTile(const TileContext& context)
-      : truth_(context.truth), field_(common::settingsOf<SignalStrengthSettings>(context.scenario.sensor_model),
-               context.scenario.sensor_model.sensing_range, context.scenario.run.seed, context.layout, context.tile) {}
+      : truth_(context.truth), field_(common::settingsOf<SignalStrengthSettings>(context.sensor_model), context.sensor_model.sensing_range,
+               context.seed, context.layout, context.tile) {}
 
   bool exchangesReadings() const override { return true; }
 

@@ -83,7 +83,7 @@ std::vector<std::string> lines(const std::string& text) {
 TEST_CASE("a perfect tracker over a real truth with births and deaths scores no error anywhere",
           "[run_scorer][property]") {
   const auto scenario = wsn::common::parseScenario(kBirthsAndDeaths, "births_and_deaths.yaml");
-  const wsn::common::Truth truth(scenario);
+  const wsn::common::Truth truth(truthConfig(scenario));
   RunScorer scorer(kLiveStream, scenario.metrics, scenario.supernodes);
 
   // The run must really have births after the start and deaths before the end.

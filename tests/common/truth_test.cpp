@@ -36,8 +36,8 @@ const TargetState* find(const Truth& truth, std::int32_t tick, TargetId id) {
 }
 
 TEST_CASE("truth is a pure function of scenario and seed", "[truth]") {
-  const Truth a(randomScenario(7));
-  const Truth b(randomScenario(7));
+  const Truth a(truthConfig(randomScenario(7)));
+  const Truth b(truthConfig(randomScenario(7)));
   REQUIRE(a.ticks() == 40);
   REQUIRE(a.targetCount() == b.targetCount());
   // 5 births per tick on average over 40 ticks: about 200 targets; zero would mean no births at all.
@@ -46,15 +46,15 @@ TEST_CASE("truth is a pure function of scenario and seed", "[truth]") {
 }
 
 TEST_CASE("another seed gives other targets", "[truth]") {
-  const Truth a(randomScenario(7));
-  const Truth b(randomScenario(8));
+  const Truth a(truthConfig(randomScenario(7)));
+  const Truth b(truthConfig(randomScenario(8)));
   bool differs = a.targetCount() != b.targetCount();
   for (std::int32_t t = 1; t <= a.ticks() && !differs; ++t) differs = a.at(t) != b.at(t);
   CHECK(differs);
 }
 
 TEST_CASE("targets are listed sorted by id, and nothing exists outside 1..T", "[truth]") {
-  const Truth truth(randomScenario(3));
+  const Truth truth(truthConfig(randomScenario(3)));
   for (std::int32_t t = 1; t <= truth.ticks(); ++t) {
     const auto& now = truth.at(t);
     for (std::size_t i = 1; i < now.size(); ++i) CHECK(now[i - 1].id < now[i].id);
@@ -72,7 +72,7 @@ TEST_CASE("scripted targets are alive from appear_tick up to but not including d
   s.targets.scripted = {scripted(3, 7, {10, 10}, {1, 0}),   // id 0: ticks 3, 4, 5, 6
                         scripted(1, 0, {50, 50}, {0, 0}),   // id 1: every tick (0 = until T)
                         scripted(20, 0, {80, 80}, {0, 0})}; // id 2: the last tick only
-  const Truth truth(s);
+  const Truth truth(truthConfig(s));
   CHECK(truth.targetCount() == 3);  // scripted targets take ids 0..n-1 in file order
   for (std::int32_t t = 1; t <= 20; ++t) {
     INFO("tick " << t);
@@ -93,7 +93,7 @@ TEST_CASE("with zero process noise eq. 8 is exact constant velocity", "[truth]")
   s.dynamics.delta = 0.5;
   // Dyadic values, so every sum below is exact in binary floating point.
   s.targets.scripted = {scripted(2, 0, {10.0, 80.0}, {1.5, -0.75})};
-  const Truth truth(s);
+  const Truth truth(truthConfig(s));
   for (std::int32_t t = 2; t <= 30; ++t) {
     INFO("tick " << t);
     const TargetState* target = find(truth, t, 0);
@@ -111,7 +111,7 @@ TEST_CASE("a target that leaves the region disappears", "[truth]") {
   s.run.ticks = 10;
   s.dynamics.process_noise_sigma = 0.0;
   s.targets.scripted = {scripted(1, 0, {98.0, 50.0}, {1.0, 0.0})};
-  const Truth truth(s);
+  const Truth truth(truthConfig(s));
   // x = 98, 99, 100 on ticks 1, 2, 3 (the edge belongs to the region); 101 on tick 4 is outside.
   CHECK(find(truth, 3, 0) != nullptr);
   CHECK(find(truth, 4, 0) == nullptr);
@@ -122,7 +122,7 @@ TEST_CASE("process noise moves targets off the straight line", "[truth]") {
   Scenario s;
   s.run.ticks = 20;
   s.targets.scripted = {scripted(1, 0, {50.0, 50.0}, {0.0, 0.0})};
-  const Truth truth(s);
+  const Truth truth(truthConfig(s));
   const TargetState* target = find(truth, 20, 0);
   // q = 0.15 per tick: after 19 steps the velocity has a standard deviation of 0.15 sqrt(19) = 0.65 per
   // axis, so an exactly zero velocity would mean the noise was not applied.
@@ -143,7 +143,7 @@ TEST_CASE("random births draw per-axis speeds from the scenario's speed class", 
     Scenario s = randomScenario(11);
     s.dynamics.process_noise_sigma = 0.0;
     s.targets.speed_class = c.speed_class;
-    const Truth truth(s);
+    const Truth truth(truthConfig(s));
     std::set<TargetId> seen;
     bool negative_vx = false;
     bool positive_vx = false;
@@ -168,7 +168,7 @@ TEST_CASE("with death probability 1 a random target lives one tick, a scripted o
   s.targets.death_probability = 1.0;
   s.targets.scripted = {scripted(1, 0, {50.0, 50.0}, {0.0, 0.0})};
   s.dynamics.process_noise_sigma = 0.0;
-  const Truth truth(s);
+  const Truth truth(truthConfig(s));
   // Every target alive at t - 1 dies at t with probability pz = 1, so a tick holds only that
   // tick's births, whose ids all exceed those of the tick before; the scripted id 0 stays.
   TargetId previous_max = 0;

@@ -33,7 +33,7 @@ common::Scenario acousticScenario(const std::string& targets, const std::string&
 /// A field over the whole grid (one tile) with the objects it refers to.
 struct World {
   explicit World(common::Scenario s)
-      : scenario(std::move(s)), truth(scenario), layout(scenario), tiles(makeTiles(layout, 1)),
+      : scenario(std::move(s)), truth(truthConfig(scenario)), layout(sensorFieldConfig(scenario)), tiles(makeTiles(layout, 1)),
         field(fieldConfigOf(scenario), layout, tiles.front(), truth) {}
   common::Scenario scenario;
   common::Truth truth;
@@ -214,8 +214,8 @@ TEST_CASE("detect() reports exactly what a brute-force pass over every sensor fi
 TEST_CASE("the detections do not depend on the tiling and are deterministic", "[acoustic]") {
   const auto scenario = acousticScenario("    - {x: 300, y: 300, vx: 2, vy: 0.5}\n    - {x: 900, y: 900, vx: -2, vy: 0}\n",
                                          "  environmental_noise: {preset: noise1}\n");
-  const common::Truth truth(scenario);
-  const common::SensorLayout layout(scenario);
+  const common::Truth truth(truthConfig(scenario));
+  const common::SensorLayout layout(sensorFieldConfig(scenario));
   const auto one = makeTiles(layout, 1);
   const AcousticField whole(fieldConfigOf(scenario), layout, one.front(), truth);
   for (const int count : {2, 4}) {
@@ -238,16 +238,16 @@ TEST_CASE("the detections do not depend on the tiling and are deterministic", "[
 
 TEST_CASE("the acoustic field refuses a non-acoustic scenario and more than 8 noise components", "[acoustic]") {
   const auto scenario = common::parseScenario("run: {ticks: 5}\n", "plain.yaml");
-  const common::Truth truth(scenario);
-  const common::SensorLayout layout(scenario);
+  const common::Truth truth(truthConfig(scenario));
+  const common::SensorLayout layout(sensorFieldConfig(scenario));
   CHECK_THROWS_AS(fieldConfigOf(scenario), std::invalid_argument);
 
   // Noise streams are keyed by sensor * 8 + component: a ninth component would share them.
   auto crowded = acousticScenario("    - {x: 10, y: 10, vx: 0, vy: 0}\n");
   auto crowded_config = fieldConfigOf(crowded);
   crowded_config.settings.environmental_noise.components.assign(9, {0.01, 0.1});
-  const common::Truth crowded_truth(crowded);
-  const common::SensorLayout crowded_layout(crowded);
+  const common::Truth crowded_truth(truthConfig(crowded));
+  const common::SensorLayout crowded_layout(sensorFieldConfig(crowded));
   CHECK_THROWS_WITH(AcousticField(crowded_config, crowded_layout, makeTiles(crowded_layout, 1).front(), crowded_truth),
                     Catch::Contains("9 environmental noise components; at most 8"));
 }

@@ -52,7 +52,7 @@ const SensorReading* findReading(const std::vector<SensorReading>& readings, Sen
 
 /// The field as a single tile.
 struct WholeField {
-  explicit WholeField(const Scenario& s) : layout(s), tiles(makeTiles(layout, 1)), field(fieldOf(s, layout, tiles[0])) {}
+  explicit WholeField(const Scenario& s) : layout(sensorFieldConfig(s)), tiles(makeTiles(layout, 1)), field(fieldOf(s, layout, tiles[0])) {}
   SensorLayout layout;
   std::vector<Tile> tiles;
   SensorField field;
@@ -235,7 +235,7 @@ TEST_CASE("a report names the target with the largest signal term, or none", "[n
 
 TEST_CASE("fuse lets foreign readings within 2 Rs win and ignores the rest", "[node][sensor_field]") {
   const Scenario s = defaultScenario(1.0);
-  const SensorLayout layout(s);
+  const SensorLayout layout(sensorFieldConfig(s));
   const auto tiles = makeTiles(layout, 2);  // boundary at x = 51
   const SensorField left = fieldOf(s, layout, tiles[0]);
   // Own sensor (50,20) at x = 50.5; foreign (51,20) at x = 51.5 is 1 away and stronger: it wins.
@@ -255,7 +255,7 @@ TEST_CASE("fuse lets foreign readings within 2 Rs win and ignores the rest", "[n
 
 TEST_CASE("boundaryReadings keeps exactly the readings within 2 Rs of another tile", "[node][sensor_field]") {
   const Scenario s = defaultScenario(1.0);
-  const SensorLayout layout(s);
+  const SensorLayout layout(sensorFieldConfig(s));
   const auto tiles = makeTiles(layout, 4);  // 2 x 2, split at x = 51 and y = 51
   const SensorField lower_left = fieldOf(s, layout, tiles[0]);
   // Columns 48..50 have x = 48.5..50.5, within 3 of x = 51; column 47 (x = 47.5) is 3.5 away.
@@ -280,7 +280,7 @@ TEST_CASE("reports are the same for 1, 2, 3, 4, 6 and 8 tiles with targets on th
   // readings with the others' boundary readings, exchanged in memory.
   Scenario s = defaultScenario(1.0, 2024);
   s.localisation.sigma = 0.2;
-  const SensorLayout layout(s);
+  const SensorLayout layout(sensorFieldConfig(s));
 
   auto targetsAt = [](std::int32_t tick) {
     const double t = tick;

@@ -63,7 +63,7 @@ TEST_CASE("makeTiles partitions every cell exactly once for 1 to 8 tiles", "[nod
   // Default field 100 x 100, Rs = 1.5: cells of side 3, ceil(100 / 3) = 34 per side. Also a
   // long thin field (100 x 10 cells), a small one (5 x 3 cells) and a single row (7 x 1).
   for (auto [w, h] : std::vector<std::pair<double, double>>{{100, 100}, {300, 30}, {15, 9}, {21, 3}}) {
-    const SensorLayout layout(fieldOf(w, h));
+    const SensorLayout layout(sensorFieldConfig(fieldOf(w, h)));
     for (int count = 1; count <= 8; ++count) {
       if (count > layout.cellColumns() * layout.cellRows()) continue;
       INFO("field " << w << " x " << h << ", " << count << " tiles");
@@ -73,7 +73,7 @@ TEST_CASE("makeTiles partitions every cell exactly once for 1 to 8 tiles", "[nod
 }
 
 TEST_CASE("makeTiles arranges a square field as a near-square grid of tiles", "[node][tiling]") {
-  const SensorLayout layout(fieldOf(100, 100));
+  const SensorLayout layout(sensorFieldConfig(fieldOf(100, 100)));
   REQUIRE(layout.cellColumns() == 34);
   // Internal boundary in cell sides: tx x ty costs (tx - 1) 34 + (ty - 1) 34, minimal for the
   // most square factorisation; ties (2x1 vs 1x2) go to more tile columns.
@@ -103,14 +103,14 @@ TEST_CASE("makeTiles arranges a square field as a near-square grid of tiles", "[
 TEST_CASE("makeTiles cuts a long field across its length", "[node][tiling]") {
   // 300 x 30 -> 100 x 10 cells. 4 tiles: 4x1 costs 3 * 10 = 30 cell sides of boundary, 2x2
   // costs 10 + 100 = 110, 1x4 costs 300.
-  const SensorLayout layout(fieldOf(300, 30));
+  const SensorLayout layout(sensorFieldConfig(fieldOf(300, 30)));
   CHECK(gridShape(makeTiles(layout, 4)) == std::pair<std::size_t, std::size_t>{4, 1});
 }
 
 TEST_CASE("makeTiles falls back to column strips when no tile grid fits", "[node][tiling]") {
   // 6 x 6 -> 2 x 2 cells; 3 tiles fit neither 3x1 nor 1x3, so one column strip holds two tiles
   // and the other one.
-  const SensorLayout layout(fieldOf(6, 6));
+  const SensorLayout layout(sensorFieldConfig(fieldOf(6, 6)));
   REQUIRE(layout.cellColumns() == 2);
   REQUIRE(layout.cellRows() == 2);
   const auto tiles = makeTiles(layout, 3);
@@ -121,7 +121,7 @@ TEST_CASE("makeTiles falls back to column strips when no tile grid fits", "[node
 }
 
 TEST_CASE("makeTiles rejects more tiles than cells and fewer than one", "[node][tiling]") {
-  const SensorLayout layout(fieldOf(6, 6));  // 4 cells
+  const SensorLayout layout(sensorFieldConfig(fieldOf(6, 6)));  // 4 cells
   CHECK_NOTHROW(makeTiles(layout, 4));
   CHECK_THROWS_AS(makeTiles(layout, 5), std::invalid_argument);
   CHECK_THROWS_AS(makeTiles(layout, 0), std::invalid_argument);
@@ -129,7 +129,7 @@ TEST_CASE("makeTiles rejects more tiles than cells and fewer than one", "[node][
 }
 
 TEST_CASE("tileOfCell returns -1 outside every tile", "[node][tiling]") {
-  const SensorLayout layout(fieldOf(100, 100));
+  const SensorLayout layout(sensorFieldConfig(fieldOf(100, 100)));
   const auto tiles = makeTiles(layout, 4);
   CHECK(wsn::node::tileOfCell(tiles, 0, 0) == 0);
   CHECK(wsn::node::tileOfCell(tiles, 33, 33) == 3);
