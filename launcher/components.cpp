@@ -50,12 +50,26 @@ std::string markdownParamTable(const std::vector<common::ParamSpec>& params) {
   return out;
 }
 
+/// `path [unit] (default d, range r): doc`, the shape printParams gives an engine parameter.
+void printKey(std::ostringstream& out, const std::string& path, const common::config::FieldDoc& f) {
+  out << "  " << path << (f.unit.empty() ? "" : " [" + f.unit + "]") << " (default " << f.default_text << ", range "
+      << f.range_text << "): " << f.doc << "\n";
+}
+
+/// Prints the rows of `table` whose key is in `keys` (all of them when `keys` is empty).
+void printKeys(std::ostringstream& out, const common::config::KeyTable& table, const std::vector<std::string>& keys = {}) {
+  for (const auto& f : table.fields)
+    if (keys.empty() || std::find(keys.begin(), keys.end(), f.key) != keys.end())
+      printKey(out, table.section + "." + f.key, f);
+}
+
 /// The scenario keys a sensor model reads: sensing_range, its own and those of scripted targets.
-std::vector<std::string> readKeys(const node::SensorModelSpec& model) {
-  std::vector<std::string> keys = {"sensor_model.sensing_range"};
-  for (const auto& key : model.settings.keys) keys.push_back("sensor_model." + key);
-  for (const auto& key : model.settings.target_keys) keys.push_back("targets.scripted[]." + key);
-  return keys;
+void printSensorModelKeys(std::ostringstream& out, const node::SensorModelSpec& model) {
+  using common::config::keyTable;
+  printKeys(out, keyTable("", "sensor_model", common::schema::sensorModel()), {"sensing_range"});
+  for (const auto& table : model.settings.key_tables()) printKeys(out, table);
+  if (!model.settings.target_keys.empty())
+    printKeys(out, keyTable("", "targets.scripted[]", common::schema::scriptedTarget()), model.settings.target_keys);
 }
 
 void markdownBlock(std::ostringstream& out, const std::string& name, const std::string& table) {
@@ -68,7 +82,8 @@ std::string componentsMarkdown() {
   std::ostringstream out;
   for (const auto& [name, table] : common::schema::markdownTables()) markdownBlock(out, name, table);
   for (const auto& model : node::sensorModelRegistry())
-    for (const auto& [name, table] : model.settings.markdown_tables()) markdownBlock(out, name, table);
+    for (const auto& table : model.settings.key_tables())
+      markdownBlock(out, table.marker, common::config::markdownTable(table.fields));
   for (const auto& engine : supernode::engineRegistry())
     markdownBlock(out, "tracker.params " + engine.name, markdownParamTable(engine.params));
   for (const auto& method : aggregator::associationRegistry())
@@ -85,16 +100,18 @@ std::string enginesText() {
 std::string componentsText() {
   std::ostringstream out;
   out << "Sensor models (sensor_model.kind):\n";
-  for (const auto& model : node::sensorModelRegistry())
-    out << model.name << ": " << model.description << "\n  reads: " << joined(readKeys(model))
-        << "\n  measures: " << joined(model.measurement_kinds) << "\n";
+  for (const auto& model : node::sensorModelRegistry()) {
+    out << model.name << ": " << model.description << "\n  measures: " << joined(model.measurement_kinds) << "\n";
+    printSensorModelKeys(out, model);
+  }
   out << "\n";
   printEngines(out);
   out << "\nMetrics (metrics.json keys, metrics_per_tick.csv columns; settings in the scenario's metrics section):\n";
   const common::MetricsConfig defaults;
   for (const auto& metric : aggregator::metricRegistry()) {
     out << metric.name << ": " << metric.description << "\n";
-    if (!metric.settings.empty()) out << "  settings: " << joined(metric.settings) << "\n";
+    if (!metric.settings.empty())
+      printKeys(out, common::config::keyTable("", "metrics", common::schema::metrics()), metric.settings);
     const auto columns = metric.create(defaults, {})->columns();
     if (!columns.empty()) {
       std::vector<std::string> names;

@@ -71,8 +71,9 @@ struct SensorModelSettingsSpec {
       check_target;
   /// Optional: a rule between the targets section (at `line`) and the model.
   std::function<void(const common::config::Reader&, const common::Scenario&, int line)> check_targets;
-  /// Its key tables as Markdown, under their names in scenarios/README.md.
-  std::function<std::vector<std::pair<std::string, std::string>>()> markdown_tables;
+  /// Its key tables (units, defaults, ranges, meaning) for `wsntrack components` and, under their
+  /// markers, scenarios/README.md.
+  std::function<std::vector<common::config::KeyTable>()> key_tables;
 };
 
 /// One registered sensor model.

@@ -329,14 +329,43 @@ Field<C> withNotes(Field<C> f, std::string range_note, std::string default_note 
   return f;
 }
 
-/// The table as Markdown: | key | unit | default | range | meaning |.
+/// One field as the docs show it: the Markdown key tables and `wsntrack components` read the same rows.
+struct FieldDoc {
+  std::string key;
+  std::string unit;  ///< "" when the value has no unit
+  std::string default_text;
+  std::string range_text;
+  std::string doc;
+};
+
+/// A table's rows for the docs: `marker` names it in scenarios/README.md, `section` is the
+/// dotted path of its keys in a scenario ("sensor_model.acoustic").
+struct KeyTable {
+  std::string marker;
+  std::string section;
+  std::vector<FieldDoc> fields;
+};
+
 template <typename C>
-std::string markdownTable(const FieldTable<C>& table) {
+KeyTable keyTable(std::string marker, std::string section, const FieldTable<C>& table) {
+  KeyTable out{std::move(marker), std::move(section), {}};
+  for (const auto& f : table.fields) out.fields.push_back({f.key, f.unit, f.defaultText(), f.rangeText(), f.doc});
+  return out;
+}
+
+/// Rows as Markdown: | key | unit | default | range | meaning |.
+inline std::string markdownTable(const std::vector<FieldDoc>& rows) {
   std::string out = "| key | unit | default | range | meaning |\n|-----|------|---------|-------|---------|\n";
-  for (const auto& f : table.fields)
-    out += "| `" + f.key + "` | " + (f.unit.empty() ? "—" : f.unit) + " | " + f.defaultText() + " | " + f.rangeText() +
+  for (const auto& f : rows)
+    out += "| `" + f.key + "` | " + (f.unit.empty() ? "—" : f.unit) + " | " + f.default_text + " | " + f.range_text +
            " | " + f.doc + " |\n";
   return out;
+}
+
+/// The table as Markdown.
+template <typename C>
+std::string markdownTable(const FieldTable<C>& table) {
+  return markdownTable(keyTable("", "", table).fields);
 }
 
 }  // namespace wsn::common::config

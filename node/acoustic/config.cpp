@@ -185,12 +185,12 @@ SensorModelSettingsSpec settingsSpec() {
   };
   spec.check_target = scriptedTargetSlowerThanSound;
   spec.check_targets = bornTargetsSlowerThanSound;
-  spec.markdown_tables = [] {
-    using common::config::markdownTable;
-    return std::vector<std::pair<std::string, std::string>>{
-        {"sensor_model acoustic_doppler", markdownTable(settingsTable())},
-        {"sensor_model.acoustic", markdownTable(detectionTable())},
-        {"sensor_model.environmental_noise", markdownTable(environmentalNoiseTable())},
+  spec.key_tables = [] {
+    using common::config::keyTable;
+    return std::vector<common::config::KeyTable>{
+        keyTable("sensor_model acoustic_doppler", "sensor_model", settingsTable()),
+        keyTable("sensor_model.acoustic", "sensor_model.acoustic", detectionTable()),
+        keyTable("sensor_model.environmental_noise", "sensor_model.environmental_noise", environmentalNoiseTable()),
     };
   };
   return spec;

@@ -43,9 +43,9 @@ SensorModelSettingsSpec settingsSpec() {
     common::config::writeFields(out, "  ", settingsTable(), common::settingsOf<SignalStrengthSettings>(s.sensor_model),
                                 s.derived);
   };
-  spec.markdown_tables = [] {
-    return std::vector<std::pair<std::string, std::string>>{
-        {"sensor_model signal_strength", common::config::markdownTable(settingsTable())}};
+  spec.key_tables = [] {
+    return std::vector<common::config::KeyTable>{
+        common::config::keyTable("sensor_model signal_strength", "sensor_model", settingsTable())};
   };
   return spec;
 }

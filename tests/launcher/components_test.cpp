@@ -29,6 +29,24 @@ TEST_CASE("wsntrack components lists every registered component of every kind", 
   CHECK(listed >= 2 + 3 + 2 + 5);  // today's: 2 sensor models, 3 engines, 2 associations, 5 metrics
 }
 
+TEST_CASE("every key a sensor model or metric reads is listed with its unit, default and range",
+          "[launcher][components]") {
+  const std::string text = componentsText();
+  for (const auto& m : node::sensorModelRegistry())
+    for (const auto& table : m.settings.key_tables())
+      for (const auto& f : table.fields) {
+        const std::string line = "  " + table.section + "." + f.key + (f.unit.empty() ? "" : " [" + f.unit + "]") +
+                                 " (default " + f.default_text + ", range " + f.range_text + "): " + f.doc + "\n";
+        INFO(m.name << ": " << line);
+        CHECK(text.find(line) != std::string::npos);
+      }
+  // Two rows by hand: the signal-strength model's alpha (no unit) and a metric's setting.
+  CHECK(text.find("  sensor_model.alpha (default 2, range (0, 100]): ") != std::string::npos);
+  CHECK(text.find("  metrics.ospa_c [separations] (default 5, range (0, 1e6]): OSPA cut-off c") != std::string::npos);
+  CHECK(text.find("  targets.scripted[].sensing_range [separations] (default `sensor_model.sensing_range`") !=
+        std::string::npos);
+}
+
 TEST_CASE("the markdown tables cover every scenario section and every component's parameters",
           "[launcher][components]") {
   const std::string markdown = componentsMarkdown();
@@ -40,6 +58,12 @@ TEST_CASE("the markdown tables cover every scenario section and every component'
     CHECK(markdown.find("<!-- table: tracker.params " + e.name + " -->") != std::string::npos);
   for (const auto& a : aggregator::associationRegistry())
     CHECK(markdown.find("<!-- table: aggregator.params " + a.name + " -->") != std::string::npos);
+  for (const auto& m : node::sensorModelRegistry())
+    for (const auto& table : m.settings.key_tables()) {
+      INFO(table.marker);
+      CHECK(markdown.find("<!-- table: " + table.marker + " -->\n" + common::config::markdownTable(table.fields) +
+                          "<!-- end table -->") != std::string::npos);
+    }
 }
 
 TEST_CASE("a sensor model and an engine fit when the engine accepts every kind the model reports",
