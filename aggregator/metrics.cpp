@@ -69,6 +69,8 @@ MetricsAccumulator::MetricsAccumulator(const common::MetricsConfig& config) : co
     throw std::invalid_argument("metrics: ospa_c must be finite and > 0, got " + common::fixed6(config_.ospa_c));
   if (!(config_.ospa_p >= 1.0) || !std::isfinite(config_.ospa_p))
     throw std::invalid_argument("metrics: ospa_p must be finite and >= 1, got " + common::fixed6(config_.ospa_p));
+  if (!(config_.eps_x_gate > 0.0) || !std::isfinite(config_.eps_x_gate))
+    throw std::invalid_argument("metrics: eps_x_gate must be finite and > 0, got " + common::fixed6(config_.eps_x_gate));
 }
 
 MetricsTick MetricsAccumulator::add(std::int32_t tick, const std::vector<TargetState>& truth,
@@ -162,8 +164,13 @@ MetricsSummary MetricsAccumulator::finish() const {
     const auto match = common::solveAssignment(cost, rows, cols);
     for (std::size_t j = 0; j < rows; ++j) {
       if (match[j] < 0) continue;
+      const double error2 = squaredError(record.truth[j], record.tracks[static_cast<std::size_t>(match[j])]);
       ++s.sum_matches;
-      s.sum_squared_position_error += squaredError(record.truth[j], record.tracks[static_cast<std::size_t>(match[j])]);
+      s.sum_squared_position_error += error2;
+      if (error2 < config_.eps_x_gate * config_.eps_x_gate) {
+        ++s.sum_matches_gated;
+        s.sum_squared_position_error_gated += error2;
+      }
     }
   }
 
@@ -175,6 +182,10 @@ MetricsSummary MetricsAccumulator::finish() const {
   if (s.eps_k_defined) s.eps_k = static_cast<double>(s.sum_abs_k_error) / static_cast<double>(s.sum_k_true);
   s.eps_x_defined = s.sum_matches > 0;
   if (s.eps_x_defined) s.eps_x = std::sqrt(s.sum_squared_position_error / static_cast<double>(s.sum_matches));
+  s.eps_x_gate = config_.eps_x_gate;
+  s.eps_x_gated_defined = s.sum_matches_gated > 0;
+  if (s.eps_x_gated_defined)
+    s.eps_x_gated = std::sqrt(s.sum_squared_position_error_gated / static_cast<double>(s.sum_matches_gated));
   return s;
 }
 

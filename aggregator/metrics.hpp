@@ -32,6 +32,9 @@
 //   - "When it makes sense": ticks with M_t = 0 contribute nothing to either sum. Undefined case:
 //     Σ M_t = 0 (never a target and a track at the same tick). Then eps_x is 0 and
 //     eps_x_defined false.
+//   - eps_x_gated: the same matches, but only those whose error at t is below eps_x_gate enter
+//     either sum (a pair of an unrelated track and target 20–45 apart otherwise dominates εX);
+//     eps_x_gated_defined is false when no match is that close.
 //   - Because t + 1 is needed, matching is done in finish() over the stored ticks; a tick's
 //     neighbours are the ticks numbered t − 1 and t + 1 if they were added.
 //
@@ -75,6 +78,11 @@ struct MetricsSummary {
   bool eps_x_defined = false;  ///< false when Σ M_t = 0
   std::int64_t sum_matches = 0;  ///< Σ M_t
   double sum_squared_position_error = 0.0;  ///< Σ_t Σ_i ‖x_t(i) − x*_t(i)‖²
+  double eps_x_gate = 0.0;
+  double eps_x_gated = 0.0;  ///< eq. (10) over the matches with error < eps_x_gate
+  bool eps_x_gated_defined = false;  ///< false when no match is closer than the gate
+  std::int64_t sum_matches_gated = 0;
+  double sum_squared_position_error_gated = 0.0;
 
   double ospa_c = 0.0;
   double ospa_p = 0.0;
@@ -104,7 +112,7 @@ double ospaDistance(const std::vector<common::Vec2>& x, const std::vector<common
 /// Collects truth and global tracks tick by tick and scores the run at the end.
 class MetricsAccumulator {
  public:
-  /// Throws std::invalid_argument unless ospa_c > 0 and ospa_p >= 1 (both finite).
+  /// Throws std::invalid_argument unless ospa_c > 0, ospa_p >= 1 and eps_x_gate > 0 (all finite).
   explicit MetricsAccumulator(const common::MetricsConfig& config);
 
   /// Records tick `tick`: the truth targets alive and the global tracks reported. Any order of

@@ -164,6 +164,9 @@ struct AggregatorConfig {
 struct MetricsConfig {
   double ospa_c = 5.0;         ///< OSPA cut-off c (Schuhmacher, Vo & Vo 2008)
   double ospa_p = 2.0;         ///< OSPA order p
+  /// eps_x_gated: eq. (10) over the matches closer than this only (a far pair of an unrelated track
+  /// and target says nothing about localisation)
+  double eps_x_gate = 3.0;
   double gospa_c = 5.0;        ///< GOSPA cut-off c (alpha = 2)
   double gospa_p = 2.0;        ///< GOSPA order p
   double mot_threshold = 3.0;  ///< CLEAR-MOT match threshold T (Bernardin & Stiefelhagen 2008)

@@ -209,6 +209,9 @@ const FieldTable<MetricsConfig>& metrics() {
           real<C>("ospa_c", &C::ospa_c, kPositive, "separations",
                   "OSPA cut-off c (Schuhmacher, Vo & Vo 2008): the error charged for a missed or false target"),
           real<C>("ospa_p", &C::ospa_p, kOrder, "", "OSPA order p"),
+          real<C>("eps_x_gate", &C::eps_x_gate, kPositive, "separations",
+                  "eps_x_gated: Oh eq. (10) counting only the matched pairs closer than this (eps_x counts every "
+                  "pair, as the paper does)"),
           real<C>("gospa_c", &C::gospa_c, kPositive, "separations",
                   "GOSPA cut-off c (α = 2, Rahmathullah et al. 2017): a missed or false target costs c^p / 2"),
           real<C>("gospa_p", &C::gospa_p, kOrder, "", "GOSPA order p"),

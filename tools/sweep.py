@@ -33,6 +33,7 @@ REPO = Path(__file__).resolve().parent.parent
 METRIC_SOURCES = {
     "eps_k": ("eps_K", ("eps_k",), ("metrics", "eps_k_defined")),
     "eps_x": ("eps_X", ("eps_x",), ("metrics", "eps_x_defined")),
+    "eps_x_gated": ("eps_X gated", ("metrics", "eps_x_gated"), ("metrics", "eps_x_gated_defined")),
     "ospa": ("OSPA", ("ospa",), None),
     "gospa": ("GOSPA", ("gospa", "mean"), None),
     "mota": ("MOTA", ("clear_mot", "mota"), ("clear_mot", "mota_defined")),

@@ -1,5 +1,5 @@
 // Plugin of εK (Oh eq. 9), εX (eq. 10) and OSPA (aggregator/metrics.hpp): metrics.json's "metrics"
-// block, the headline eps_k, eps_x and ospa, and the truth_targets, tracks and ospa columns.
+// block, the headline eps_k, eps_x, eps_x_gated and ospa, and the truth_targets, tracks and ospa columns.
 #include <memory>
 
 #include "aggregator/metric/metric.hpp"
@@ -16,6 +16,9 @@ Json toJson(const MetricsSummary& s) {
               {"eps_k_defined", s.eps_k_defined},
               {"eps_x", s.eps_x},
               {"eps_x_defined", s.eps_x_defined},
+              {"eps_x_gated", s.eps_x_gated},
+              {"eps_x_gated_defined", s.eps_x_gated_defined},
+              {"eps_x_gate", s.eps_x_gate},
               {"mean_k", s.mean_k},
               {"mean_k_true", s.mean_k_true},
               {"sum_k", s.sum_k},
@@ -23,6 +26,8 @@ Json toJson(const MetricsSummary& s) {
               {"sum_abs_k_error", s.sum_abs_k_error},
               {"sum_matches", s.sum_matches},
               {"sum_squared_position_error", s.sum_squared_position_error},
+              {"sum_matches_gated", s.sum_matches_gated},
+              {"sum_squared_position_error_gated", s.sum_squared_position_error_gated},
               {"ospa_c", s.ospa_c},
               {"ospa_p", s.ospa_p},
               {"ospa_mean", s.ospa_mean},
@@ -48,7 +53,7 @@ class OhOspaMetric final : public Metric {
   MetricReport finish() const override {
     MetricsSummary s = metrics_.finish();
     s.tracks_ignored_nonfinite += dropped_nonfinite_;
-    return {toJson(s), Json{{"eps_k", s.eps_k}, {"eps_x", s.eps_x}, {"ospa", s.ospa_mean}}};
+    return {toJson(s), Json{{"eps_k", s.eps_k}, {"eps_x", s.eps_x}, {"eps_x_gated", s.eps_x_gated}, {"ospa", s.ospa_mean}}};
   }
 
  private:
@@ -59,7 +64,8 @@ class OhOspaMetric final : public Metric {
 }  // namespace
 
 MetricSpec ohOspaMetric() {
-  return {"metrics", "Oh et al. eq. 9 (eps_K) and eq. 10 (eps_X), OSPA per tick and its mean", {"ospa_c", "ospa_p"},
+  return {"metrics", "Oh et al. eq. 9 (eps_K) and eq. 10 (eps_X, and eps_X gated), OSPA per tick and its mean",
+          {"eps_x_gate", "ospa_c", "ospa_p"},
           [](const common::MetricsConfig& config, const std::vector<common::Vec2>&) -> std::unique_ptr<Metric> {
             return std::make_unique<OhOspaMetric>(config);
           }};

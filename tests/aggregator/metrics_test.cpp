@@ -176,6 +176,37 @@ TEST_CASE("eps_X forms exactly M_t = min(K_t, K*_t) matches, without a gate", "[
   }
 }
 
+TEST_CASE("eps_X gated counts only the matches closer than the gate", "[aggregator][metrics][eps_x]") {
+  MetricsConfig m = config();
+  m.eps_x_gate = 3.0;
+  MetricsAccumulator metrics(m);
+  // Tick 1: error (1,0) -> 1; tick 2: error (0,2) -> 4; tick 3: error (3,4) -> 25, |5| >= 3 left
+  // out of the gated sums. eps_X = sqrt((1 + 4 + 25) / 3) = sqrt(10) = 3.162278;
+  // eps_X gated = sqrt((1 + 4) / 2) = sqrt(2.5) = 1.581139.
+  metrics.add(1, {target(1, 0, 0)}, {track(7, 1, 0)});
+  metrics.add(2, {target(1, 0, 0)}, {track(7, 0, 2)});
+  metrics.add(3, {target(1, 0, 0)}, {track(7, 3, 4)});
+  const MetricsSummary s = metrics.finish();
+  CHECK(s.sum_matches == 3);
+  CHECK(s.eps_x == Approx(std::sqrt(10.0)).margin(1e-12));
+  CHECK(s.sum_matches_gated == 2);
+  CHECK(s.sum_squared_position_error_gated == Approx(5.0).margin(1e-12));
+  CHECK(s.eps_x_gated_defined);
+  CHECK(s.eps_x_gated == Approx(std::sqrt(2.5)).margin(1e-12));
+  CHECK(s.eps_x_gate == 3.0);
+
+  // A match exactly at the gate is not closer than it: nothing is left, so gated is undefined.
+  MetricsAccumulator far(m);
+  far.add(1, {target(1, 0, 0)}, {track(7, 3, 0)});
+  const MetricsSummary f = far.finish();
+  CHECK(f.eps_x == Approx(3.0).margin(1e-12));
+  CHECK_FALSE(f.eps_x_gated_defined);
+  CHECK(f.eps_x_gated == 0.0);
+
+  m.eps_x_gate = 0.0;
+  CHECK_THROWS_AS(MetricsAccumulator(m), std::invalid_argument);
+}
+
 TEST_CASE("eps_X matches true and estimated tracks on positions at t-1, t, t+1", "[aggregator][metrics][eps_x]") {
   // Targets 1 and 2 run in parallel along y = 0 and y = 1; track A follows 1, B follows 2, but at
   // tick 2 both estimates stray towards the other target: A at y = 0.6, B at y = 0.4.

@@ -152,8 +152,8 @@ TEST_CASE("two streams of one run are scored independently by the same metrics",
   CHECK(json.at("clear_mot").at("false_positives") == 1);
   // The other under streams, with the same keys.
   const Json& other = json.at("streams").at("settled");
-  CHECK(keys(other) == std::vector<std::string>{"eps_k", "eps_x", "ospa", "metrics", "gospa", "clear_mot",
-                                                 "track_quality", "boundary"});
+  CHECK(keys(other) == std::vector<std::string>{"eps_k", "eps_x", "eps_x_gated", "ospa", "metrics", "gospa",
+                                                 "clear_mot", "track_quality", "boundary"});
   CHECK(other.at("eps_k").get<double>() == 0.0);
   CHECK(other.at("metrics").at("ospa_mean").get<double>() == 0.0);
   CHECK(other.at("clear_mot").at("false_positives") == 0);
