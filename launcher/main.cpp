@@ -68,13 +68,16 @@ int commandValidate(const std::vector<std::string>& args) {
   po::options_description options("Options");
   options.add_options()("help,h", "show this help")(
       "set", po::value<std::vector<std::string>>()->value_name("KEY=VALUE"), launcher::kSetHelp)(
+      "seed", po::value<std::string>()->value_name("N"), "the seed: sets run.seed after every --set, as wsntrack run does")(
+      "nodes", po::value<std::string>()->value_name("N"), "node processes: sets run.node_processes, as wsntrack run does")(
+      "ticks", po::value<std::string>()->value_name("T"), "ticks T: sets run.ticks, as wsntrack run does")(
       "files", po::value<std::vector<std::string>>(), "scenario files");
   po::positional_options_description positional;
   positional.add("files", -1);
   po::variables_map vm;
   po::store(po::command_line_parser(args).options(options).positional(positional).run(), vm);
   if (vm.count("help") || !vm.count("files")) {
-    std::cout << "Usage: wsntrack validate FILE... [--set KEY=VALUE]...\n\nChecks each scenario strictly (unknown"
+    std::cout << "Usage: wsntrack validate FILE... [--set KEY=VALUE]... [--seed N] [--nodes N] [--ticks T]\n\nChecks each scenario strictly (unknown"
                  " keys, types, ranges, engine parameters)\nand prints file:line and what was expected for the first"
                  " problem of each file.\nWith --set, each file is checked with the overrides applied; a problem they"
                  " cause\nis reported as 'FILE: --set KEY=VALUE: what was expected'.\nExit code 0 when every file is"
@@ -85,6 +88,13 @@ int commandValidate(const std::vector<std::string>& args) {
   std::vector<common::ScenarioOverride> overrides;
   try {
     overrides = overridesOf(vm);
+    // The same overrides, reported as typed, that wsntrack run makes of these options.
+    for (const auto& [option, key] : {std::pair{"seed", "run.seed"}, std::pair{"nodes", "run.node_processes"},
+                                      std::pair{"ticks", "run.ticks"}})
+      if (vm.count(option)) {
+        const auto value = vm[option].as<std::string>();
+        overrides.push_back({key, value, "--" + std::string(option) + " " + value});
+      }
   } catch (const common::OverrideError& error) {
     std::cerr << "wsntrack validate: " << error.what() << "\n";
     return 2;
@@ -93,7 +103,10 @@ int commandValidate(const std::vector<std::string>& args) {
   for (const auto& file : vm["files"].as<std::vector<std::string>>()) {
     try {
       const auto scenario = loadResolved(file, overrides);
-      std::cout << file << (overrides.empty() ? "" : " with " + std::to_string(overrides.size()) + " --set")
+      std::cout << file
+                << (overrides.empty() ? ""
+                                      : " with " + std::to_string(overrides.size()) +
+                                            (overrides.size() == 1 ? " override" : " overrides"))
                 << ": ok (" << scenario.name << ": " << scenario.run.ticks << " ticks, " << scenario.supernodes.size()
                 << " supernodes, engine " << scenario.tracker.engine << ")\n";
     } catch (const common::OverrideError& error) {

@@ -178,7 +178,14 @@ EOF
       || { cat err.txt >&2; fail "validate message for a bad --set"; }
     "$wsntrack" validate "$scenario" --set network.pte=0.4 >out.txt 2>err.txt \
       || { cat err.txt >&2; fail "validate rejected --set network.pte=0.4"; }
-    grep -q "oh_quadrants.yaml with 1 --set: ok" out.txt || { cat out.txt >&2; fail "validate --set did not say ok"; }
+    grep -q "oh_quadrants.yaml with 1 override: ok" out.txt || { cat out.txt >&2; fail "validate --set did not say ok"; }
+    # --seed/--nodes/--ticks are the same overrides as for run, checked and named the same way.
+    "$wsntrack" validate "$scenario" --ticks 7 --seed 3 >out.txt 2>err.txt \
+      || { cat err.txt >&2; fail "validate rejected --ticks 7 --seed 3"; }
+    grep -q "oh_quadrants.yaml with 2 overrides: ok (.*: 7 ticks" out.txt || { cat out.txt >&2; fail "validate --ticks"; }
+    "$wsntrack" validate "$scenario" --nodes 0 >/dev/null 2>err.txt && fail "validate accepted --nodes 0"
+    grep -qF -- "--nodes 0: 'run.node_processes' must be in [1, 64], got 0" err.txt \
+      || { cat err.txt >&2; fail "validate message for --nodes 0"; }
     no_leftovers ;;
   sweep)
     # tools/sweep.py: 2 grid points x 2 seeds of short gnn runs give a table row per grid point,
