@@ -1,8 +1,12 @@
 #include "launcher/run_directory.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <ctime>
 #include <filesystem>
@@ -44,6 +48,33 @@ std::pair<int, int> ephemeralPortRange() {
   return {32768, 60999};
 }
 
+namespace {
+
+/// Reserves `domain` for this process's lifetime with an exclusive flock on a file per domain, so
+/// that two launchers starting at the same instant never choose the same domain: a port probe
+/// alone leaves a window between one launcher's check and its roles' bind in which another
+/// launcher can choose the same ports. The lock goes with the process (exit or crash). True when
+/// reserved, or when locks cannot be used here at all (then the port probe alone decides).
+bool reserveDomain(int domain) {
+  static const std::filesystem::path directory = [] {
+    std::error_code error;
+    const auto dir = std::filesystem::temp_directory_path(error) / "wsntrack-domain-locks";
+    if (std::filesystem::create_directory(dir, error)) ::chmod(dir.c_str(), 01777);  // any user's runs
+    return dir;
+  }();
+  const auto file = directory / ("domain-" + std::to_string(domain) + ".lock");
+  const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+  if (fd < 0) return true;
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const bool taken = errno == EWOULDBLOCK;
+    ::close(fd);
+    return !taken;
+  }
+  return true;  // fd stays open, and the lock held, until the process ends
+}
+
+}  // namespace
+
 int pickFreeDomain(std::uint64_t run_id, int participants) {
   const auto [ephemeral_first, ephemeral_last] = ephemeralPortRange();
   const std::vector<int> domains = domainsOutsideEphemeralPorts(ephemeral_first, ephemeral_last);
@@ -58,7 +89,7 @@ int pickFreeDomain(std::uint64_t run_id, int participants) {
     // Every index up to MaxAutoParticipantIndex, both the discovery and the data port.
     for (int index = 0; index <= participants + dds::kViewerSlots + 1 && free; ++index)
       free = dds::cyclonePortsFree(domain, index);
-    if (free) return domain;
+    if (free && reserveDomain(domain)) return domain;
   }
   throw std::runtime_error("no Cyclone DDS domain with free loopback ports found");
 }

@@ -27,7 +27,8 @@ std::pair<int, int> ephemeralPortRange();
 
 /// Picks a domain id outside the ephemeral ports whose Cyclone unicast ports for `participants`
 /// indices are free on 127.0.0.1, starting from a run-id-dependent position so that
-/// concurrent runs spread out.
+/// concurrent runs spread out, and reserves it for the rest of this process's life (a lock file
+/// per domain under the temporary directory): no other launcher on this host picks it meanwhile.
 int pickFreeDomain(std::uint64_t run_id, int participants);
 
 /// Default run directory: runs/<scenario name>-seed<seed>-<UTC timestamp>-<pid>.

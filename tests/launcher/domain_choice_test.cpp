@@ -46,5 +46,13 @@ TEST_CASE("a picked domain lies outside the ephemeral ports", "[launcher]") {
   }
 }
 
+TEST_CASE("a picked domain is reserved: the same run id picks another one next time", "[launcher]") {
+  // Two launchers starting at once with colliding run ids used to probe the same free ports and
+  // both take them; the first pick now holds the domain until its process ends.
+  const int first = pickFreeDomain(4242, 8);
+  const int second = pickFreeDomain(4242, 8);
+  CHECK(first != second);
+}
+
 }  // namespace
 }  // namespace wsn::launcher
