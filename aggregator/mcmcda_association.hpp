@@ -77,8 +77,8 @@ const common::config::FieldTable<McmcdaAssociationParams>& mcmcdaAssociationPara
 ///    so two elements of one target at one tick are rare — §III-B's constraint (one observation per
 ///    track per tick) holds for Yc as it does for the supernodes' input.
 ///  - The window, the anchors, the chain and the identities are the supernode engine's
-///    (supernode/mcmcda), run on the whole region, with a supernode index one past the last real
-///    one (its random stream and minted ids are its own). A global track that continues no
+///    (supernode/mcmcda), run on the whole region, its random stream keyed one past the last real
+///    supernode and its new ids the aggregator's "gN" (as the gated merge's). A global track that continues no
 ///    previous one takes the id of the supernode track of its first element, so a target keeps
 ///    the id its first supernode gave it.
 ///  - Reporting. A confirmed global track in the region is reported while its target is probably
@@ -91,8 +91,8 @@ const common::config::FieldTable<McmcdaAssociationParams>& mcmcdaAssociationPara
 ///    passed-through track's is the supernode's.
 class McmcdaAssociator final : public TrackAssociator {
  public:
-  /// `scenario.aggregator.params` must be resolved against mcmcdaAssociationSpec(); the motion
-  /// model is the scenario's dynamics, and ids are minted in the space after the last supernode's.
+  /// `context.params` must be resolved against mcmcdaAssociationSpec(); the motion model is the
+  /// scenario's dynamics.
   explicit McmcdaAssociator(const AssociationContext& context);
   /// From its own parameters: the run's seed and the key of its random stream (the scenario's
   /// supernode count, one past the last supernode's). New global ids are the aggregator's "gN",

@@ -14,15 +14,16 @@
 namespace wsn::network_model {
 namespace {
 
-/// Canonical report order: by sensor, then by content, so duplicates also sort reproducibly (the
-/// measurement last: it only differs where x, y agree for reports of non-position kinds).
+/// Canonical report order: by sensor, then by every other field, so duplicates also sort
+/// reproducibly (the measurement last: it only differs where x, y agree for non-position kinds).
 bool reportBefore(const common::Report& a, const common::Report& b) {
-  return std::tie(a.sensor, a.x, a.y, a.target, a.measurement) < std::tie(b.sensor, b.x, b.y, b.target, b.measurement);
+  return std::tie(a.sensor, a.x, a.y, a.target, a.power_level, a.measurement) <
+         std::tie(b.sensor, b.x, b.y, b.target, b.power_level, b.measurement);
 }
 
 bool observationBefore(const common::Observation& a, const common::Observation& b) {
-  return std::tie(a.tick_generated, a.sensor, a.x, a.y, a.target, a.measurement) <
-         std::tie(b.tick_generated, b.sensor, b.x, b.y, b.target, b.measurement);
+  return std::tie(a.tick_generated, a.sensor, a.x, a.y, a.target, a.power_level, a.measurement) <
+         std::tie(b.tick_generated, b.sensor, b.x, b.y, b.target, b.power_level, b.measurement);
 }
 
 }  // namespace

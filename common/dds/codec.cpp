@@ -68,6 +68,10 @@ wsn_msg_Measurement encodeMeasurement(const common::MeasurementRef& ref, Encoded
     return w;
   }
   const common::Measurement& m = *ref;
+  // A malformed one would read back as something else (an empty position as a plain one).
+  if (!common::wellFormed(m))
+    throw std::invalid_argument("codec: a " + std::string(common::measurementKindName(m.kind)) +
+                                " measurement that is not well formed (wrong dimension, noise or pose)");
   w.kind = static_cast<wsn_msg_MeasurementKind>(m.kind);
   w.values = appendDoubles(storage.doubles, m.values, common::kMaxMeasurementDimension, "values");
   w.noise = appendDoubles(storage.doubles, m.noise, kMaxNoise, "noise");

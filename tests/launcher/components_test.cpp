@@ -4,6 +4,7 @@
 
 #include "aggregator/association.hpp"
 #include "aggregator/metric/metric.hpp"
+#include "common/measurement.hpp"
 #include "common/scenario_schema.hpp"
 #include "node/sensor_model_registry.hpp"
 #include "supernode/engine.hpp"
@@ -64,6 +65,15 @@ TEST_CASE("the markdown tables cover every scenario section and every component'
       CHECK(markdown.find("<!-- table: " + table.marker + " -->\n" + common::config::markdownTable(table.fields) +
                           "<!-- end table -->") != std::string::npos);
     }
+}
+
+TEST_CASE("every measurement kind a sensor model reports is a known kind", "[launcher][components]") {
+  // The fit check compares names, so a misspelt kind would pass validate and fail at run time.
+  for (const auto& model : node::sensorModelRegistry()) {
+    INFO(model.name);
+    CHECK_FALSE(model.measurement_kinds.empty());
+    for (const auto& kind : model.measurement_kinds) CHECK(common::measurementKindNamed(kind).has_value());
+  }
 }
 
 TEST_CASE("a sensor model and an engine fit when the engine accepts every kind the model reports",

@@ -1,5 +1,6 @@
 #include "supernode/engine.hpp"
 
+#include <bit>
 #include <catch2/catch.hpp>
 
 #include "supernode/gnn/gnn_engine.hpp"
@@ -85,6 +86,17 @@ TEST_CASE("a count parameter must be a whole number", "[registry]") {
   s.tracker.params["confirm_hits"] = {2.5, 5};
   REQUIRE_THROWS_MATCHES(resolveEngineParams(s), common::ScenarioError,
                          Catch::Message("runs/s.yaml:5: 'tracker.params.confirm_hits' must be a whole number, got 2.5"));
+}
+
+TEST_CASE("every measurement kind an engine or sensor model names is a known kind", "[registry]") {
+  // acceptedKindMask skips a name that is no kind, so a misspelt one would only show when the
+  // first observation of that kind arrived: every name must resolve.
+  for (const auto& engine : engineRegistry()) {
+    INFO(engine.name);
+    CHECK_FALSE(engine.accepts.empty());
+    for (const auto& kind : engine.accepts) CHECK(common::measurementKindNamed(kind).has_value());
+    CHECK(std::popcount(acceptedKindMask(engine)) == static_cast<int>(engine.accepts.size()));
+  }
 }
 
 TEST_CASE("makeEngine builds the engine the scenario names", "[registry]") {

@@ -28,7 +28,14 @@ TEST_CASE("a supernode index outside the scenario is rejected", "[tracker]") {
   auto s = test::gnnScenario();  // one supernode
   CHECK_THROWS_AS(test::trackerFor(s, 1), std::invalid_argument);
   s.tracker.engine = "nope";
-  CHECK_THROWS_AS(test::trackerFor(s, 0), common::ScenarioError);
+  CHECK_THROWS_AS(test::trackerFor(s, 0), common::ScenarioError);  // resolving names the file
+  // A config built without resolving (a bug, not a user error) fails in the tracker itself.
+  auto config = supernodeConfig(test::gnnScenario(), 0);
+  config.engine.engine = "nope";
+  CHECK_THROWS_AS(SupernodeTracker(config), std::invalid_argument);
+  config = supernodeConfig(test::gnnScenario(), 0);
+  config.engine.params.erase("gate_chi2");
+  CHECK_THROWS_AS(SupernodeTracker(config), std::logic_error);  // an unresolved parameter
 }
 
 /// Two supernodes with the Voronoi boundary at x = 50.

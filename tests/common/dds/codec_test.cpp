@@ -122,20 +122,78 @@ TEST_CASE("a plain position report crosses the wire as a bare position kind and 
   CHECK(decoded[0].measurement.get() == nullptr);
 }
 
-TEST_CASE("a measurement longer than the wire's bounds is refused when encoding", "[codec]") {
+TEST_CASE("a malformed or over-long measurement is refused when encoding", "[codec]") {
   common::Measurement m = common::Measurement::position(0.0, 0.0);
   m.class_likelihoods.assign(common::kMaxClasses + 1, 0.1);
   common::Report r{1, 0, 0.0, 0.0, 0, 0, common::MeasurementRef(m)};
-  CHECK_THROWS_AS(encode(std::vector<common::Report>{r}), std::length_error);
+  CHECK_THROWS_AS(encode(std::vector<common::Report>{r}), std::invalid_argument);
   m.class_likelihoods.clear();
   m.values.assign(common::kMaxMeasurementDimension + 1, 1.0);
   r.measurement = common::MeasurementRef(m);
-  CHECK_THROWS_AS(encode(std::vector<common::Report>{r}), std::length_error);
+  CHECK_THROWS_AS(encode(std::vector<common::Report>{r}), std::invalid_argument);
+  // An empty position would look like a plain one on the wire and come back as (x, y).
+  m.values.clear();
+  r.measurement = common::MeasurementRef(m);
+  CHECK_THROWS_AS(encode(std::vector<common::Report>{r}), std::invalid_argument);
 }
 
-TEST_CASE("a kind the receiver does not know is rejected by the reader's check", "[codec]") {
-  // Cyclone checks enum values against the IDL's largest when a sample arrives: a sample from a
-  // build with a newer kind fails loudly instead of decoding as some other kind.
+TEST_CASE("the largest measurement of any kind crosses the wire unchanged", "[codec]") {
+  // Range, bearing and range rate: the largest dimension of any kind (3), its full 3 x 3 R, the
+  // radar's pose and kMaxClasses class likelihoods.
+  common::Measurement m;
+  m.kind = common::MeasurementKind::range_bearing_rate;
+  m.values = {120.0, 0.3, -4.5};
+  m.noise = {25.0, 0.0, 0.0, 0.0, 0.0004, 0.0, 0.0, 0.0, 1.0};
+  m.sensor = common::SensorPose{5.0, 6.0, 0.75};
+  m.class_likelihoods.assign(common::kMaxClasses, 1.0 / static_cast<double>(common::kMaxClasses));
+  REQUIRE(common::wellFormed(m));
+  std::vector<common::Report> reports{common::Report{3, 8, 5.0, 6.0, 1, 0, common::MeasurementRef(m)}};
+  const auto sent = reports;
+  auto encoded = encode(reports);
+  wsn_msg_ReportBatch batch{};
+  batch.tick = 3;
+  batch.reports = sequenceView<dds_sequence_wsn_msg_Report>(encoded.items);
+  const WireRoundTrip wire(batch, wsn_msg_ReportBatch_desc);
+  REQUIRE(wire.valid);
+  const auto decoded = decode(wire.received.reports, wire.received.tick);
+  REQUIRE(decoded.size() == 1);
+  CHECK(decoded[0] == sent[0]);
+}
+
+TEST_CASE("the wire's sequence bounds are the C++ limits on a measurement", "[codec]") {
+  // idl/wsntrack.idl writes the bounds as numbers: sequences at kMaxMeasurementDimension and
+  // kMaxClasses must cross, so a limit raised in C++ alone fails here, not in dds_write at run
+  // time. (One element more is refused by encode's wellFormed check; Cyclone 0.10's serializer
+  // frees its buffer when it refuses an over-long bounded sequence, so that side is not probed
+  // through it.)
+  const auto crosses = [](std::size_t values, std::size_t noise, std::size_t classes) {
+    std::vector<double> v(values, 1.0), r(noise, 0.0), c(classes, 0.1);
+    wsn_msg_Report report{};
+    report.measurement.kind = wsn_msg_MEASUREMENT_POSITION;
+    const auto view = [](std::vector<double>& d) {
+      dds_sequence_double s{};
+      s._maximum = s._length = static_cast<std::uint32_t>(d.size());
+      s._buffer = d.empty() ? nullptr : d.data();
+      s._release = false;
+      return s;
+    };
+    report.measurement.values = view(v);
+    report.measurement.noise = view(r);
+    report.measurement.class_likelihoods = view(c);
+    std::vector<wsn_msg_Report> items{report};
+    wsn_msg_ReportBatch batch{};
+    batch.reports = sequenceView<dds_sequence_wsn_msg_Report>(items);
+    const WireRoundTrip wire(batch, wsn_msg_ReportBatch_desc);
+    return wire.valid;
+  };
+  constexpr std::size_t d = common::kMaxMeasurementDimension;
+  CHECK(crosses(d, d * d, common::kMaxClasses));
+}
+
+TEST_CASE("a kind the IDL does not know never crosses the wire", "[codec]") {
+  // Cyclone checks enum values against the IDL's largest (here already when serializing; the
+  // reader's normalize makes the same check): a sample of a newer build's kind fails loudly
+  // instead of decoding as some other kind.
   std::vector<common::Report> reports{common::Report{1, 0, 0.0, 0.0, 0}};
   auto encoded = encode(reports);
   encoded.items[0].measurement.kind = static_cast<wsn_msg_MeasurementKind>(wsn_msg_MEASUREMENT_PRESENCE + 1);
