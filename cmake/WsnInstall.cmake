@@ -1,5 +1,5 @@
 # What `cmake --install BUILD --prefix P` (and the .deb) puts in place: the commands, the role
-# executables, the python tools, scenarios, IDL, examples and docs. Test and bench binaries stay out.
+# executables, the python tools, scenarios, sweep specs, IDL, examples and docs. Test and bench binaries stay out.
 include(${PROJECT_SOURCE_DIR}/cmake/WsnInstallDirs.cmake)
 
 # The user-facing commands. examples/watch_tracks is not among them: it is an example to read and
@@ -12,6 +12,8 @@ install(TARGETS wsntrack-node wsntrack-network wsntrack-supernode wsntrack-aggre
 install(PROGRAMS tools/plot_run.py tools/sweep.py tools/wsntrack_run.py DESTINATION ${WSN_INSTALL_TOOLS_DIR})
 
 install(DIRECTORY scenarios/ DESTINATION ${WSN_INSTALL_SCENARIO_DIR} FILES_MATCHING PATTERN "*.yaml")
+# The sweep specs name their scenario relative to the data directory, where the scenarios are too.
+install(DIRECTORY sweeps/ DESTINATION ${WSN_INSTALL_DATA_DIR}/sweeps FILES_MATCHING PATTERN "*.yaml")
 install(DIRECTORY idl/ DESTINATION ${WSN_INSTALL_IDL_DIR} FILES_MATCHING PATTERN "*.idl")
 
 # The docs keep the repository's relative layout, so that the links between them still resolve.

@@ -38,6 +38,10 @@ check_tree() {
     cmp -s "$name" "$root/$WSN_DATA_DIR/scenarios/$(basename "$name")" ||
       fail "$root/$WSN_DATA_DIR/scenarios/$(basename "$name") missing or different"
   done
+  for name in "$src"/sweeps/*.yaml; do
+    cmp -s "$name" "$root/$WSN_DATA_DIR/sweeps/$(basename "$name")" ||
+      fail "$root/$WSN_DATA_DIR/sweeps/$(basename "$name") missing or different"
+  done
   cmp -s "$src/idl/wsntrack.idl" "$root/$WSN_DATA_DIR/idl/wsntrack.idl" || fail "$root/$WSN_DATA_DIR/idl/wsntrack.idl"
   local docs=(README.md scenarios/README.md examples/README.md examples/watch_tracks.c)
   for name in "$src"/docs/*.md; do docs+=("docs/$(basename "$name")"); done
@@ -89,6 +93,11 @@ case "$case_name" in
     [ ! -e "$tmp/run-broken" ] || fail "a run directory was made although the roles are missing"
     # The tools from their installed place.
     "$python" "$prefix/$WSN_DATA_DIR/tools/sweep.py" --help >/dev/null || fail "installed sweep.py --help"
+    # An installed spec finds its scenario in the installed data directory (one seed, 5 ticks).
+    (cd / && "$python" "$prefix/$WSN_DATA_DIR/tools/sweep.py" "$prefix/$WSN_DATA_DIR/sweeps/oh_fig7_pte.yaml" \
+       --wsntrack "$wsntrack" --seeds 1 --set run.ticks=5 --out "$tmp/sweep-installed" >/dev/null 2>"$tmp/sweep.err") ||
+      { cat "$tmp/sweep.err" >&2; fail "installed sweep spec"; }
+    [ -s "$tmp/sweep-installed/summary.csv" ] || fail "installed sweep spec wrote no summary.csv"
     (cd / && "$wsntrack" replay --help) >/dev/null 2>&1 || fail "installed wsntrack replay --help (plot script not found?)"
     (cd / && PYTHONPATH="$prefix/$WSN_DATA_DIR/tools" "$python" -c "
 import sys, wsntrack_run
