@@ -1231,6 +1231,14 @@ def spec_table(spec, points, names, cells, fixed_text):
     return "\n".join(lines) + "\n"
 
 
+def save_figure(plt, fig, path):
+    """Lays out, writes and closes one figure; returns its path."""
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
 def draw_plots(directory, spec, points, cells, fixed_text):
     """plots/: a line plot per metric (1-D grid) or a heat map per metric and engine (2-D grid)."""
     try:
@@ -1295,11 +1303,7 @@ def draw_plots(directory, spec, points, cells, fixed_text):
                          "band: 95 % CI of the mean", fontsize=9)
             ax.grid(True, alpha=0.3)
             ax.legend(fontsize=8)
-            fig.tight_layout()
-            path = directory / f"{safe(metric)}.png"
-            fig.savefig(path, dpi=110)
-            plt.close(fig)
-            written.append(path)
+            written.append(save_figure(plt, fig, directory / f"{safe(metric)}.png"))
         return written
 
     (row_key, row_values, *_), (column_key, column_values, *_) = spec.grid
@@ -1358,11 +1362,7 @@ def draw_plots(directory, spec, points, cells, fixed_text):
                          "cells: mean ± half-width of the 95 % CI", fontsize=8)
             if handles:
                 ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(0, -0.18))
-            fig.tight_layout()
-            path = directory / f"{safe(metric)}_{safe(engine)}.png"
-            fig.savefig(path, dpi=110)
-            plt.close(fig)
-            written.append(path)
+            written.append(save_figure(plt, fig, directory / f"{safe(metric)}_{safe(engine)}.png"))
     return written
 
 

@@ -46,6 +46,13 @@ def sweep_command(spec, out, *extra):
     return [PYTHON, str(SWEEP), str(spec), "--out", str(out), "--wsntrack", str(WSNTRACK), *extra]
 
 
+def fresh(name):
+    """An empty output directory WORK/name for one sweep of a test."""
+    out = WORK / name
+    shutil.rmtree(out, ignore_errors=True)
+    return out
+
+
 def run_sweep(spec, out, *extra, timeout=120, wsntrack=None, env=None):
     command = sweep_command(spec, out, *extra)
     if wsntrack:
@@ -206,8 +213,7 @@ class MainSweep(unittest.TestCase):
 
 class BadSpecs(unittest.TestCase):
     def check(self, name, text, line, message):
-        out = WORK / f"bad-{name}"
-        shutil.rmtree(out, ignore_errors=True)
+        out = fresh(f"bad-{name}")
         spec = write(WORK / f"bad_{name}.yaml", text)
         result = run_sweep(spec, out)
         self.assertEqual(result.returncode, 2, result.stderr)
@@ -244,8 +250,7 @@ class FailingRun(unittest.TestCase):
     """A 2-D grid with one value wsntrack rejects: its runs fail, the others count, exit 1."""
 
     def test_failed_rows_and_heat_maps(self):
-        out = WORK / "failing"
-        shutil.rmtree(out, ignore_errors=True)
+        out = fresh("failing")
         spec = write(WORK / "failing.yaml", "scenario: scenarios/oh_single_supernode.yaml\n"
                      "grid:\n  network.pte: [0, 1.5]\n  network.pde: [0, 0.2]\nengines: [gnn]\nseeds: 1\n"
                      "set: {run.ticks: 10}\nin_process: true\nmetrics: [eps_k]\n")
@@ -277,8 +282,7 @@ class FailingRun(unittest.TestCase):
 
 class Stopped(unittest.TestCase):
     def test_sigterm_then_resume(self):
-        out = WORK / "stopped"
-        shutil.rmtree(out, ignore_errors=True)
+        out = fresh("stopped")
         spec = write(WORK / "stopped.yaml", "scenario: scenarios/oh_single_supernode.yaml\n"
                      "grid: {network.pte: [0, 0.1, 0.2, 0.3]}\nengines: [gnn]\nseeds: 1-2\n"
                      "set: {run.ticks: 10}\nin_process: true\n")
@@ -312,8 +316,7 @@ class PortClash(unittest.TestCase):
     most 3 times); simulated by a wrapper whose first `run` calls fail as Cyclone does then."""
 
     def sweep(self, name, fails):
-        out = WORK / f"clash-{name}"
-        shutil.rmtree(out, ignore_errors=True)
+        out = fresh(f"clash-{name}")
         counter = WORK / f"clash-{name}.count"
         counter.unlink(missing_ok=True)
         wrapper = write(WORK / "clashing.sh", f"""#!/bin/sh
@@ -373,8 +376,7 @@ class Pieces(unittest.TestCase):
         self.assertEqual(yaml.safe_load(block), data)
 
     def test_flag_form_unchanged(self):
-        out = WORK / "flag"
-        shutil.rmtree(out, ignore_errors=True)
+        out = fresh("flag")
         result = subprocess.run([PYTHON, str(SWEEP), "--scenario", str(SOURCE / "scenarios/oh_single_supernode.yaml"),
                                  "--engines", "gnn", "--set-grid", "network.pte=0,0.3", "--set", "run.ticks=10",
                                  "--in-process", "--out", str(out), "--wsntrack", str(WSNTRACK)],
