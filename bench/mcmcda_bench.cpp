@@ -163,7 +163,7 @@ const wsn::common::Scenario& benchScenario() {
     s.tracker.engine = "mcmcda";
     s.tracker.window_size = kWindowSize;
     s.tracker.params["iterations"] = {static_cast<double>(kIterations), 0};
-    wsn::supernode::resolveEngineParams(s);
+    wsn::supernode::resolveEngineParams(s, wsn::common::kNoStatistics);
     return s;
   }();
   return scenario;

@@ -29,7 +29,7 @@ struct Input {
 Input loadInput(const std::string& name) {
   Input in;
   in.scenario = wsn::common::loadScenario(std::string(WSN_SCENARIO_DIR "/") + name + ".yaml");
-  wsn::supernode::resolveEngineParams(in.scenario);
+  wsn::supernode::resolveEngineParams(in.scenario, wsn::common::kNoStatistics);
   const wsn::common::Truth truth(truthConfig(in.scenario));
   const wsn::common::SensorLayout layout(sensorFieldConfig(in.scenario));
   const auto tiles = wsn::node::makeTiles(layout, 1);

@@ -6,7 +6,8 @@
 namespace wsn::common {
 
 void resolveParams(const std::string& source_path, const std::string& section, const std::string& owner,
-                   const std::vector<ParamSpec>& specs, std::map<std::string, EngineParam>& params) {
+                   const std::vector<ParamSpec>& specs, std::map<std::string, EngineParam>& params,
+                   const StatisticsSource& statistics, std::map<std::string, std::string>* derived) {
   const auto where = [&](int line) { return source_path + ":" + std::to_string(line) + ": "; };
   for (const auto& [name, param] : params) {
     const auto it = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& p) { return p.name == name; });
@@ -24,8 +25,26 @@ void resolveParams(const std::string& source_path, const std::string& section, c
       throw ScenarioError(where(param.line) + "'" + section + "." + name + "' must be a whole number, got " +
                           config::compactNumber(v));
   }
-  for (const auto& p : specs)
-    if (!params.contains(p.name)) params[p.name] = EngineParam{p.default_value, 0};
+  // Fixed defaults first, so that a derivation can read any of them; then the derived ones in
+  // table order, each seeing those before it.
+  std::vector<const ParamSpec*> to_derive;
+  for (const auto& p : specs) {
+    if (params.contains(p.name)) continue;
+    if (p.derived() && statistics)
+      to_derive.push_back(&p);
+    else
+      params[p.name] = EngineParam{p.default_value, 0};
+  }
+  for (const ParamSpec* p : to_derive) {
+    const Derived d = p->derivation.derive(statistics(), params);
+    double value = std::isfinite(d.value) ? d.value : p->default_value;
+    if (p->integer) value = std::ceil(value - 1e-9);
+    const double clamped = std::clamp(value, p->min, p->max);
+    params[p->name] = EngineParam{clamped, 0};
+    if (derived != nullptr)
+      (*derived)[section + "." + p->name] =
+          d.how + (clamped != value ? " = " + config::compactNumber(value) + ", kept in range" : "");
+  }
 }
 
 }  // namespace wsn::common

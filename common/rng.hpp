@@ -24,6 +24,7 @@ enum class Purpose : std::uint64_t {
   kAcousticPower = 12,         ///< per (target, emission index): sound-power fluctuation (An 2014 §5.2)
   kEnvironmentalNoisePhase = 13,  ///< per (sensor, component): offset of its noise episodes
   kEnvironmentalNoise = 14,    ///< per (sensor, component, episode): noisy or not, and its power
+  kDerivationProbe = 15,       ///< per generation: the probe targets that measure a sensor model (observation_model/)
 };
 
 /// SplitMix64 finaliser: a bijective 64-bit mix with full avalanche.

@@ -178,8 +178,12 @@ void nodeProcessesFitCells(const Reader& r, const Scenario& s, int line) {
 std::map<std::string, EngineParam> readParams(const Reader& r, const Entry& entry, const std::string& path) {
   std::map<std::string, EngineParam> params;
   const Section p = r.section(entry, path, {});
-  for (const auto& [name, value] : p.entries)
+  for (const auto& [name, value] : p.entries) {
+    // `auto` asks for the component's default, derived from the scenario where it has a physical
+    // meaning: the same as leaving the key out, and a way for --set to undo a value the file sets.
+    if (value.value.IsScalar() && value.value.Scalar() == "auto") continue;
     params[name] = EngineParam{r.anyNumber(value, p.pathOf(name)), Reader::lineOf(value.key)};
+  }
   return params;
 }
 
@@ -355,13 +359,18 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
 // ---------------------------------------------------------------------------------------------
 // Writing.
 
-void writeParams(std::ostringstream& out, const std::map<std::string, EngineParam>& params) {
+void writeParams(std::ostringstream& out, const std::string& section, const std::map<std::string, EngineParam>& params,
+                 const std::map<std::string, std::string>& derived) {
   if (params.empty()) {
     out << "  params: {}\n";
     return;
   }
   out << "  params:\n";
-  for (const auto& [name, param] : params) out << "    " << keyText(name) << ": " << yamlNumber(param.value) << "\n";
+  for (const auto& [name, param] : params) {
+    out << "    " << keyText(name) << ": " << yamlNumber(param.value);
+    if (const auto it = derived.find(section + "." + name); it != derived.end()) out << "  # derived: " << it->second;
+    out << "\n";
+  }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -620,9 +629,9 @@ std::string resolvedScenarioYaml(const Scenario& s) {
             supernodes_derived == s.derived.end() ? "" : supernodes_derived->second);
   writeSection(out, "network", schema::network(), s.network);
   writeSection(out, "tracker", schema::tracker(), s.tracker);
-  writeParams(out, s.tracker.params);
+  writeParams(out, "tracker.params", s.tracker.params, s.derived);
   writeSection(out, "aggregator", schema::aggregator(), s.aggregator);
-  writeParams(out, s.aggregator.params);
+  writeParams(out, "aggregator.params", s.aggregator.params, s.derived);
   writeSection(out, "metrics", schema::metrics(), s.metrics);
   writeSection(out, "run", schema::run(), s.run);
   return out.str();

@@ -19,10 +19,15 @@ std::string joined(const std::vector<std::string>& items) {
   return out;
 }
 
+/// The default column: a number, or `auto` with what the value is derived from.
+std::string defaultText(const common::ParamSpec& p) {
+  return p.derived() ? "auto: " + p.derivation.summary : common::config::compactNumber(p.default_value);
+}
+
 void printParams(std::ostringstream& out, const std::vector<common::ParamSpec>& params) {
   using common::config::compactNumber;
   for (const auto& p : params)
-    out << "  " << p.name << (p.unit.empty() ? "" : " [" + p.unit + "]") << " (default " << compactNumber(p.default_value)
+    out << "  " << p.name << (p.unit.empty() ? "" : " [" + p.unit + "]") << " (default " << defaultText(p)
         << ", range [" << compactNumber(p.min) << ", " << compactNumber(p.max) << "]" << (p.integer ? ", whole" : "")
         << "): " << p.description << "\n";
 }
@@ -44,7 +49,7 @@ std::string markdownParamTable(const std::vector<common::ParamSpec>& params) {
   using common::config::compactNumber;
   std::string out = "| parameter | unit | default | range | meaning |\n|-----------|------|---------|-------|---------|\n";
   for (const auto& p : params)
-    out += "| `" + p.name + "` | " + (p.unit.empty() ? "—" : p.unit) + " | " + compactNumber(p.default_value) + " | [" +
+    out += "| `" + p.name + "` | " + (p.unit.empty() ? "—" : p.unit) + " | " + defaultText(p) + " | [" +
            compactNumber(p.min) + ", " + compactNumber(p.max) + "]" + (p.integer ? ", whole" : "") + " | " +
            p.description + " |\n";
   return out;

@@ -20,6 +20,7 @@
 #include "launcher/run_directory.hpp"
 #include "launcher/run_summary.hpp"
 #include "launcher/watch.hpp"
+#include "observation_model/observation_statistics.hpp"
 #include "supernode/engine.hpp"
 
 namespace po = boost::program_options;
@@ -53,7 +54,7 @@ std::vector<common::ScenarioOverride> overridesOf(const po::variables_map& vm) {
 
 /// Resolves the parameters of the supernode engine and of the aggregator's association.
 void resolveComponentParams(common::Scenario& scenario) {
-  supernode::resolveEngineParams(scenario);
+  supernode::resolveEngineParams(scenario, observation_model::lazyStatistics(scenario));
   aggregator::resolveAssociationParams(scenario);
   launcher::checkComponentsFit(scenario);
 }

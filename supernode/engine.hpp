@@ -76,10 +76,10 @@ struct EngineSpec {
 /// All engines, in registration order.
 const common::Registry<EngineSpec>& engineRegistry();
 
-/// Checks scenario.tracker.engine and .params against the registry and fills in defaults;
-/// throws common::ScenarioError "file:line: ..." on an unknown engine or parameter or a
-/// value out of range.
-void resolveEngineParams(common::Scenario& scenario);
+/// Checks scenario.tracker.engine and .params against the registry and fills in defaults, the
+/// derived ones from `statistics` (noted in scenario.derived); throws common::ScenarioError
+/// "file:line: ..." on an unknown engine or parameter or a value out of range.
+void resolveEngineParams(common::Scenario& scenario, const common::StatisticsSource& statistics);
 
 /// Builds the engine context.engine names; throws std::invalid_argument for an unknown name.
 std::unique_ptr<Engine> makeEngine(const EngineContext& context);

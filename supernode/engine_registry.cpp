@@ -27,12 +27,12 @@ const common::Registry<EngineSpec>& engineRegistry() {
   return registry;
 }
 
-void resolveEngineParams(common::Scenario& scenario) {
+void resolveEngineParams(common::Scenario& scenario, const common::StatisticsSource& statistics) {
   auto& tracker = scenario.tracker;
   const EngineSpec& spec =
       engineRegistry().at<common::ScenarioError>(tracker.engine, where(scenario, tracker.engine_line));
   common::resolveParams(scenario.source_path, "tracker.params", "engine '" + spec.name + "'", spec.params,
-                        tracker.params);
+                        tracker.params, statistics, &scenario.derived);
   if (spec.check) spec.check(scenario);
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "common/assignment.hpp"
+#include "common/track_confirmation.hpp"
 
 namespace wsn::supernode::gnn {
 namespace {
@@ -21,6 +22,99 @@ using common::kY;
 
 bool byId(const GnnEngine::Track& a, const GnnEngine::Track& b) { return a.id < b.id; }
 
+using common::Derived;
+using common::shortNumber;
+using Statistics = common::ObservationStatistics;
+using Resolved = std::map<std::string, common::EngineParam>;
+
+/// A target's track is confirmed within N ticks with this probability, and a run of misses this
+/// rare deletes a track.
+constexpr double kConfirmWithin = 0.95;
+constexpr double kRareMissRun = 0.01;
+
+/// P(Binomial(n, p) >= k).
+double atLeast(std::int32_t k, std::int32_t n, double p) {
+  double total = 0.0;
+  for (std::int32_t j = k; j <= n; ++j)
+    total += std::exp(std::lgamma(n + 1.0) - std::lgamma(j + 1.0) - std::lgamma(n - j + 1.0)) * std::pow(p, j) *
+             std::pow(1.0 - p, n - j);
+  return total;
+}
+
+/// The shortest window in which a target's track, born at a report, collects m hits with
+/// probability 0.95 at detection probability pd.
+std::int32_t confirmationWindow(std::int32_t m, double pd) {
+  std::int32_t n = m;
+  while (n < 50 && atLeast(m - 1, n - 1, pd) < kConfirmWithin) ++n;
+  return n;
+}
+
+/// M of M-of-N: the evidence that costs the fewest wrong track-ticks, weighing tentative
+/// tracks of clutter (a chain of M false reports, each in its predecessor's gate, placed anywhere
+/// within the N ticks of confirmationWindow(M)), each kept max_misses ticks, against the wait of
+/// every true target.
+std::int32_t confirmHits(const Statistics& s, const Resolved& r) {
+  const double sigma2 = std::pow(r.at("measurement_sigma").value, 2);
+  const double v2 = std::pow(r.at("initial_velocity_sigma").value, 2);
+  const double q = s.process_noise_sigma * s.delta * s.delta / 2.0;
+  const double gate = r.at("gate_chi2").value;
+  const double pd = s.detectionProbability();
+  const double lambda_f = s.falseAlarmDensity();
+  const double births = std::max(s.birth_density.value * s.region_area, 1.0 / std::max(1, s.run_ticks));
+  // A track born at a report, at rest: the next report is gated with 2 sigma^2 + v^2 delta^2;
+  // once two reports fix its velocity, with about 6 sigma^2.
+  const double first = common::gateArea(gate, 2.0 * sigma2 + v2 * s.delta * s.delta + q * q);
+  const double later = common::gateArea(gate, 6.0 * sigma2 + q * q);
+  const auto false_tracks = [&](std::int32_t m) {
+    const std::int32_t n = confirmationWindow(m, pd);
+    const double placements =
+        std::exp(std::lgamma(static_cast<double>(n)) - std::lgamma(static_cast<double>(m)) - std::lgamma(n - m + 1.0));
+    return common::falseTrackRate(m, lambda_f, s.region_area, first, later) * placements;
+  };
+  return common::leastCostConfirmation(false_tracks, r.at("max_misses").value, births, pd, 1, 50);
+}
+
+std::string confirmationHow(const Statistics& s) {
+  return "clutter " + shortNumber(s.falseAlarmDensity()) + " per area and tick over " + shortNumber(s.region_area) +
+         " at pd " + shortNumber(s.detectionProbability()) + ": fewest wrong track-ticks, tentative tracks of clutter "
+         "against the wait of every new target";
+}
+
+/// GNN's filter and track management follow the scenario (observation_model/ measures it).
+std::map<std::string, common::ParamDerivation> derivations() {
+  std::map<std::string, common::ParamDerivation> d;
+  d["measurement_sigma"] = {"the sensor model's report error (localisation and fusion)",
+                            [](const Statistics& s, const Resolved&) { return s.position_sigma; }};
+  d["initial_velocity_sigma"] = {
+      "rms velocity of new targets per axis, with one tick of process noise", [](const Statistics& s, const Resolved&) {
+        const double q = s.process_noise_sigma * s.delta;
+        return Derived{std::hypot(s.velocity_sigma.value, q),
+                       "hypot(" + shortNumber(s.velocity_sigma.value) + " (" + s.velocity_sigma.how + "), q delta)"};
+      }};
+  d["confirm_hits"] = {"hits that balance confirmed tracks of clutter against the wait of every new target",
+                       [](const Statistics& s, const Resolved& r) {
+                         return Derived{static_cast<double>(confirmHits(s, r)), confirmationHow(s)};
+                       }};
+  d["confirm_window"] = {"ticks in which a target's track collects confirm_hits with probability 0.95",
+                         [](const Statistics& s, const Resolved& r) {
+                           const auto m = static_cast<std::int32_t>(r.at("confirm_hits").value);
+                           const double pd = s.detectionProbability();
+                           return Derived{static_cast<double>(confirmationWindow(m, pd)),
+                                          "shortest window with P(" + std::to_string(m) + " hits) >= 0.95 at pd " +
+                                              shortNumber(pd)};
+                         }};
+  d["max_misses"] = {"consecutive misses rarer than 1 % at the scenario's pd (sensed and delivered in the window)",
+                     [](const Statistics& s, const Resolved&) {
+                       // GNN replays the window every tick, so a report that arrives late still
+                       // counts: the in-window pd, not the on-time one (measured: judged on time,
+                       // the long coasts let clutter tracks run away at pde = 0.6).
+                       const double pd = s.detectionProbability();
+                       return Derived{static_cast<double>(common::rareMissRun(pd, kRareMissRun, 1000)),
+                                      "smallest k with (1 - pd)^k <= 0.01 at pd " + shortNumber(pd)};
+                     }};
+  return d;
+}
+
 }  // namespace
 
 const config::FieldTable<GnnParams>& paramTable() {
@@ -32,17 +126,17 @@ const config::FieldTable<GnnParams>& paramTable() {
           real<GnnParams>("measurement_sigma", &GnnParams::measurement_sigma, config::closed(1e-3, 100.0),
                           "separations",
                           "std. deviation of a fused observation's position error, R = sigma^2 I (sensor separations)"),
+          real<GnnParams>("initial_velocity_sigma", &GnnParams::initial_velocity_sigma, config::closed(1e-3, 100.0),
+                          "separations/tick",
+                          "std. deviation of the unknown velocity of a new track (sensor separations per tick)"),
           real<GnnParams>("gate_chi2", &GnnParams::gate_chi2, config::closed(0.1, 1000.0), "",
                           "gate on the squared Mahalanobis distance of an observation (9.21: chi^2, 2 dof, 99%)"),
+          integer<GnnParams>("max_misses", &GnnParams::max_misses, 1.0, 1000.0, "ticks",
+                             "consecutive misses after which a confirmed track is deleted (ticks)"),
           integer<GnnParams>("confirm_hits", &GnnParams::confirm_hits, 1.0, 50.0, "observations",
                              "M of M-of-N confirmation: hits needed within the first confirm_window ticks of a track"),
           integer<GnnParams>("confirm_window", &GnnParams::confirm_window, 1.0, 50.0, "ticks",
                              "N of M-of-N confirmation (ticks); a value below confirm_hits acts as confirm_hits"),
-          integer<GnnParams>("max_misses", &GnnParams::max_misses, 1.0, 1000.0, "ticks",
-                             "consecutive misses after which a confirmed track is deleted (ticks)"),
-          real<GnnParams>("initial_velocity_sigma", &GnnParams::initial_velocity_sigma, config::closed(1e-3, 100.0),
-                          "separations/tick",
-                          "std. deviation of the unknown velocity of a new track (sensor separations per tick)"),
       }};
   return table;
 }
@@ -53,7 +147,7 @@ EngineSpec engineSpec() {
   spec.description =
       "global nearest neighbour: constant-velocity Kalman filters (Oh eq. 8), optimal gated assignment, "
       "M-of-N confirmation; replays the window so delayed observations are used";
-  spec.params = common::paramSpecs(paramTable());
+  spec.params = common::paramSpecs(paramTable(), derivations());
   spec.create = [](const EngineContext& context) -> std::unique_ptr<Engine> {
     return std::make_unique<GnnEngine>(context);
   };

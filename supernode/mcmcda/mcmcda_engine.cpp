@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "common/rng.hpp"
+#include "common/track_confirmation.hpp"
 #include "common/track_id.hpp"
 
 namespace wsn::supernode::mcmcda {
@@ -48,6 +49,88 @@ std::array<double, 16> fullCovariance(const AxisCovariance& c) {
 
 common::TrackEstimate estimate(common::TrackId id, const TrackState& s, std::int32_t last_seen_tick) {
   return {id, s.x, s.y, s.vx, s.vy, fullCovariance(s.cov), last_seen_tick};
+}
+
+using common::Derived;
+using common::shortNumber;
+using Statistics = common::ObservationStatistics;
+using Resolved = std::map<std::string, common::EngineParam>;
+
+/// A run of misses this rare ends a track.
+constexpr double kRareMissRun = 0.01;
+
+/// The model of eq. (3) follows the scenario: each parameter with a physical meaning is measured
+/// on the scenario's own sensor, network and target models (observation_model/).
+std::map<std::string, common::ParamDerivation> derivations() {
+  std::map<std::string, common::ParamDerivation> d;
+  d["detection_probability"] = {
+      "the sensor model's sensing probability x the network's delivery into the window",
+      [](const Statistics& s, const Resolved&) {
+        return Derived{s.detectionProbability(), shortNumber(s.sensing_probability.value) + " sensed (" +
+                                                     s.sensing_probability.how + ") x " +
+                                                     shortNumber(s.delivery_probability.value) + " delivered (" +
+                                                     s.delivery_probability.how + ")"};
+      }};
+  d["termination_probability"] = {"targets.death_probability, leaving the region, scripted lifetimes",
+                                  [](const Statistics& s, const Resolved&) { return s.termination_probability; }};
+  d["birth_density"] = {"targets.birth_rate and the scripted targets",
+                        [](const Statistics& s, const Resolved&) { return s.birth_density; }};
+  d["false_alarm_density"] = {
+      "the sensor model's false reports x the network's delivery", [](const Statistics& s, const Resolved&) {
+        return Derived{s.falseAlarmDensity(), shortNumber(s.false_report_density.value) + " reported (" +
+                                                  s.false_report_density.how + ") x " +
+                                                  shortNumber(s.delivery_probability.value) + " delivered"};
+      }};
+  d["measurement_sigma"] = {"the sensor model's report error (localisation and fusion)",
+                            [](const Statistics& s, const Resolved&) { return s.position_sigma; }};
+  d["initial_velocity_sigma"] = {
+      "rms velocity of new targets per axis, with one tick of process noise", [](const Statistics& s, const Resolved&) {
+        const double q = s.process_noise_sigma * s.delta;
+        return Derived{std::hypot(s.velocity_sigma.value, q),
+                       "hypot(" + shortNumber(s.velocity_sigma.value) + " (" + s.velocity_sigma.how + "), q delta)"};
+      }};
+  d["max_speed"] = {"the targets' speed bound + 3 sqrt 2 measurement_sigma", [](const Statistics& s, const Resolved& r) {
+                      // Two reports one tick apart differ by the step plus two errors of sigma per axis.
+                      const double slack = 3.0 * std::sqrt(2.0) * r.at("measurement_sigma").value;
+                      return Derived{s.max_speed.value + slack,
+                                     shortNumber(s.max_speed.value) + " (" + s.max_speed.how + ") + 3 sqrt 2 x sigma " +
+                                         shortNumber(r.at("measurement_sigma").value)};
+                    }};
+  d["max_gap"] = {"ticks until a run of misses at the newest tick (sensed and not delayed) is rarer than 1 %, at "
+                  "most window_size",
+                  [](const Statistics& s, const Resolved&) {
+                    // Judged at the live edge, where a delayed report has not arrived yet: a
+                    // track whose reports are late must still be continued and reported.
+                    const double pd = s.onTimeDetectionProbability();
+                    return Derived{static_cast<double>(common::rareMissRun(pd, kRareMissRun, s.window_size)),
+                                   "smallest k with (1 - pd)^k <= 0.01 at pd " + shortNumber(pd) +
+                                       " on time, at most window_size " + std::to_string(s.window_size)};
+                  }};
+  d["confirm_observations"] = {
+      "observations that balance reported chains of clutter against the wait of every new target",
+      [](const Statistics& s, const Resolved& r) {
+        const double sigma2 = std::pow(r.at("measurement_sigma").value, 2);
+        const double v2 = std::pow(r.at("initial_velocity_sigma").value, 2);
+        const double lambda_f = r.at("false_alarm_density").value;
+        const double pd = r.at("detection_probability").value;
+        const double births = std::max(r.at("birth_density").value * s.region_area, 1.0 / std::max(1, s.run_ticks));
+        // A second report near the first as the velocity prior allows (2 sigma^2 + v^2 per axis);
+        // later ones inside the gate of a track started from two reports (predicted 2 z2 - z1:
+        // 5 sigma^2, plus the report's own sigma^2).
+        const double q = s.process_noise_sigma * s.delta * s.delta / 2.0;
+        const double gate = r.at("greedy_gate_chi2").value;
+        const double first = common::gateArea(gate, 2.0 * sigma2 + v2 * s.delta * s.delta + q * q);
+        const double later = common::gateArea(gate, 6.0 * sigma2 + q * q);
+        const double false_life = r.at("max_gap").value;
+        const auto n = common::leastCostConfirmation(
+            [&](std::int32_t k) { return common::falseTrackRate(k, lambda_f, s.region_area, first, later); },
+            false_life, births, pd, 2, std::max(2, s.window_size));
+        return Derived{static_cast<double>(n),
+                       "fewest wrong track-ticks: chains of clutter (lambda_f " + shortNumber(lambda_f) + " over " +
+                           shortNumber(s.region_area) + ", each kept max_gap ticks) against the wait of " +
+                           shortNumber(births) + " births per tick at pd " + shortNumber(pd)};
+      }};
+  return d;
 }
 
 }  // namespace
@@ -111,7 +194,7 @@ EngineSpec engineSpec() {
   spec.description =
       "sliding-window Markov chain Monte Carlo data association (Oh et al. §VI): samples partitions of the "
       "window's observations into tracks and false alarms under eq. (3), keeps the best";
-  spec.params = common::paramSpecs(paramTable());
+  spec.params = common::paramSpecs(paramTable(), derivations());
   spec.create = [](const EngineContext& context) -> std::unique_ptr<Engine> {
     return std::make_unique<McmcdaEngine>(context);
   };

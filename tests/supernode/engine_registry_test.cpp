@@ -35,7 +35,7 @@ TEST_CASE("the registry lists gnn with sane parameter specifications", "[registr
 TEST_CASE("resolving fills in every default with line 0 and keeps given values", "[registry]") {
   auto s = scenarioFrom("gnn", 3);
   s.tracker.params["gate_chi2"] = {5.99, 12};
-  resolveEngineParams(s);
+  resolveEngineParams(s, wsn::common::kNoStatistics);
   const auto& params = s.tracker.params;
   REQUIRE(params.size() == 6);
   CHECK(params.at("gate_chi2").value == 5.99);
@@ -48,7 +48,7 @@ TEST_CASE("resolving fills in every default with line 0 and keeps given values",
   CHECK(params.at("initial_velocity_sigma").value == 2.0);
 
   auto again = s;  // resolving a resolved scenario changes nothing
-  resolveEngineParams(again);
+  resolveEngineParams(again, wsn::common::kNoStatistics);
   CHECK(again.tracker.params.size() == s.tracker.params.size());
   for (const auto& [name, p] : s.tracker.params) {
     CHECK(again.tracker.params.at(name).value == p.value);
@@ -58,7 +58,7 @@ TEST_CASE("resolving fills in every default with line 0 and keeps given values",
 
 TEST_CASE("an unknown engine is reported with file, line and the known engines", "[registry]") {
   auto s = scenarioFrom("kalman", 7);
-  REQUIRE_THROWS_MATCHES(resolveEngineParams(s), common::ScenarioError,
+  REQUIRE_THROWS_MATCHES(resolveEngineParams(s, wsn::common::kNoStatistics), common::ScenarioError,
                          Catch::Message("runs/s.yaml:7: unknown tracker engine 'kalman'; expected one of: gnn, mcmcda, rulebased"));
 }
 
@@ -66,25 +66,25 @@ TEST_CASE("an unknown parameter is reported with its line and the engine's param
   auto s = scenarioFrom("gnn", 7);
   s.tracker.params["gate"] = {3.0, 9};
   REQUIRE_THROWS_MATCHES(
-      resolveEngineParams(s), common::ScenarioError,
+      resolveEngineParams(s, wsn::common::kNoStatistics), common::ScenarioError,
       Catch::Message("runs/s.yaml:9: unknown parameter 'gate' for engine 'gnn'; expected one of: measurement_sigma, "
-                     "gate_chi2, confirm_hits, confirm_window, max_misses, initial_velocity_sigma"));
+                     "initial_velocity_sigma, gate_chi2, max_misses, confirm_hits, confirm_window"));
 }
 
 TEST_CASE("a parameter out of range is reported with the admissible range", "[registry]") {
   auto s = scenarioFrom("gnn", 7);
   s.tracker.params["gate_chi2"] = {-1.0, 4};
-  REQUIRE_THROWS_MATCHES(resolveEngineParams(s), common::ScenarioError,
+  REQUIRE_THROWS_MATCHES(resolveEngineParams(s, wsn::common::kNoStatistics), common::ScenarioError,
                          Catch::Message("runs/s.yaml:4: 'tracker.params.gate_chi2' must be in [0.1, 1000], got -1"));
 
   s.tracker.params["gate_chi2"] = {std::nan(""), 4};
-  CHECK_THROWS_AS(resolveEngineParams(s), common::ScenarioError);
+  CHECK_THROWS_AS(resolveEngineParams(s, wsn::common::kNoStatistics), common::ScenarioError);
 }
 
 TEST_CASE("a count parameter must be a whole number", "[registry]") {
   auto s = scenarioFrom("gnn", 7);
   s.tracker.params["confirm_hits"] = {2.5, 5};
-  REQUIRE_THROWS_MATCHES(resolveEngineParams(s), common::ScenarioError,
+  REQUIRE_THROWS_MATCHES(resolveEngineParams(s, wsn::common::kNoStatistics), common::ScenarioError,
                          Catch::Message("runs/s.yaml:5: 'tracker.params.confirm_hits' must be a whole number, got 2.5"));
 }
 
@@ -101,7 +101,7 @@ TEST_CASE("every measurement kind an engine or sensor model names is a known kin
 
 TEST_CASE("makeEngine builds the engine the scenario names", "[registry]") {
   auto s = scenarioFrom("gnn", 1);
-  resolveEngineParams(s);
+  resolveEngineParams(s, wsn::common::kNoStatistics);
   const auto engine = makeEngine(engineContext(s, 0));
   REQUIRE(engine != nullptr);
   CHECK(dynamic_cast<gnn::GnnEngine*>(engine.get()) != nullptr);

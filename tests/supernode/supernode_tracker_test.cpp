@@ -193,7 +193,7 @@ TEST_CASE("every position engine handed a bearing observation fails naming itsel
     auto s = test::gnnScenario();
     s.tracker.engine = engine;
     s.tracker.params.clear();
-    resolveEngineParams(s);
+    resolveEngineParams(s, wsn::common::kNoStatistics);
     auto tracker = test::trackerFor(s, 0);
     const std::vector<common::Observation> position{test::observation(2, 2, 20.0, 30.0)};
     tracker.step(2, position, {});  // what it declared in `accepts` goes through

@@ -19,14 +19,14 @@ inline common::Scenario gnnScenario(std::int32_t window_size = 10) {
   s.supernodes = {{50.0, 50.0}};
   s.tracker.engine = "gnn";
   s.tracker.window_size = window_size;
-  resolveEngineParams(s);
+  resolveEngineParams(s, wsn::common::kNoStatistics);
   return s;
 }
 
 /// The tracker of supernode `index` of `scenario`, its parameters resolved first as the launcher
 /// resolves them (a bad engine or parameter throws common::ScenarioError).
 inline SupernodeTracker trackerFor(common::Scenario scenario, std::uint32_t index) {
-  resolveEngineParams(scenario);
+  resolveEngineParams(scenario, wsn::common::kNoStatistics);
   return SupernodeTracker(supernodeConfig(scenario, index));
 }
 

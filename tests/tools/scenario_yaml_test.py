@@ -100,7 +100,8 @@ class OhQuadrants(WrittenScenario, unittest.TestCase):
     def test_values(self):
         self.expect("  noise_sigma: 0.62", ("sensor_model", "noise_sigma"), 0.62)
         self.expect("  pte: 0.3", ("network", "pte"), 0.3)
-        self.expect("    false_alarm_density: 6.0e-04", ("tracker", "params", "false_alarm_density"), 6e-4)
+        # A derived engine parameter carries its derivation as a trailing comment.
+        self.expect("    max_gap: 10  # derived: ", ("tracker", "params", "max_gap"), 10)
         self.expect('  association: "mcmcda"', ("aggregator", "association"), "mcmcda")
         self.expect("vx: -1.2, vy: 1}", ("targets", "scripted", 1, "vx"), -1.2)
         self.expect("- {x: 75, y: 75}", ("supernodes", 3), {"x": 75, "y": 75})

@@ -32,7 +32,7 @@ common::Scenario mcmcdaScenario(std::int32_t window_size = 10, double max_gap = 
   s.tracker.params["measurement_sigma"] = {0.2, 0};
   s.tracker.params["false_alarm_density"] = {1e-3, 0};
   s.tracker.params["max_gap"] = {max_gap, 0};
-  resolveEngineParams(s);
+  resolveEngineParams(s, wsn::common::kNoStatistics);
   return s;
 }
 

@@ -32,7 +32,7 @@ common::Scenario fieldScenario(std::initializer_list<std::pair<const char*, doub
   s.dynamics.process_noise_sigma = 0.0;
   s.tracker.engine = "rulebased";
   for (const auto& [name, value] : params) s.tracker.params[name] = {value, 0};
-  resolveEngineParams(s);
+  resolveEngineParams(s, wsn::common::kNoStatistics);
   return s;
 }
 
@@ -661,7 +661,7 @@ TEST_CASE("a decision lag lets delayed reports in and reports the tracks at the 
   // The lagged tick must still be in the window (window_size 10).
   common::Scenario s = fieldScenario();
   s.tracker.params["decision_lag"] = {10, 7};
-  CHECK_THROWS_WITH(resolveEngineParams(s),
+  CHECK_THROWS_WITH(resolveEngineParams(s, wsn::common::kNoStatistics),
                     "test.yaml:7: 'tracker.params.decision_lag' 10 must be below 'tracker.window_size' 10");
 }
 

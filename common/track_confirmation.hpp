@@ -1,0 +1,56 @@
+// How much evidence a track needs before it is reported, and how many misses before it is given
+// up, from the clutter and detection statistics of a scenario (common/observation_statistics.hpp).
+// Engines use these to derive their confirmation and deletion parameters.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace wsn::common {
+
+/// Expected number of chains of n false reports per tick that look like a new track: a false
+/// report starts one (lambda_f * area per tick), a second lies in the first gate (area
+/// first_gate), each later one in the tracking gate (area later_gate). Clutter is Poisson and
+/// independent between ticks, so each link is a gate's expected count.
+inline double falseTrackRate(std::int32_t n, double lambda_f, double area, double first_gate, double later_gate) {
+  double rate = lambda_f * area;
+  if (n >= 2) rate *= lambda_f * first_gate;
+  for (std::int32_t k = 3; k <= n; ++k) rate *= lambda_f * later_gate;
+  return rate;
+}
+
+/// The evidence n in [min_n, max_n] that costs the fewest wrong track-ticks per tick: chains of
+/// clutter confirmed at n (false_tracks(n) per tick, each reported for about false_life ticks)
+/// against the ticks every true target waits before it is reported ((n - 1) / pd reports after
+/// its first, at births_per_tick). Ties go to the smaller n. With no clutter this is min_n: a
+/// single report is decisive when nothing else could have made it.
+template <typename FalseTracks>
+std::int32_t leastCostConfirmation(FalseTracks false_tracks, double false_life, double births_per_tick, double pd,
+                                   std::int32_t min_n, std::int32_t max_n) {
+  std::int32_t best = min_n;
+  double best_cost = INFINITY;
+  for (std::int32_t n = min_n; n <= max_n; ++n) {
+    const double cost = false_tracks(n) * false_life + births_per_tick * (n - 1) / std::max(pd, 1e-3);
+    if (cost < best_cost) {
+      best = n;
+      best_cost = cost;
+    }
+  }
+  return best;
+}
+
+/// The smallest k >= 1 with (1 - pd)^k <= tolerance: k consecutive misses of a live target are
+/// that rare. Capped at max_k.
+inline std::int32_t rareMissRun(double pd, double tolerance, std::int32_t max_k) {
+  if (pd >= 1.0) return 1;
+  if (pd <= 0.0) return max_k;
+  const double k = std::ceil(std::log(tolerance) / std::log(1.0 - pd) - 1e-9);
+  return static_cast<std::int32_t>(std::clamp(k, 1.0, static_cast<double>(max_k)));
+}
+
+/// Area of the chi-square gate g of a 2-D Gaussian innovation with per-axis variance s2:
+/// pi g sqrt(det S) = pi g s2.
+inline double gateArea(double gate_chi2, double s2) { return 3.14159265358979323846 * gate_chi2 * s2; }
+
+}  // namespace wsn::common

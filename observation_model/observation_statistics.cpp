@@ -1,0 +1,300 @@
+#include "observation_model/observation_statistics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+#include <numbers>
+#include <optional>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "common/rng.hpp"
+#include "common/sensor_layout.hpp"
+#include "common/truth.hpp"
+#include "network_model/calibration.hpp"
+#include "network_model/role_config.hpp"
+#include "network_model/topology.hpp"
+#include "node/sensor_model_registry.hpp"
+#include "node/tiling.hpp"
+
+namespace wsn::observation_model {
+namespace {
+
+using common::Derived;
+
+/// The simulation's own seed: the statistics describe the model, not one run's realisation.
+constexpr std::uint64_t kProbeSeed = 0x0b5e7a7105eedULL;
+/// Scored probe samples to aim for: the sensing probability is then known to about +-0.02.
+constexpr double kWantedSamples = 1200.0;
+/// Probe targets live this many ticks; the ticks after the first are scored (a model whose
+/// reports depend on the target's past, like the acoustic one, sees a target that already moved).
+/// Each generation ends with ticks without probes, on which the false reports are counted: near
+/// a target, noise is absorbed by its report (Oh eq. 6 elects one sensor), which would bias the
+/// count low.
+constexpr std::int32_t kProbeLife = 3;
+constexpr std::int32_t kEmptyTicks = 2;
+constexpr std::int32_t kGenerationTicks = kProbeLife + kEmptyTicks;
+
+struct Interval {
+  double min = 0.0;
+  double max = 0.0;
+};
+
+/// Oh §VII-A, as common/truth.cpp draws them: |vx|, |vy| uniform in [min, max] per tick.
+Interval speedInterval(common::SpeedClass speed_class) {
+  switch (speed_class) {
+    case common::SpeedClass::kSlow: return {0.0, 1.0};
+    case common::SpeedClass::kMedium: return {1.0, 2.0};
+    case common::SpeedClass::kFast: return {2.0, 5.0};
+  }
+  return {1.0, 2.0};
+}
+
+std::string speedClassName(common::SpeedClass speed_class) {
+  switch (speed_class) {
+    case common::SpeedClass::kSlow: return "slow";
+    case common::SpeedClass::kMedium: return "medium";
+    case common::SpeedClass::kFast: return "fast";
+  }
+  return "medium";
+}
+
+std::string num(double v) { return common::shortNumber(v); }
+
+struct SensorMeasurement {
+  double position_sigma = 0.0;
+  double sensing_probability = 0.0;
+  double false_report_density = 0.0;
+  std::size_t samples = 0;
+  std::size_t detected = 0;
+  std::int32_t ticks = 0;
+  std::int32_t empty_ticks = 0;
+};
+
+/// Runs the scenario's sensor model over its whole field as one tile, with probe targets on a
+/// jittered lattice far enough apart that their reports never mix, and compares the reports
+/// with them.
+SensorMeasurement measureSensorModel(const common::Scenario& scenario, double rms_speed) {
+  common::SensorFieldConfig field = common::sensorFieldConfig(scenario);
+  field.seed = kProbeSeed;
+  const common::SensorLayout layout(field);
+  const auto tiles = node::makeTiles(layout, 1);
+  const common::Rect& region = scenario.region;
+
+  double reach = scenario.sensor_model.sensing_range;
+  for (const auto& t : scenario.targets.scripted) reach = std::max(reach, t.sensing_range);
+  const double spacing = field.sensors.kind == common::SensorLayoutConfig::Kind::kGrid
+                             ? field.sensors.spacing
+                             : std::sqrt(region.area() / std::max<double>(1.0, field.sensors.count));
+  // Reports of two probes must never interact: Oh eq. 6 elects over 2 Rs, so keep 5 Rs between
+  // probes plus the jitter that moves each over a whole sensor cell.
+  const double jitter = std::max(spacing, reach);
+  const double pitch = 5.0 * reach + 2.0 * jitter + rms_speed * kProbeLife;
+  const double margin = reach;
+  const auto fit = [&](double extent) { return std::max<std::int64_t>(1, std::llround(std::floor((extent - 2 * margin) / pitch))); };
+  const std::int64_t nx = fit(region.width());
+  const std::int64_t ny = fit(region.height());
+  const double cell_x = (region.width() - 2 * margin) / static_cast<double>(nx);
+  const double cell_y = (region.height() - 2 * margin) / static_cast<double>(ny);
+  const auto per_generation = static_cast<double>(nx * ny * (kProbeLife - 1));
+  const auto generations =
+      static_cast<std::int32_t>(std::clamp(std::ceil(kWantedSamples / per_generation), 4.0, 400.0));
+
+  common::TruthConfig truth_config;
+  truth_config.region = region;
+  truth_config.dynamics = scenario.dynamics;
+  truth_config.dynamics.process_noise_sigma = 0.0;  // probes move straight: only the sensors are measured
+  truth_config.seed = kProbeSeed;
+  truth_config.ticks = generations * kGenerationTicks;
+  std::vector<common::TargetSpec>& probes = truth_config.targets.scripted;
+  std::vector<common::Vec2> aims;  // where each probe is at its first scored tick
+  for (std::int32_t g = 0; g < generations; ++g) {
+    common::Stream stream(kProbeSeed, common::Purpose::kDerivationProbe, static_cast<std::uint64_t>(g), 0);
+    for (std::int64_t i = 0; i < nx; ++i)
+      for (std::int64_t j = 0; j < ny; ++j) {
+        const double cx = region.x_min + margin + (static_cast<double>(i) + 0.5) * cell_x;
+        const double cy = region.y_min + margin + (static_cast<double>(j) + 0.5) * cell_y;
+        const common::Vec2 aim{cx + stream.uniform(-jitter, jitter) * std::min(1.0, 0.5 * cell_x / (jitter + 1e-12)),
+                               cy + stream.uniform(-jitter, jitter) * std::min(1.0, 0.5 * cell_y / (jitter + 1e-12))};
+        const double heading = stream.uniform(0.0, 2.0 * std::numbers::pi);
+        const common::Vec2 v{rms_speed * std::cos(heading), rms_speed * std::sin(heading)};
+        common::TargetSpec probe;
+        probe.appear_tick = g * kGenerationTicks + 1;
+        probe.disappear_tick = probe.appear_tick + kProbeLife;
+        probe.position = {aim.x - v.x, aim.y - v.y};
+        probe.velocity = v;
+        if (!scenario.targets.scripted.empty())  // loud and quiet targets in the scenario's mix
+          probe.sensing_range = scenario.targets.scripted[probes.size() % scenario.targets.scripted.size()].sensing_range;
+        probes.push_back(probe);
+        aims.push_back(aim);
+      }
+  }
+  const common::Truth truth(truth_config);
+  const node::TileContext context{scenario.sensor_model, kProbeSeed, probes, layout, tiles.front(), truth};
+  const auto sensors = node::makeTileSensors(context);
+
+  SensorMeasurement m;
+  m.ticks = truth_config.ticks;
+  double squared_error = 0.0;
+  std::size_t clutter = 0;
+  std::int32_t empty_ticks = 0;
+  for (std::int32_t tick = 1; tick <= truth_config.ticks; ++tick) {
+    (void)sensors->sense(tick);
+    const auto reports = sensors->report(tick, {});
+    const std::int32_t phase = (tick - 1) % kGenerationTicks;
+    const bool scored = phase >= 1 && phase < kProbeLife;
+    std::map<common::TargetId, double> nearest;  // probe -> smallest squared error of its reports
+    std::map<common::TargetId, std::pair<double, double>> nearest_error;
+    for (const auto& r : reports) {
+      if (r.target == common::kFalseAlarm) continue;
+      for (const auto& t : truth.at(tick)) {
+        if (t.id != r.target) continue;
+        const double ex = r.x - t.x;
+        const double ey = r.y - t.y;
+        const auto it = nearest.find(t.id);
+        if (it == nearest.end() || ex * ex + ey * ey < it->second) {
+          nearest[t.id] = ex * ex + ey * ey;
+          nearest_error[t.id] = {ex, ey};
+        }
+      }
+    }
+    if (phase >= kProbeLife) {
+      clutter += reports.size();
+      ++empty_ticks;
+    }
+    if (!scored) continue;
+    for (const auto& t : truth.at(tick)) {
+      ++m.samples;
+      const auto it = nearest_error.find(t.id);
+      if (it == nearest_error.end()) continue;
+      ++m.detected;
+      squared_error += it->second.first * it->second.first + it->second.second * it->second.second;
+    }
+  }
+  m.sensing_probability = m.samples > 0 ? static_cast<double>(m.detected) / static_cast<double>(m.samples) : 0.0;
+  m.position_sigma = m.detected > 0 ? std::sqrt(squared_error / (2.0 * static_cast<double>(m.detected))) : 0.0;
+  // None seen is not none: with no false report in n ticks, the rate is below 3 per n ticks with
+  // 95 % confidence (the rule of three), and that bound is what the model may rely on. A density
+  // of exactly 0 also makes an engine's posterior brittle: one report that fits no track then
+  // costs without limit (MCMCDA at pde = 0.6 lost most targets at lambda_f = 1e-12).
+  m.false_report_density = static_cast<double>(std::max<std::size_t>(clutter, 3)) /
+                           (region.area() * static_cast<double>(empty_ticks));
+  m.empty_ticks = empty_ticks;
+  return m;
+}
+
+/// The shares of reports that reach their supernode's window, and at once: Oh eq. (7) over the
+/// hop histogram.
+std::pair<Derived, Derived> deliveryProbabilities(const common::Scenario& scenario) {
+  common::SensorFieldConfig field = common::sensorFieldConfig(scenario);
+  field.seed = kProbeSeed;
+  const common::SensorLayout layout(field);
+  const network_model::Topology topology(network_model::topologyConfig(scenario), layout.truePositions());
+  const auto ratios = network_model::expectedRatios(topology, scenario.network.pte, scenario.network.pde,
+                                                    scenario.tracker.window_size);
+  const double in_window =
+      std::clamp(1.0 - ratios.lost_to_total - ratios.delayed_to_total + ratios.delayed_in_window_to_total, 0.0, 1.0);
+  const double on_time = std::clamp(1.0 - ratios.lost_to_total - ratios.delayed_to_total, 0.0, 1.0);
+  return {{in_window, "Oh eq. 7 over the topology: lost " + num(ratios.lost_to_total) + ", delayed past the window " +
+                          num(ratios.delayed_to_total - ratios.delayed_in_window_to_total)},
+          {on_time, "Oh eq. 7 over the topology: lost " + num(ratios.lost_to_total) + ", delayed " +
+                        num(ratios.delayed_to_total)}};
+}
+
+}  // namespace
+
+void deriveTargetStatistics(const common::Scenario& scenario, common::ObservationStatistics& stats) {
+  const auto& targets = scenario.targets;
+  const common::Rect& region = scenario.region;
+  const double area = region.area();
+  const double ticks = std::max(1, scenario.run.ticks);
+  const double q = scenario.dynamics.process_noise_sigma * scenario.dynamics.delta;
+  stats.region_area = area;
+  stats.process_noise_sigma = scenario.dynamics.process_noise_sigma;
+  stats.delta = scenario.dynamics.delta;
+  stats.window_size = scenario.tracker.window_size;
+  stats.run_ticks = scenario.run.ticks;
+
+  // How many targets each source brings over the run, to weigh their speeds and lifetimes.
+  const double born = targets.birth_rate * area * ticks;
+  const auto scripted = static_cast<double>(targets.scripted.size());
+  const double all = born + scripted;
+
+  const Interval speed = speedInterval(targets.speed_class);
+  const double class_ms = (speed.min * speed.min + speed.min * speed.max + speed.max * speed.max) / 3.0;
+  double scripted_ms = 0.0;
+  double scripted_max = 0.0;
+  double scripted_life = 0.0;
+  double longest_life = born > 0.0 ? ticks : 0.0;
+  for (const auto& t : targets.scripted) {
+    scripted_ms += 0.5 * (t.velocity.x * t.velocity.x + t.velocity.y * t.velocity.y);
+    scripted_max = std::max({scripted_max, std::abs(t.velocity.x), std::abs(t.velocity.y)});
+    const double end = t.disappear_tick > 0 ? std::min<double>(t.disappear_tick, ticks + 1) : ticks + 1;
+    const double life = std::max(1.0, end - t.appear_tick);
+    scripted_life += life;
+    longest_life = std::max(longest_life, life);
+  }
+  const double velocity_ms = all > 0.0 ? (born * class_ms + scripted_ms) / all : class_ms;
+  stats.velocity_sigma = {std::sqrt(velocity_ms),
+                          born > 0.0 && scripted > 0.0 ? "rms of the speed class '" + speedClassName(targets.speed_class) +
+                                                             "' and the scripted velocities, weighted by count"
+                          : scripted > 0.0           ? "rms of the scripted velocities per axis"
+                                                     : "rms per axis of the speed class '" +
+                                                           speedClassName(targets.speed_class) + "' (Oh §VII-A)"};
+
+  // Oh eq. (8) lets the velocity wander by q per tick on each axis: over a life of L ticks by
+  // q sqrt(L); two of those on top of the largest initial component bound nearly every target.
+  const double axis_max = std::max(born > 0.0 ? speed.max : 0.0, scripted_max);
+  const double drift = 2.0 * q * std::sqrt(std::max(1.0, longest_life));
+  stats.max_speed = {std::sqrt(2.0) * (axis_max + drift),
+                     "sqrt 2 x (largest initial speed per axis " + num(axis_max) + " + 2 q sqrt(longest life " +
+                         num(longest_life) + " ticks) = " + num(drift) + ")"};
+
+  // Births: the Poisson rate per area, and scripted targets spread over the run.
+  stats.birth_density = {targets.birth_rate + scripted / (area * ticks),
+                         "targets.birth_rate + " + num(scripted) + " scripted targets over the region and run"};
+
+  // A born target ends by pz or by leaving the region: the mean chord of a convex region is
+  // pi A / perimeter (Cauchy), crossed at the rms speed sqrt 2 x velocity sigma.
+  const double perimeter = 2.0 * (region.width() + region.height());
+  const double chord = std::numbers::pi * area / perimeter;
+  const double exit = std::min(1.0, std::sqrt(2.0 * class_ms) * scenario.dynamics.delta / chord);
+  const double born_end = 1.0 - (1.0 - targets.death_probability) * (1.0 - exit);
+  const double scripted_end = scripted > 0.0 ? scripted / scripted_life : 0.0;
+  const double termination = all > 0.0 ? (born * born_end + scripted * scripted_end) / all : born_end;
+  stats.termination_probability = {
+      termination, born > 0.0 && scripted > 0.0
+                       ? "death_probability and leaving the region (mean chord " + num(chord) +
+                             "), weighted with 1 / the scripted lifetimes"
+                   : scripted > 0.0 ? "1 / the mean scripted lifetime " + num(scripted_life / scripted) + " ticks"
+                                    : "targets.death_probability and leaving the region (mean chord pi A / perimeter = " +
+                                          num(chord) + " at the rms speed)"};
+}
+
+common::ObservationStatistics observationStatistics(const common::Scenario& scenario) {
+  common::ObservationStatistics stats;
+  deriveTargetStatistics(scenario, stats);
+  const SensorMeasurement m = measureSensorModel(scenario, std::sqrt(2.0) * stats.velocity_sigma.value);
+  const std::string probe = " over " + std::to_string(m.samples) + " probe samples of sensor_model '" +
+                            scenario.sensor_model.kind + "'";
+  stats.position_sigma = {m.position_sigma, "rms report error per axis" + probe};
+  stats.sensing_probability = {m.sensing_probability, "share of probe targets with a report" + probe};
+  stats.false_report_density = {m.false_report_density, "reports per area and tick on " + std::to_string(m.empty_ticks) +
+                                                    " ticks without targets of sensor_model '" + scenario.sensor_model.kind +
+                                                    "' (at least 3: the rule of three when none is seen)"};
+  std::tie(stats.delivery_probability, stats.on_time_probability) = deliveryProbabilities(scenario);
+  return stats;
+}
+
+common::StatisticsSource lazyStatistics(const common::Scenario& scenario) {
+  auto cache = std::make_shared<std::optional<common::ObservationStatistics>>();
+  return [&scenario, cache]() -> const common::ObservationStatistics& {
+    if (!cache->has_value()) *cache = observationStatistics(scenario);
+    return **cache;
+  };
+}
+
+}  // namespace wsn::observation_model

@@ -1,0 +1,48 @@
+// Confirmation and deletion rules derived from clutter and detection statistics, against
+// hand-computed values.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "common/track_confirmation.hpp"
+
+using namespace wsn::common;
+
+TEST_CASE("a chain of false reports multiplies the expected clutter of each gate") {
+  // lambda_f = 0.001 over 10^4: 10 false reports start chains per tick; the first gate of area
+  // 50 holds 0.05 of a false report, each later one of area 2 holds 0.002.
+  CHECK(falseTrackRate(1, 1e-3, 1e4, 50.0, 2.0) == Approx(10.0));
+  CHECK(falseTrackRate(2, 1e-3, 1e4, 50.0, 2.0) == Approx(0.5));
+  CHECK(falseTrackRate(3, 1e-3, 1e4, 50.0, 2.0) == Approx(1e-3));
+  CHECK(falseTrackRate(4, 1e-3, 1e4, 50.0, 2.0) == Approx(2e-6));
+}
+
+TEST_CASE("without clutter a single report is decisive") {
+  const auto none = [](std::int32_t n) { return falseTrackRate(n, 0.0, 1e4, 50.0, 2.0); };
+  CHECK(leastCostConfirmation(none, 4.0, 0.1, 0.7, 1, 50) == 1);
+  CHECK(leastCostConfirmation(none, 4.0, 0.1, 0.7, 2, 50) == 2);  // an engine whose tracks need two
+}
+
+TEST_CASE("the confirmation weighs clutter tracks against the wait of every target") {
+  // Births 0.1 per tick at pd 0.5: each extra report asked for costs 0.2 target-ticks per tick.
+  // False tracks of the chain above, kept 4 ticks: n = 2 costs 0.5 x 4 + 0.2 = 2.2, n = 3 costs
+  // 0.004 + 0.4 = 0.404, n = 4 costs 8e-6 + 0.6: n = 3 is cheapest.
+  const auto chain = [](std::int32_t n) { return falseTrackRate(n, 1e-3, 1e4, 50.0, 2.0); };
+  CHECK(leastCostConfirmation(chain, 4.0, 0.1, 0.5, 1, 50) == 3);
+  // Ten times the births make waiting dearer: n = 2 costs 2 + 2 = 4, n = 3 costs 0.004 + 4.
+  CHECK(leastCostConfirmation(chain, 4.0, 1.0, 0.5, 1, 50) == 2);
+}
+
+TEST_CASE("a run of misses is rare once its probability is below the tolerance") {
+  // 0.3^3 = 0.027 > 0.01 >= 0.3^4 = 0.0081.
+  CHECK(rareMissRun(0.7, 0.01, 50) == 4);
+  // 0.5^6 = 0.0156, 0.5^7 = 0.0078; capped at 5.
+  CHECK(rareMissRun(0.5, 0.01, 50) == 7);
+  CHECK(rareMissRun(0.5, 0.01, 5) == 5);
+  CHECK(rareMissRun(1.0, 0.01, 50) == 1);
+  CHECK(rareMissRun(0.0, 0.01, 50) == 50);
+}
+
+TEST_CASE("the chi-square gate of an isotropic innovation is an ellipse of area pi g s2") {
+  CHECK(gateArea(9.21, 0.5) == Approx(M_PI * 4.605));
+}
