@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <map>
+#include <stdexcept>
 
 #include "aggregator/association.hpp"
 #include "aggregator/run_files.hpp"
@@ -18,6 +19,8 @@ struct SupernodeBatch {
   std::vector<common::TrackEstimate> tracks;
   std::uint32_t observations_in_window = 0;
   std::uint32_t observations_dropped_stale = 0;
+  std::int32_t settled_first = 1;  ///< the ticks it settles: settled_first .. + settled.size() - 1
+  std::vector<std::vector<common::TrackEstimate>> settled;
 };
 
 }  // namespace
@@ -32,6 +35,11 @@ void runAggregatorRole(const dds::RoleContext& context) {
     // Read now, not after the run: a malformed run.json must not cost the run's metrics.json.
     const std::string provenance = common::readRunProvenance(context.run_dir + "/run.json");
     RunScorer scorer(kLiveStream, scenario.metrics, scenario.supernodes);
+    // The settled stream: the supernodes' estimates of each tick once it left their windows,
+    // associated by an associator of its own (its ids are its own) and scored the same way.
+    const auto settled_associator = makeAssociator(associationContext(scenario));
+    RunScorer settled_scorer(kSettledStream, scenario.metrics, scenario.supernodes);
+    std::int32_t settled_through = 0;
 
     Reader<wsn_msg_TrackBatch> track_reader(participant, topics.track_batch, Qos::reliableKeepAll());
     Writer<wsn_msg_GlobalTrackBatch> global_writer(participant, topics.global_track_batch, Qos::reliableKeepAll());
@@ -44,7 +52,8 @@ void runAggregatorRole(const dds::RoleContext& context) {
       track_reader.take([&](const wsn_msg_TrackBatch& batch) {
         if (batch.run_id != context.run_id || batch.supernode >= supernodes) return;
         inbox.put(batch.tick, batch.supernode,
-                  {decode(batch.tracks), batch.observations_in_window, batch.observations_dropped_stale});
+                  {decode(batch.tracks), batch.observations_in_window, batch.observations_dropped_stale,
+                   batch.settled_first, decodeSettled(batch.settled, batch.settled_first, batch.settled_last)});
       });
     });
     // Every role reads the global batches: the tiles for back-pressure, all for the end of run.
@@ -55,6 +64,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
 
     common::CsvFile supernode_csv(context.run_dir + "/tracks_supernode.csv", supernodeTracksCsvHeader());
     common::CsvFile global_csv(context.run_dir + "/tracks.csv", globalTracksCsvHeader());
+    common::CsvFile settled_csv(context.run_dir + "/tracks_settled.csv", globalTracksCsvHeader());
     common::CsvFile per_tick_csv(context.run_dir + "/metrics_per_tick.csv", scorer.csvHeader());
     // Each supernode reports its running total of stale drops; the run's total is the sum of
     // the last value of each.
@@ -66,11 +76,27 @@ void runAggregatorRole(const dds::RoleContext& context) {
                      [&] { return "tracks of tick " + std::to_string(t) + " from every supernode"; });
       if (!first_tick_at) first_tick_at = Clock::now();
       std::vector<SupernodeTracks> inputs;
+      std::map<std::int32_t, std::vector<SupernodeTracks>> settled_inputs;  // by settled tick
       for (auto& [supernode, batch] : inbox.take(t)) {
         for (const auto& track : batch.tracks)
           supernode_csv.row(supernodeTrackCsvRow(t, supernode, track));
         dropped_stale_by_supernode[supernode] = batch.observations_dropped_stale;
         inputs.push_back({supernode, std::move(batch.tracks)});
+        for (std::size_t k = 0; k < batch.settled.size(); ++k)
+          settled_inputs[batch.settled_first + static_cast<std::int32_t>(k)].push_back(
+              {supernode, std::move(batch.settled[k])});
+      }
+      // Every supernode settles the same ticks (one window size); a tick settles once.
+      for (auto& [tick, settled_tracks] : settled_inputs) {
+        if (tick <= settled_through || tick > t || settled_tracks.size() != supernodes)
+          throw std::runtime_error("settled tracks of tick " + std::to_string(tick) + " came from " +
+                                   std::to_string(settled_tracks.size()) + " of " + std::to_string(supernodes) +
+                                   " supernodes at tick " + std::to_string(t) + " (settled through " +
+                                   std::to_string(settled_through) + ")");
+        auto settled_global = settled_associator->associate(tick, settled_tracks);
+        settled_scorer.add(tick, truth.at(tick), settled_global);
+        for (const auto& track : settled_global) settled_csv.row(globalTrackCsvRow(tick, track));
+        settled_through = tick;
       }
       auto global = associator->associate(t, inputs);
       const TickScores scores = scorer.add(t, truth.at(t), global);
@@ -102,9 +128,13 @@ void runAggregatorRole(const dds::RoleContext& context) {
     // steady pipeline (start-up and discovery excluded; the launcher reports the total).
     const double wall_s = std::chrono::duration<double>(Clock::now() - first_tick_at.value_or(Clock::now())).count();
     const double ticks_per_s = wall_s > 0 ? (ticks - 1) / wall_s : 0.0;
-    const RunScores run_scores = scorer.finish();
+    if (settled_through != ticks)
+      throw std::runtime_error("the settled stream ends at tick " + std::to_string(settled_through) + " of " +
+                               std::to_string(ticks));
+    const std::vector<RunScores> run_scores{scorer.finish(), settled_scorer.finish()};
     supernode_csv.close();
     global_csv.close();
+    settled_csv.close();
     per_tick_csv.close();
 
     // Everything but the "timing" line is a pure function of (scenario, seed).

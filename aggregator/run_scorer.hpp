@@ -25,6 +25,9 @@ namespace wsn::aggregator {
 
 /// The stream whose scores sit at the top level of metrics.json, as before there were streams.
 inline constexpr const char* kLiveStream = "live";
+/// The settled (fixed-lag, smoothed) estimate of each tick once it left the supernodes' windows;
+/// under metrics.json's "streams" → "settled".
+inline constexpr const char* kSettledStream = "settled";
 
 /// The scores of one tick of one stream.
 struct TickScores {

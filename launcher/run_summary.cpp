@@ -52,6 +52,8 @@ RunFigures parseRunFigures(const std::string& metrics_json, const std::string& n
   f.eps_k = numberAt(metrics, "/eps_k");
   f.eps_x = numberAt(metrics, "/eps_x");
   f.ospa_mean = numberAt(metrics, "/metrics/ospa_mean");
+  f.settled_eps_k = numberAt(metrics, "/streams/settled/eps_k");
+  f.settled_ospa_mean = numberAt(metrics, "/streams/settled/metrics/ospa_mean");
   f.dropped_stale = numberAt(metrics, "/observations_dropped_stale");
   f.wall_s = numberAt(metrics, "/timing/wall_s");
   f.ticks_per_s = numberAt(metrics, "/timing/ticks_per_s");
@@ -83,6 +85,8 @@ std::string runSummary(const std::string& run_dir, const RunFigures& f, const Cl
   row(out, "eps_K  (Oh eq. 9)", show(f.eps_k, 4));
   row(out, "eps_X  (Oh eq. 10)", show(f.eps_x, 4));
   row(out, "OSPA (mean)", show(f.ospa_mean, 4));
+  row(out, "eps_K  settled", show(f.settled_eps_k, 4));
+  row(out, "OSPA settled (mean)", show(f.settled_ospa_mean, 4));
   row(out, "reports sent", show(f.reports_sent, 0));
   row(out, "reports lost", show(f.reports_lost, 0));
   row(out, "reports delayed", show(f.reports_delayed, 0));

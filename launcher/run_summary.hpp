@@ -19,6 +19,8 @@ struct RunFigures {
   std::optional<double> eps_k;
   std::optional<double> eps_x;
   std::optional<double> ospa_mean;
+  std::optional<double> settled_eps_k;      ///< the settled stream (streams.settled.eps_k)
+  std::optional<double> settled_ospa_mean;
   std::optional<double> dropped_stale;
   std::optional<double> wall_s;       ///< the tick loop, as the aggregator timed it
   std::optional<double> ticks_per_s;

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,14 @@ class Engine {
   virtual void step(const ObservationWindow& window) = 0;
   /// Confirmed tracks at the newest tick, sorted by track id.
   virtual std::vector<common::TrackEstimate> confirmedTracks() const = 0;
+  /// The estimate of `tick`, an earlier tick still in the window, revised with everything the
+  /// window has received since (fixed-lag, smoothed): what the settled stream reports once the
+  /// tick leaves the window. nullopt for an engine that does not revise the past; the live
+  /// estimate it gave at that tick then stands (SupernodeTracker keeps it).
+  virtual std::optional<std::vector<common::TrackEstimate>> revisedTracks(std::int32_t tick) const {
+    (void)tick;
+    return std::nullopt;
+  }
   /// Predicted next-tick position of every live track (tentative ones included), sorted by id.
   virtual std::vector<TrackPrediction> predictions() const = 0;
   /// Removes a live track and returns what the receiving supernode needs to continue it.

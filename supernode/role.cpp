@@ -54,9 +54,14 @@ void runSupernodeRole(const dds::RoleContext& context) {
         for (auto& handoff : batch)
           if (handoff.to_supernode == self) incoming.push_back(handoff);
 
-      const auto output = tracker.step(t, delivered, incoming);
+      auto output = tracker.step(t, delivered, incoming);
+      if (t == ticks) {  // the last tick settles what is left in the window
+        auto rest = tracker.settleRemaining();
+        for (auto& tick_tracks : rest.by_tick) output.settled.by_tick.push_back(std::move(tick_tracks));
+      }
 
       auto tracks = encode(output.tracks);
+      auto settled = encodeSettled(output.settled.first, output.settled.by_tick);
       wsn_msg_TrackBatch track_sample{};
       track_sample.run_id = context.run_id;
       track_sample.supernode = self;
@@ -64,6 +69,9 @@ void runSupernodeRole(const dds::RoleContext& context) {
       track_sample.observations_in_window = output.observations_in_window;
       track_sample.observations_dropped_stale = static_cast<std::uint32_t>(output.observations_dropped_stale);
       track_sample.tracks = sequenceView<dds_sequence_wsn_msg_TrackEstimate>(tracks);
+      track_sample.settled_first = output.settled.first;
+      track_sample.settled_last = output.settled.last();
+      track_sample.settled = sequenceView<dds_sequence_wsn_msg_SettledTrack>(settled);
       track_writer.write(track_sample);
 
       auto outgoing = encode(output.handoffs);

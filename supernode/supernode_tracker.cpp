@@ -74,6 +74,33 @@ SupernodeTracker::TickOutput SupernodeTracker::step(std::int32_t tick, std::span
   }
   out.observations_in_window = static_cast<std::uint32_t>(window_.size());
   out.observations_dropped_stale = window_.droppedStale();
+
+  live_history_.emplace_back(tick, out.tracks);
+  const std::int32_t leaving = tick - window_.windowSize() + 1;  // the window's oldest slot: final now
+  out.settled.first = settled_through_ + 1;
+  for (std::int32_t t = settled_through_ + 1; t <= leaving; ++t) out.settled.by_tick.push_back(settle(t));
+  settled_through_ = std::max(settled_through_, leaving);
+  while (!live_history_.empty() && live_history_.front().first <= settled_through_) live_history_.pop_front();
+  return out;
+}
+
+std::vector<common::TrackEstimate> SupernodeTracker::settle(std::int32_t tick) const {
+  if (auto revised = engine_->revisedTracks(tick)) {
+    std::sort(revised->begin(), revised->end(),
+              [](const common::TrackEstimate& a, const common::TrackEstimate& b) { return a.track < b.track; });
+    return std::move(*revised);
+  }
+  for (const auto& [t, tracks] : live_history_)
+    if (t == tick) return tracks;
+  return {};
+}
+
+SupernodeTracker::Settled SupernodeTracker::settleRemaining() {
+  Settled out;
+  out.first = settled_through_ + 1;
+  for (std::int32_t t = settled_through_ + 1; t <= window_.newestTick(); ++t) out.by_tick.push_back(settle(t));
+  settled_through_ = std::max(settled_through_, window_.newestTick());
+  live_history_.clear();
   return out;
 }
 

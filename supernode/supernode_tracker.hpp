@@ -3,8 +3,10 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "common/messages.hpp"
@@ -30,10 +32,21 @@ SupernodeConfig supernodeConfig(const common::Scenario& resolved, std::uint32_t 
 /// Window + engine + handoff decision of one supernode; pure and deterministic.
 class SupernodeTracker {
  public:
+  /// The settled estimate of ticks first .. first + by_tick.size() - 1: each tick's tracks as the
+  /// engine revised them when the tick left the window (its live ones when it does not revise).
+  struct Settled {
+    std::int32_t first = 1;
+    std::vector<std::vector<common::TrackEstimate>> by_tick;
+    std::int32_t last() const { return first + static_cast<std::int32_t>(by_tick.size()) - 1; }
+    friend bool operator==(const Settled&, const Settled&) = default;
+  };
+
   /// What one tick produced.
   struct TickOutput {
     std::int32_t tick = 0;
     std::vector<common::TrackEstimate> tracks;      ///< confirmed tracks, sorted by id
+    /// The tick that left the window with this one (tick - ws + 1), once there is one.
+    Settled settled;
     std::vector<common::TrackHandoff> handoffs;     ///< released tracks, sorted by id
     std::uint32_t observations_in_window = 0;
     std::uint64_t observations_dropped_stale = 0;  ///< cumulative
@@ -52,6 +65,9 @@ class SupernodeTracker {
   TickOutput step(std::int32_t tick, std::span<const common::Observation> delivered,
                   std::span<const common::TrackHandoff> incoming);
 
+  /// Settles every tick not settled yet (the last ws - 1 of a run, after its last step).
+  Settled settleRemaining();
+
   std::uint32_t supernodeIndex() const { return index_; }
   const ObservationWindow& window() const { return window_; }
   const Engine& engine() const { return *engine_; }
@@ -66,6 +82,13 @@ class SupernodeTracker {
   const EngineSpec* engine_spec_ = nullptr;  // in the static registry
   std::uint32_t accepted_kinds_ = 0;         // acceptedKindMask(*engine_spec_)
   std::uint64_t misaddressed_handoffs_ = 0;
+  /// The live tracks of the ticks still in the window, oldest first: the settled estimate of an
+  /// engine that does not revise the past.
+  std::deque<std::pair<std::int32_t, std::vector<common::TrackEstimate>>> live_history_;
+  std::int32_t settled_through_ = 0;  ///< every tick up to this one is settled
+
+  /// The settled tracks of `tick` (still in the window).
+  std::vector<common::TrackEstimate> settle(std::int32_t tick) const;
 };
 
 }  // namespace wsn::supernode

@@ -46,6 +46,12 @@ METRIC_SOURCES = {
     "tlr": ("TLR", ("track_quality", "mean_tlr"), ("track_quality", "means_defined")),
     "position_error": ("<dx>", ("track_quality", "mean_position_error"), ("track_quality", "means_defined")),
 }
+# The same metrics of the settled stream (the fixed-lag, smoothed estimate; docs/METRICS.md, "Track
+# streams"): settled_eps_k, settled_ospa, ...
+METRIC_SOURCES.update({
+    "settled_" + name: ("settled " + title, ("streams", "settled") + where,
+                        ("streams", "settled") + defined if defined else None)
+    for name, (title, where, defined) in list(METRIC_SOURCES.items())})
 DEFAULT_METRICS = ("eps_k", "eps_x", "ospa")
 METRICS = DEFAULT_METRICS  # the tabulated ones, set from --metrics
 

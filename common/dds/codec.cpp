@@ -158,20 +158,48 @@ std::vector<common::Observation> decode(const dds_sequence_wsn_msg_Observation& 
   });
 }
 
+namespace {
+
+wsn_msg_TrackEstimate wireTrack(const common::TrackEstimate& t) {
+  wsn_msg_TrackEstimate w{t.track, t.x, t.y, t.vx, t.vy, {}, t.last_seen_tick};
+  std::copy(t.covariance.begin(), t.covariance.end(), w.covariance);
+  return w;
+}
+
+common::TrackEstimate trackOf(const wsn_msg_TrackEstimate& t) {
+  common::TrackEstimate e{t.track, t.x, t.y, t.vx, t.vy, {}, t.last_seen_tick};
+  std::copy(std::begin(t.covariance), std::end(t.covariance), e.covariance.begin());
+  return e;
+}
+
+}  // namespace
+
 std::vector<wsn_msg_TrackEstimate> encode(const std::vector<common::TrackEstimate>& tracks) {
-  return mapVector<wsn_msg_TrackEstimate>(tracks, [](const common::TrackEstimate& t) {
-    wsn_msg_TrackEstimate w{t.track, t.x, t.y, t.vx, t.vy, {}, t.last_seen_tick};
-    std::copy(t.covariance.begin(), t.covariance.end(), w.covariance);
-    return w;
-  });
+  return mapVector<wsn_msg_TrackEstimate>(tracks, [](const common::TrackEstimate& t) { return wireTrack(t); });
 }
 
 std::vector<common::TrackEstimate> decode(const dds_sequence_wsn_msg_TrackEstimate& seq) {
-  return mapSequence<common::TrackEstimate>(seq, [](const wsn_msg_TrackEstimate& t) {
-    common::TrackEstimate e{t.track, t.x, t.y, t.vx, t.vy, {}, t.last_seen_tick};
-    std::copy(std::begin(t.covariance), std::end(t.covariance), e.covariance.begin());
-    return e;
-  });
+  return mapSequence<common::TrackEstimate>(seq, [](const wsn_msg_TrackEstimate& t) { return trackOf(t); });
+}
+
+
+std::vector<wsn_msg_SettledTrack> encodeSettled(std::int32_t first,
+                                                const std::vector<std::vector<common::TrackEstimate>>& by_tick) {
+  std::vector<wsn_msg_SettledTrack> out;
+  for (std::size_t k = 0; k < by_tick.size(); ++k)
+    for (const auto& track : by_tick[k]) out.push_back({first + static_cast<std::int32_t>(k), wireTrack(track)});
+  return out;
+}
+
+std::vector<std::vector<common::TrackEstimate>> decodeSettled(const dds_sequence_wsn_msg_SettledTrack& seq,
+                                                              std::int32_t first, std::int32_t last) {
+  std::vector<std::vector<common::TrackEstimate>> by_tick(last >= first ? static_cast<std::size_t>(last - first + 1) : 0);
+  for (std::uint32_t i = 0; i < seq._length; ++i) {
+    const auto& item = seq._buffer[i];
+    if (item.tick < first || item.tick > last) continue;
+    by_tick[static_cast<std::size_t>(item.tick - first)].push_back(trackOf(item.track));
+  }
+  return by_tick;
 }
 
 std::vector<wsn_msg_TrackHandoff> encode(const std::vector<common::TrackHandoff>& handoffs) {

@@ -63,6 +63,13 @@ std::vector<common::Observation> decode(const dds_sequence_wsn_msg_Observation& 
 std::vector<wsn_msg_TrackEstimate> encode(const std::vector<common::TrackEstimate>& tracks);
 std::vector<common::TrackEstimate> decode(const dds_sequence_wsn_msg_TrackEstimate& seq);
 
+/// The settled estimate of ticks first .. first + by_tick.size() - 1 as flat (tick, track) items.
+std::vector<wsn_msg_SettledTrack> encodeSettled(std::int32_t first,
+                                                const std::vector<std::vector<common::TrackEstimate>>& by_tick);
+/// The tracks of each tick first .. last (empty when last < first); items outside are ignored.
+std::vector<std::vector<common::TrackEstimate>> decodeSettled(const dds_sequence_wsn_msg_SettledTrack& seq,
+                                                              std::int32_t first, std::int32_t last);
+
 std::vector<wsn_msg_TrackHandoff> encode(const std::vector<common::TrackHandoff>& handoffs);
 std::vector<common::TrackHandoff> decode(const dds_sequence_wsn_msg_TrackHandoff& seq);
 

@@ -638,6 +638,74 @@ std::vector<common::TrackEstimate> McmcdaEngine::tracksAt(std::int32_t tick) con
   return out;
 }
 
+namespace {
+
+/// One Rauch-Tung-Striebel step per axis: the filtered state `at` (at its tick) smoothed with the
+/// smoothed state `next` of a later tick, through eq. (8)'s prediction `predicted` of `at` to
+/// next's tick: x_s = x_f + C (x_s' - x_p), P_s = P_f + C (P_s' - P_p) C^T, C = P_f F^T P_p^-1.
+TrackState smoothWith(const TrackState& at, const TrackState& predicted, const TrackState& next, double gap) {
+  const double d = gap;
+  // P_f F^T with F = [[1, d], [0, 1]]: rows (pp + d pv, pv), (pv + d vv, vv).
+  const double a11 = at.cov.pp + d * at.cov.pv, a12 = at.cov.pv;
+  const double a21 = at.cov.pv + d * at.cov.vv, a22 = at.cov.vv;
+  const double det = predicted.cov.pp * predicted.cov.vv - predicted.cov.pv * predicted.cov.pv;
+  if (!(det > 0.0)) return at;
+  const double i11 = predicted.cov.vv / det, i12 = -predicted.cov.pv / det, i22 = predicted.cov.pp / det;
+  const double c11 = a11 * i11 + a12 * i12, c12 = a11 * i12 + a12 * i22;
+  const double c21 = a21 * i11 + a22 * i12, c22 = a21 * i12 + a22 * i22;
+  TrackState s = at;
+  const auto axis = [&](double p, double v, double np, double nv, double pp, double pv) {
+    return std::pair{p + c11 * (np - pp) + c12 * (nv - pv), v + c21 * (np - pp) + c22 * (nv - pv)};
+  };
+  std::tie(s.x, s.vx) = axis(at.x, at.vx, next.x, next.vx, predicted.x, predicted.vx);
+  std::tie(s.y, s.vy) = axis(at.y, at.vy, next.y, next.vy, predicted.y, predicted.vy);
+  // P_s = P_f + C (P_s' - P_p) C^T on the shared per-axis covariance.
+  const double d11 = next.cov.pp - predicted.cov.pp, d12 = next.cov.pv - predicted.cov.pv;
+  const double d22 = next.cov.vv - predicted.cov.vv;
+  const double m11 = c11 * d11 + c12 * d12, m12 = c11 * d12 + c12 * d22;
+  const double m21 = c21 * d11 + c22 * d12, m22 = c21 * d12 + c22 * d22;
+  s.cov.pp = at.cov.pp + m11 * c11 + m12 * c12;
+  s.cov.pv = at.cov.pv + m11 * c21 + m12 * c22;
+  s.cov.vv = at.cov.vv + m21 * c21 + m22 * c22;
+  return s;
+}
+
+}  // namespace
+
+std::optional<std::vector<common::TrackEstimate>> McmcdaEngine::revisedTracks(std::int32_t tick) const {
+  std::vector<common::TrackEstimate> out;
+  for (const auto& track : tracks_) {
+    if (track.totalObservations() < params_.confirm_observations || track.observations.empty()) continue;
+    const std::int32_t first = track.anchor ? track.anchor->tick : track.observations.front().tick;
+    if (tick < first || tick > track.observations.back().tick) continue;
+    // The track's filtered states in tick order, the anchor's prior first.
+    std::vector<const TrackState*> filtered;
+    if (track.anchor) filtered.push_back(&track.anchor->prior);
+    for (const auto& state : track.states) filtered.push_back(&state);
+    // Smooth backwards from the last element while the one before is still at or after `tick`.
+    std::size_t k = filtered.size() - 1;
+    TrackState smoothed = *filtered[k];
+    while (k > 0 && filtered[k - 1]->tick >= tick) {
+      const TrackState& at = *filtered[k - 1];
+      const std::int32_t gap = smoothed.tick - at.tick;
+      smoothed = smoothWith(at, motion_.predict(at, gap), smoothed, gap * params_.model.delta);
+      --k;
+    }
+    // `tick` strictly between two elements (a missed report): the filtered state predicted to it,
+    // smoothed with the element after.
+    if (smoothed.tick > tick && k > 0) {
+      const TrackState between = motion_.predict(*filtered[k - 1], tick - filtered[k - 1]->tick);
+      const std::int32_t gap = smoothed.tick - tick;
+      smoothed = smoothWith(between, motion_.predict(between, gap), smoothed, gap * params_.model.delta);
+    }
+    std::int32_t seen = track.anchor ? track.anchor->tick - track.anchor_misses : 0;
+    for (const auto& key : track.observations)
+      if (key.tick <= tick) seen = key.tick;
+    out.push_back(estimate(track.id, smoothed, seen));
+  }
+  return out;
+}
+
 std::vector<TrackPrediction> McmcdaEngine::predictions() const {
   std::vector<TrackPrediction> out;
   for (const auto& track : tracks_) {

@@ -57,6 +57,9 @@ class McmcdaEngine final : public Engine {
   /// filtered state at their last element at or before `tick`, predicted to `tick`. tick = newest
   /// - L is the fixed-lag estimate with lag L (its association has had L more ticks of evidence).
   std::vector<common::TrackEstimate> tracksAt(std::int32_t tick) const;
+  /// tracksAt(tick) smoothed: each track's state at `tick` given all of its observations in the
+  /// window, before and after (Rauch-Tung-Striebel over eq. (8)); the settled stream.
+  std::optional<std::vector<common::TrackEstimate>> revisedTracks(std::int32_t tick) const override;
 
   /// An observation's identity across windows (a late arrival shifts slot indices, not this).
   struct ObservationKey {

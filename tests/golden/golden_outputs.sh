@@ -19,7 +19,7 @@ wsntrack=$bin_dir/wsntrack
 rm -rf "$work" && mkdir -p "$work"
 actual=$work/outputs.sha256
 : >"$actual"
-files=(scenario.yaml truth.csv observations.csv tracks_supernode.csv tracks.csv metrics_per_tick.csv network.json
+files=(scenario.yaml truth.csv observations.csv tracks_supernode.csv tracks.csv tracks_settled.csv metrics_per_tick.csv network.json
        metrics.json)
 normalise_json() {
   /usr/bin/python3 -c '

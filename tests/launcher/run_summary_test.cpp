@@ -11,6 +11,7 @@ constexpr const char* kMetrics = R"({
   "scenario": "s", "truth_targets": 5, "eps_k": 0.123456, "eps_x": 1.5, "ospa": 2.25,
   "observations_dropped_stale": 3,
   "metrics": {"eps_k": 9, "ospa_mean": 2.25, "track_ids": 7},
+  "streams": {"settled": {"eps_k": 0.0625, "metrics": {"ospa_mean": 1.125}}},
   "timing": {"wall_s": 1.23456, "ticks_per_s": 80.04}
 })";
 constexpr const char* kNetwork = R"({
@@ -68,6 +69,8 @@ TEST_CASE("the summary of a multi-process run lists figures and each process's m
         "  eps_K  (Oh eq. 9)         0.1235\n"
         "  eps_X  (Oh eq. 10)        1.5000\n"
         "  OSPA (mean)               2.2500\n"
+        "  eps_K  settled            0.0625\n"
+        "  OSPA settled (mean)       1.1250\n"
         "  reports sent              1174\n"
         "  reports lost              319\n"
         "  reports delayed           449\n"

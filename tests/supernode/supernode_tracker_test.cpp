@@ -207,3 +207,41 @@ TEST_CASE("every position engine handed a bearing observation fails naming itsel
 
 }  // namespace
 }  // namespace wsn::supernode
+
+namespace wsn::supernode {
+
+TEST_CASE("every tick of a run is settled once and in order, and GNN's settled tracks are its live ones") {
+  // GNN does not revise the past: the settled estimate of a tick is what it reported live then.
+  auto tracker = test::trackerFor(test::gnnScenario(4), 0);
+  std::vector<std::vector<common::TrackEstimate>> live;
+  std::vector<std::vector<common::TrackEstimate>> settled;
+  std::int32_t next = 1;
+  const auto collect = [&](const SupernodeTracker::Settled& s) {
+    if (s.by_tick.empty()) return;
+    CHECK(s.first == next);
+    for (const auto& tracks : s.by_tick) settled.push_back(tracks);
+    next = s.last() + 1;
+  };
+  for (std::int32_t t = 1; t <= 12; ++t) {
+    const double x = 20.0 + t;
+    const auto out = tracker.step(t, std::vector<common::Observation>{test::observation(t, t, x, 30.0)}, {});
+    // With ws = 4, tick t - 3 leaves the window at t.
+    if (t >= 4) {
+      CHECK(out.settled.first == t - 3);
+      CHECK(out.settled.by_tick.size() == 1);
+    } else {
+      CHECK(out.settled.by_tick.empty());
+    }
+    live.push_back(out.tracks);
+    collect(out.settled);
+  }
+  const auto rest = tracker.settleRemaining();
+  CHECK(rest.first == 10);
+  CHECK(rest.last() == 12);
+  collect(rest);
+  REQUIRE(settled.size() == 12);
+  CHECK(settled == live);
+  CHECK(tracker.settleRemaining().by_tick.empty());  // nothing is settled twice
+}
+
+}  // namespace wsn::supernode

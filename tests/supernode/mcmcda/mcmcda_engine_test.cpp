@@ -277,3 +277,58 @@ TEST_CASE("mcmcda gives the same outputs on two runs of the same input", "[mcmcd
 }
 
 }  // namespace wsn::supernode::mcmcda
+
+namespace wsn::supernode::mcmcda {
+
+TEST_CASE("the settled stream covers a track from the tick it was born and smooths its velocity") {
+  // One target from tick 1 at (40, 40) with v = (1, 0.5), observed every tick without noise. The
+  // live estimate needs confirm_observations = 3 reports: nothing at ticks 1 and 2. Settled, each
+  // tick as it leaves the 10-tick window is re-estimated with all of its track: tick 1 is covered,
+  // and its velocity is the line's, where the filter's first state only has its prior (0).
+  const Target target{40, 40, 1.0, 0.5};
+  const auto scenario = mcmcdaScenario();
+  auto tracker = test::trackerFor(scenario, 0);
+  std::vector<SupernodeTracker::TickOutput> outputs;
+  for (std::int32_t t = 1; t <= 20; ++t)
+    outputs.push_back(tracker.step(t, std::vector<Observation>{observation(t, t, target.x(t), target.y(t), 0)}, {}));
+  CHECK(outputs[0].tracks.empty());
+  CHECK(outputs[1].tracks.empty());
+  // Tick t - 9 settles at tick t: the first settled tick is 1, at tick 10.
+  for (std::int32_t t = 1; t <= 9; ++t) CHECK(outputs[static_cast<std::size_t>(t - 1)].settled.by_tick.empty());
+  const auto& first = outputs[9].settled;
+  REQUIRE(first.first == 1);
+  REQUIRE(first.by_tick.size() == 1);
+  REQUIRE(first.by_tick[0].size() == 1);
+  const auto& settled = first.by_tick[0][0];
+  CHECK(settled.x == Approx(40.0).margin(0.05));
+  CHECK(settled.y == Approx(40.0).margin(0.05));
+  CHECK(settled.vx == Approx(1.0).margin(0.05));
+  CHECK(settled.vy == Approx(0.5).margin(0.05));
+  // The smoothed covariance is smaller than the filtered one at the same tick.
+  const auto filtered = dynamic_cast<const McmcdaEngine&>(tracker.engine()).tracksAt(11);
+  const auto revised = tracker.engine().revisedTracks(11);
+  REQUIRE(filtered.size() == 1);
+  REQUIRE(revised.has_value());
+  REQUIRE(revised->size() == 1);
+  CHECK((*revised)[0].covariance[0] < filtered[0].covariance[0]);
+  CHECK((*revised)[0].covariance[10] < filtered[0].covariance[10]);  // vx variance
+}
+
+TEST_CASE("a missed report is bridged in the settled stream by smoothing across the gap") {
+  // No report at tick 5: the smoothed estimate there lies on the line between ticks 4 and 6.
+  const Target target{40, 40, 1.0, 0.5};
+  auto tracker = test::trackerFor(mcmcdaScenario(), 0);
+  SupernodeTracker::Settled settled;
+  for (std::int32_t t = 1; t <= 15; ++t) {
+    std::vector<Observation> obs;
+    if (t != 5) obs.push_back(observation(t, t, target.x(t), target.y(t), 0));
+    auto out = tracker.step(t, obs, {});
+    for (auto& tick_tracks : out.settled.by_tick) settled.by_tick.push_back(std::move(tick_tracks));
+  }
+  REQUIRE(settled.by_tick.size() >= 5);
+  REQUIRE(settled.by_tick[4].size() == 1);
+  CHECK(settled.by_tick[4][0].x == Approx(target.x(5)).margin(0.05));
+  CHECK(settled.by_tick[4][0].y == Approx(target.y(5)).margin(0.05));
+}
+
+}  // namespace wsn::supernode::mcmcda
