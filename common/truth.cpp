@@ -7,21 +7,6 @@
 namespace wsn::common {
 namespace {
 
-struct Interval {
-  double min;
-  double max;
-};
-
-/// Oh §VII-A: per-axis speed magnitudes of the slow, medium and fast vehicle classes.
-Interval speedInterval(SpeedClass speed_class) {
-  switch (speed_class) {
-    case SpeedClass::kSlow: return {0.0, 1.0};
-    case SpeedClass::kMedium: return {1.0, 2.0};
-    case SpeedClass::kFast: return {2.0, 5.0};
-  }
-  return {1.0, 2.0};
-}
-
 struct LiveTarget {
   TargetState state;
   std::int32_t disappear_tick;  // exclusive; INT32_MAX when open-ended
@@ -42,6 +27,15 @@ void propagate(TargetState& s, const DynamicsConfig& dynamics, Stream& noise) {
 
 }  // namespace
 
+SpeedInterval speedInterval(SpeedClass speed_class) {
+  switch (speed_class) {
+    case SpeedClass::kSlow: return {0.0, 1.0};
+    case SpeedClass::kMedium: return {1.0, 2.0};
+    case SpeedClass::kFast: return {2.0, 5.0};
+  }
+  return {1.0, 2.0};
+}
+
 TruthConfig truthConfig(const Scenario& scenario) {
   return {scenario.region, scenario.targets, scenario.dynamics, scenario.run.seed, scenario.run.ticks};
 }
@@ -57,7 +51,7 @@ Truth::Truth(const TruthConfig& config) {
   std::vector<std::pair<TargetSpec, TargetId>> scripted;
   for (const auto& spec : config.targets.scripted) scripted.emplace_back(spec, next_id++);
 
-  const Interval speed = speedInterval(config.targets.speed_class);
+  const SpeedInterval speed = speedInterval(config.targets.speed_class);
   const double birth_mean = config.targets.birth_rate * config.region.area();
 
   for (std::int32_t t = 1; t <= ticks; ++t) {

@@ -20,6 +20,14 @@ struct TargetState {
   friend bool operator==(const TargetState&, const TargetState&) = default;
 };
 
+/// Oh §VII-A: the per-axis speed magnitude |vx|, |vy| of a random target is uniform in [min, max]
+/// per tick (slow 0-1, medium 1-2, fast 2-5), with a random sign.
+struct SpeedInterval {
+  double min = 0.0;
+  double max = 0.0;
+};
+SpeedInterval speedInterval(SpeedClass speed_class);
+
 /// What the ground truth is a function of: the scenario's world, its seed and length.
 struct TruthConfig {
   Rect region;

@@ -38,21 +38,6 @@ constexpr std::int32_t kProbeLife = 3;
 constexpr std::int32_t kEmptyTicks = 2;
 constexpr std::int32_t kGenerationTicks = kProbeLife + kEmptyTicks;
 
-struct Interval {
-  double min = 0.0;
-  double max = 0.0;
-};
-
-/// Oh §VII-A, as common/truth.cpp draws them: |vx|, |vy| uniform in [min, max] per tick.
-Interval speedInterval(common::SpeedClass speed_class) {
-  switch (speed_class) {
-    case common::SpeedClass::kSlow: return {0.0, 1.0};
-    case common::SpeedClass::kMedium: return {1.0, 2.0};
-    case common::SpeedClass::kFast: return {2.0, 5.0};
-  }
-  return {1.0, 2.0};
-}
-
 std::string speedClassName(common::SpeedClass speed_class) {
   switch (speed_class) {
     case common::SpeedClass::kSlow: return "slow";
@@ -223,7 +208,7 @@ void deriveTargetStatistics(const common::Scenario& scenario, common::Observatio
   const auto scripted = static_cast<double>(targets.scripted.size());
   const double all = born + scripted;
 
-  const Interval speed = speedInterval(targets.speed_class);
+  const common::SpeedInterval speed = common::speedInterval(targets.speed_class);
   const double class_ms = (speed.min * speed.min + speed.min * speed.max + speed.max * speed.max) / 3.0;
   double scripted_ms = 0.0;
   double scripted_max = 0.0;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "common/assignment.hpp"
+#include "common/shared_derivations.hpp"
 #include "common/track_confirmation.hpp"
 
 namespace wsn::supernode::gnn {
@@ -83,14 +84,8 @@ std::string confirmationHow(const Statistics& s) {
 /// GNN's filter and track management follow the scenario (observation_model/ measures it).
 std::map<std::string, common::ParamDerivation> derivations() {
   std::map<std::string, common::ParamDerivation> d;
-  d["measurement_sigma"] = {"the sensor model's report error (localisation and fusion)",
-                            [](const Statistics& s, const Resolved&) { return s.position_sigma; }};
-  d["initial_velocity_sigma"] = {
-      "rms velocity of new targets per axis, with one tick of process noise", [](const Statistics& s, const Resolved&) {
-        const double q = s.process_noise_sigma * s.delta;
-        return Derived{std::hypot(s.velocity_sigma.value, q),
-                       "hypot(" + shortNumber(s.velocity_sigma.value) + " (" + s.velocity_sigma.how + "), q delta)"};
-      }};
+  d["measurement_sigma"] = common::reportErrorDerivation();
+  d["initial_velocity_sigma"] = common::newTrackVelocityDerivation();
   d["confirm_hits"] = {"hits that balance confirmed tracks of clutter against the wait of every new target",
                        [](const Statistics& s, const Resolved& r) {
                          return Derived{static_cast<double>(confirmHits(s, r)), confirmationHow(s)};

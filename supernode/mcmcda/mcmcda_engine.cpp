@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "common/rng.hpp"
+#include "common/shared_derivations.hpp"
 #include "common/track_confirmation.hpp"
 #include "common/track_id.hpp"
 
@@ -81,14 +82,8 @@ std::map<std::string, common::ParamDerivation> derivations() {
                                                   s.false_report_density.how + ") x " +
                                                   shortNumber(s.delivery_probability.value) + " delivered"};
       }};
-  d["measurement_sigma"] = {"the sensor model's report error (localisation and fusion)",
-                            [](const Statistics& s, const Resolved&) { return s.position_sigma; }};
-  d["initial_velocity_sigma"] = {
-      "rms velocity of new targets per axis, with one tick of process noise", [](const Statistics& s, const Resolved&) {
-        const double q = s.process_noise_sigma * s.delta;
-        return Derived{std::hypot(s.velocity_sigma.value, q),
-                       "hypot(" + shortNumber(s.velocity_sigma.value) + " (" + s.velocity_sigma.how + "), q delta)"};
-      }};
+  d["measurement_sigma"] = common::reportErrorDerivation();
+  d["initial_velocity_sigma"] = common::newTrackVelocityDerivation();
   d["max_speed"] = {"the targets' speed bound + 3 sqrt 2 measurement_sigma", [](const Statistics& s, const Resolved& r) {
                       // Two reports one tick apart differ by the step plus two errors of sigma per axis.
                       const double slack = 3.0 * std::sqrt(2.0) * r.at("measurement_sigma").value;
