@@ -18,12 +18,12 @@ struct Derived {
 
 struct ObservationStatistics {
   // Measured on the scenario's own sensor model (a deterministic simulation of its field).
-  Derived position_sigma;         ///< per-axis rms error of a target's report (region units)
-  Derived sensing_probability;    ///< a live target gives at least one report at a tick
-  Derived false_report_density;   ///< reports that are not a target's one report, per area per tick
+  Derived position_sigma;        ///< per-axis rms error of a target's report (region units)
+  Derived sensing_probability;   ///< a live target gives at least one report at a tick
+  Derived false_report_density;  ///< reports that are not a target's one report, per area per tick
   // From the network model (Oh §V, eq. 7 over the topology's hop histogram).
-  Derived delivery_probability;   ///< a report reaches its supernode's window (delay < ws)
-  Derived on_time_probability;    ///< a report reaches its supernode at the tick it was made (no delay)
+  Derived delivery_probability;  ///< a report reaches its supernode's window (delay < ws)
+  Derived on_time_probability;   ///< a report reaches its supernode at the tick it was made (no delay)
   // From the target model (targets, dynamics, region).
   Derived birth_density;            ///< new targets per area per tick
   Derived termination_probability;  ///< a live target ends (dies or leaves the region) at a tick
@@ -31,6 +31,7 @@ struct ObservationStatistics {
   Derived max_speed;                ///< bound on a target's speed (per tick), drift over its life included
 
   double region_area = 0.0;
+  double sensor_spacing = 1.0;       ///< Ds (sensors.spacing), the rule-based engine's length unit
   double process_noise_sigma = 0.0;  ///< q of Oh eq. (8)
   double delta = 1.0;
   std::int32_t window_size = 10;

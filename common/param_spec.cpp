@@ -36,7 +36,7 @@ void resolveParams(const std::string& source_path, const std::string& section, c
       params[p.name] = EngineParam{p.default_value, 0};
   }
   for (const ParamSpec* p : to_derive) {
-    const Derived d = p->derivation.derive(statistics(), params);
+    const Derived d = p->derivation.derive(statistics, params);
     double value = std::isfinite(d.value) ? d.value : p->default_value;
     if (p->integer) value = std::ceil(value - 1e-9);
     const double clamped = std::clamp(value, p->min, p->max);

@@ -20,14 +20,15 @@ namespace wsn::common {
 /// How a parameter with a physical meaning follows the scenario when the file leaves it out (or
 /// writes `auto`): a summary for the docs, and the derivation from the scenario's statistics and
 /// the parameters resolved before it (every fixed one, and the derived ones listed earlier).
+/// The statistics a derivation reads, measured on first use (the measurement simulates the
+/// sensor field, so a scenario whose derivations do not need them never pays for it).
+using StatisticsSource = std::function<const ObservationStatistics&()>;
+
 struct ParamDerivation {
   std::string summary;
-  std::function<Derived(const ObservationStatistics&, const std::map<std::string, EngineParam>& resolved)> derive;
+  std::function<Derived(const StatisticsSource& statistics, const std::map<std::string, EngineParam>& resolved)>
+      derive;
 };
-
-/// The statistics a derivation reads, measured on first use (the measurement simulates the
-/// sensor field, so a scenario that sets every derived parameter never pays for it).
-using StatisticsSource = std::function<const ObservationStatistics&()>;
 
 /// No statistics: every derived parameter takes its table default. For code that fixes the model
 /// on purpose (unit tests of an algorithm at given parameters, benchmarks); a run never uses it.

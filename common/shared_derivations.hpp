@@ -11,18 +11,20 @@ namespace wsn::common {
 
 /// R = r^2 I of a report: the sensor model's measured report error.
 inline ParamDerivation reportErrorDerivation() {
-  return {"the sensor model's report error (localisation and fusion)",
-          [](const ObservationStatistics& s, const std::map<std::string, EngineParam>&) { return s.position_sigma; }};
+  return {
+      "the sensor model's report error (localisation and fusion)",
+      [](const StatisticsSource& stats, const std::map<std::string, EngineParam>&) { return stats().position_sigma; }};
 }
 
 /// The prior std. deviation of a new track's velocity per axis: the rms velocity of new targets,
 /// widened by one tick of process noise (so that it is never 0 for targets that start at rest).
 inline ParamDerivation newTrackVelocityDerivation() {
   return {"rms velocity of new targets per axis, with one tick of process noise",
-          [](const ObservationStatistics& s, const std::map<std::string, EngineParam>&) {
+          [](const StatisticsSource& stats, const std::map<std::string, EngineParam>&) {
+            const ObservationStatistics& s = stats();
             const double q = s.process_noise_sigma * s.delta;
-            return Derived{std::hypot(s.velocity_sigma.value, q),
-                           "hypot(" + shortNumber(s.velocity_sigma.value) + " (" + s.velocity_sigma.how + "), q delta)"};
+            return Derived{std::hypot(s.velocity_sigma.value, q), "hypot(" + shortNumber(s.velocity_sigma.value) +
+                                                                      " (" + s.velocity_sigma.how + "), q delta)"};
           }};
 }
 

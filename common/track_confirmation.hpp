@@ -20,18 +20,32 @@ inline double falseTrackRate(std::int32_t n, double lambda_f, double area, doubl
   return rate;
 }
 
+/// Ticks a target waits, after its first report, for n reports in all when each tick brings one
+/// with probability pd (negative binomial mean: (n - 1) / pd).
+inline double ticksForReports(std::int32_t n, double pd) { return (n - 1) / std::max(pd, 1e-3); }
+
+/// Ticks a target waits, after its first report, for n reports on consecutive ticks when each
+/// tick brings one with probability p: the mean number of trials to a run of n successes,
+/// (1 - p^n) / ((1 - p) p^n), less the first.
+inline double ticksForConsecutiveReports(std::int32_t n, double p) {
+  p = std::clamp(p, 1e-3, 1.0);
+  if (p >= 1.0) return n - 1.0;
+  const double pn = std::pow(p, n);
+  return (1.0 - pn) / ((1.0 - p) * pn) - 1.0;
+}
+
 /// The evidence n in [min_n, max_n] that costs the fewest wrong track-ticks per tick: chains of
 /// clutter confirmed at n (false_tracks(n) per tick, each reported for about false_life ticks)
-/// against the ticks every true target waits before it is reported ((n - 1) / pd reports after
-/// its first, at births_per_tick). Ties go to the smaller n. With no clutter this is min_n: a
-/// single report is decisive when nothing else could have made it.
-template <typename FalseTracks>
-std::int32_t leastCostConfirmation(FalseTracks false_tracks, double false_life, double births_per_tick, double pd,
+/// against the ticks every true target waits before it is reported (wait(n) at births_per_tick).
+/// Ties go to the smaller n. With no clutter this is min_n: a single report is decisive when
+/// nothing else could have made it.
+template <typename FalseTracks, typename Wait>
+std::int32_t leastCostConfirmation(FalseTracks false_tracks, double false_life, double births_per_tick, Wait wait,
                                    std::int32_t min_n, std::int32_t max_n) {
   std::int32_t best = min_n;
   double best_cost = INFINITY;
   for (std::int32_t n = min_n; n <= max_n; ++n) {
-    const double cost = false_tracks(n) * false_life + births_per_tick * (n - 1) / std::max(pd, 1e-3);
+    const double cost = false_tracks(n) * false_life + births_per_tick * wait(n);
     if (cost < best_cost) {
       best = n;
       best_cost = cost;

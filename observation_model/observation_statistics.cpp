@@ -40,9 +40,12 @@ constexpr std::int32_t kGenerationTicks = kProbeLife + kEmptyTicks;
 
 std::string speedClassName(common::SpeedClass speed_class) {
   switch (speed_class) {
-    case common::SpeedClass::kSlow: return "slow";
-    case common::SpeedClass::kMedium: return "medium";
-    case common::SpeedClass::kFast: return "fast";
+    case common::SpeedClass::kSlow:
+      return "slow";
+    case common::SpeedClass::kMedium:
+      return "medium";
+    case common::SpeedClass::kFast:
+      return "fast";
   }
   return "medium";
 }
@@ -79,7 +82,9 @@ SensorMeasurement measureSensorModel(const common::Scenario& scenario, double rm
   const double jitter = std::max(spacing, reach);
   const double pitch = 5.0 * reach + 2.0 * jitter + rms_speed * kProbeLife;
   const double margin = reach;
-  const auto fit = [&](double extent) { return std::max<std::int64_t>(1, std::llround(std::floor((extent - 2 * margin) / pitch))); };
+  const auto fit = [&](double extent) {
+    return std::max<std::int64_t>(1, std::llround(std::floor((extent - 2 * margin) / pitch)));
+  };
   const std::int64_t nx = fit(region.width());
   const std::int64_t ny = fit(region.height());
   const double cell_x = (region.width() - 2 * margin) / static_cast<double>(nx);
@@ -88,15 +93,22 @@ SensorMeasurement measureSensorModel(const common::Scenario& scenario, double rm
   const auto generations =
       static_cast<std::int32_t>(std::clamp(std::ceil(kWantedSamples / per_generation), 4.0, 400.0));
 
-  common::TruthConfig truth_config;
-  truth_config.region = region;
-  truth_config.dynamics = scenario.dynamics;
-  truth_config.dynamics.process_noise_sigma = 0.0;  // probes move straight: only the sensors are measured
-  truth_config.seed = kProbeSeed;
-  truth_config.ticks = generations * kGenerationTicks;
-  std::vector<common::TargetSpec>& probes = truth_config.targets.scripted;
-  std::vector<common::Vec2> aims;  // where each probe is at its first scored tick
+  // Each generation is a simulation of its own, kGenerationTicks long with its own noise seed:
+  // a model's cost per tick may grow with every target it was ever given (the acoustic model
+  // keeps each target's trajectory), so the probes of one generation never meet the others.
+  SensorMeasurement m;
+  double squared_error = 0.0;
+  std::size_t clutter = 0;
+  std::int32_t empty_ticks = 0;
   for (std::int32_t g = 0; g < generations; ++g) {
+    const std::uint64_t seed = kProbeSeed + static_cast<std::uint64_t>(g);
+    common::TruthConfig truth_config;
+    truth_config.region = region;
+    truth_config.dynamics = scenario.dynamics;
+    truth_config.dynamics.process_noise_sigma = 0.0;  // probes move straight: only the sensors are measured
+    truth_config.seed = seed;
+    truth_config.ticks = kGenerationTicks;
+    std::vector<common::TargetSpec>& probes = truth_config.targets.scripted;
     common::Stream stream(kProbeSeed, common::Purpose::kDerivationProbe, static_cast<std::uint64_t>(g), 0);
     for (std::int64_t i = 0; i < nx; ++i)
       for (std::int64_t j = 0; j < ny; ++j) {
@@ -106,57 +118,56 @@ SensorMeasurement measureSensorModel(const common::Scenario& scenario, double rm
                                cy + stream.uniform(-jitter, jitter) * std::min(1.0, 0.5 * cell_y / (jitter + 1e-12))};
         const double heading = stream.uniform(0.0, 2.0 * std::numbers::pi);
         const common::Vec2 v{rms_speed * std::cos(heading), rms_speed * std::sin(heading)};
-        common::TargetSpec probe;
-        probe.appear_tick = g * kGenerationTicks + 1;
-        probe.disappear_tick = probe.appear_tick + kProbeLife;
+        common::TargetSpec probe;  // at `aim` at its first scored tick
+        probe.appear_tick = 1;
+        probe.disappear_tick = 1 + kProbeLife;
         probe.position = {aim.x - v.x, aim.y - v.y};
         probe.velocity = v;
         if (!scenario.targets.scripted.empty())  // loud and quiet targets in the scenario's mix
-          probe.sensing_range = scenario.targets.scripted[probes.size() % scenario.targets.scripted.size()].sensing_range;
+          probe.sensing_range =
+              scenario.targets.scripted[static_cast<std::size_t>(g * nx * ny + i * ny + j) %
+                                        scenario.targets.scripted.size()]
+                  .sensing_range;
         probes.push_back(probe);
-        aims.push_back(aim);
       }
-  }
-  const common::Truth truth(truth_config);
-  const node::TileContext context{scenario.sensor_model, kProbeSeed, probes, layout, tiles.front(), truth};
-  const auto sensors = node::makeTileSensors(context);
-
-  SensorMeasurement m;
-  m.ticks = truth_config.ticks;
-  double squared_error = 0.0;
-  std::size_t clutter = 0;
-  std::int32_t empty_ticks = 0;
-  for (std::int32_t tick = 1; tick <= truth_config.ticks; ++tick) {
-    (void)sensors->sense(tick);
-    const auto reports = sensors->report(tick, {});
-    const std::int32_t phase = (tick - 1) % kGenerationTicks;
-    const bool scored = phase >= 1 && phase < kProbeLife;
-    std::map<common::TargetId, double> nearest;  // probe -> smallest squared error of its reports
-    std::map<common::TargetId, std::pair<double, double>> nearest_error;
-    for (const auto& r : reports) {
-      if (r.target == common::kFalseAlarm) continue;
-      for (const auto& t : truth.at(tick)) {
-        if (t.id != r.target) continue;
-        const double ex = r.x - t.x;
-        const double ey = r.y - t.y;
-        const auto it = nearest.find(t.id);
-        if (it == nearest.end() || ex * ex + ey * ey < it->second) {
-          nearest[t.id] = ex * ex + ey * ey;
-          nearest_error[t.id] = {ex, ey};
+    const common::Truth truth(truth_config);
+    const node::TileContext context{scenario.sensor_model, seed, probes, layout, tiles.front(), truth};
+    const auto sensors = node::makeTileSensors(context);
+    m.ticks += truth_config.ticks;
+    for (std::int32_t tick = 1; tick <= truth_config.ticks; ++tick) {
+      (void)sensors->sense(tick);
+      const auto reports = sensors->report(tick, {});
+      const std::int32_t phase = tick - 1;
+      const bool scored = phase >= 1 && phase < kProbeLife;
+      // probe -> the error of its nearest report
+      std::map<common::TargetId, std::pair<double, double>> nearest_error;
+      for (const auto& r : reports) {
+        if (r.target == common::kFalseAlarm) continue;
+        for (const auto& t : truth.at(tick)) {
+          if (t.id != r.target) continue;
+          const double ex = r.x - t.x;
+          const double ey = r.y - t.y;
+          const auto it = nearest_error.find(t.id);
+          if (it == nearest_error.end() ||
+              ex * ex + ey * ey < it->second.first * it->second.first + it->second.second * it->second.second)
+            nearest_error[t.id] = {ex, ey};
         }
       }
-    }
-    if (phase >= kProbeLife) {
-      clutter += reports.size();
-      ++empty_ticks;
-    }
-    if (!scored) continue;
-    for (const auto& t : truth.at(tick)) {
-      ++m.samples;
-      const auto it = nearest_error.find(t.id);
-      if (it == nearest_error.end()) continue;
-      ++m.detected;
-      squared_error += it->second.first * it->second.first + it->second.second * it->second.second;
+      if (phase >= kProbeLife) {
+        // Only reports of no target: a model with propagation delay (sound) still hears the
+        // probes that just ended, and those reports name them.
+        clutter += static_cast<std::size_t>(std::count_if(
+            reports.begin(), reports.end(), [](const common::Report& r) { return r.target == common::kFalseAlarm; }));
+        ++empty_ticks;
+      }
+      if (!scored) continue;
+      for (const auto& t : truth.at(tick)) {
+        ++m.samples;
+        const auto it = nearest_error.find(t.id);
+        if (it == nearest_error.end()) continue;
+        ++m.detected;
+        squared_error += it->second.first * it->second.first + it->second.second * it->second.second;
+      }
     }
   }
   m.sensing_probability = m.samples > 0 ? static_cast<double>(m.detected) / static_cast<double>(m.samples) : 0.0;
@@ -165,8 +176,8 @@ SensorMeasurement measureSensorModel(const common::Scenario& scenario, double rm
   // 95 % confidence (the rule of three), and that bound is what the model may rely on. A density
   // of exactly 0 also makes an engine's posterior brittle: one report that fits no track then
   // costs without limit (MCMCDA at pde = 0.6 lost most targets at lambda_f = 1e-12).
-  m.false_report_density = static_cast<double>(std::max<std::size_t>(clutter, 3)) /
-                           (region.area() * static_cast<double>(empty_ticks));
+  m.false_report_density =
+      static_cast<double>(std::max<std::size_t>(clutter, 3)) / (region.area() * static_cast<double>(empty_ticks));
   m.empty_ticks = empty_ticks;
   return m;
 }
@@ -178,8 +189,8 @@ std::pair<Derived, Derived> deliveryProbabilities(const common::Scenario& scenar
   field.seed = kProbeSeed;
   const common::SensorLayout layout(field);
   const network_model::Topology topology(network_model::topologyConfig(scenario), layout.truePositions());
-  const auto ratios = network_model::expectedRatios(topology, scenario.network.pte, scenario.network.pde,
-                                                    scenario.tracker.window_size);
+  const auto ratios =
+      network_model::expectedRatios(topology, scenario.network.pte, scenario.network.pde, scenario.tracker.window_size);
   const double in_window =
       std::clamp(1.0 - ratios.lost_to_total - ratios.delayed_to_total + ratios.delayed_in_window_to_total, 0.0, 1.0);
   const double on_time = std::clamp(1.0 - ratios.lost_to_total - ratios.delayed_to_total, 0.0, 1.0);
@@ -198,6 +209,7 @@ void deriveTargetStatistics(const common::Scenario& scenario, common::Observatio
   const double ticks = std::max(1, scenario.run.ticks);
   const double q = scenario.dynamics.process_noise_sigma * scenario.dynamics.delta;
   stats.region_area = area;
+  stats.sensor_spacing = scenario.sensors.spacing;  // the rule-based engine's unit Ds, as its context has it
   stats.process_noise_sigma = scenario.dynamics.process_noise_sigma;
   stats.delta = scenario.dynamics.delta;
   stats.window_size = scenario.tracker.window_size;
@@ -223,20 +235,20 @@ void deriveTargetStatistics(const common::Scenario& scenario, common::Observatio
     longest_life = std::max(longest_life, life);
   }
   const double velocity_ms = all > 0.0 ? (born * class_ms + scripted_ms) / all : class_ms;
-  stats.velocity_sigma = {std::sqrt(velocity_ms),
-                          born > 0.0 && scripted > 0.0 ? "rms of the speed class '" + speedClassName(targets.speed_class) +
-                                                             "' and the scripted velocities, weighted by count"
-                          : scripted > 0.0           ? "rms of the scripted velocities per axis"
-                                                     : "rms per axis of the speed class '" +
-                                                           speedClassName(targets.speed_class) + "' (Oh §VII-A)"};
+  stats.velocity_sigma = {
+      std::sqrt(velocity_ms),
+      born > 0.0 && scripted > 0.0 ? "rms of the speed class '" + speedClassName(targets.speed_class) +
+                                         "' and the scripted velocities, weighted by count"
+      : scripted > 0.0 ? "rms of the scripted velocities per axis"
+                       : "rms per axis of the speed class '" + speedClassName(targets.speed_class) + "' (Oh §VII-A)"};
 
   // Oh eq. (8) lets the velocity wander by q per tick on each axis: over a life of L ticks by
   // q sqrt(L); two of those on top of the largest initial component bound nearly every target.
   const double axis_max = std::max(born > 0.0 ? speed.max : 0.0, scripted_max);
   const double drift = 2.0 * q * std::sqrt(std::max(1.0, longest_life));
-  stats.max_speed = {std::sqrt(2.0) * (axis_max + drift),
-                     "sqrt 2 x (largest initial speed per axis " + num(axis_max) + " + 2 q sqrt(longest life " +
-                         num(longest_life) + " ticks) = " + num(drift) + ")"};
+  stats.max_speed = {std::sqrt(2.0) * (axis_max + drift), "sqrt 2 x (largest initial speed per axis " + num(axis_max) +
+                                                              " + 2 q sqrt(longest life " + num(longest_life) +
+                                                              " ticks) = " + num(drift) + ")"};
 
   // Births: the Poisson rate per area, and scripted targets spread over the run.
   stats.birth_density = {targets.birth_rate + scripted / (area * ticks),
@@ -251,25 +263,26 @@ void deriveTargetStatistics(const common::Scenario& scenario, common::Observatio
   const double scripted_end = scripted > 0.0 ? scripted / scripted_life : 0.0;
   const double termination = all > 0.0 ? (born * born_end + scripted * scripted_end) / all : born_end;
   stats.termination_probability = {
-      termination, born > 0.0 && scripted > 0.0
-                       ? "death_probability and leaving the region (mean chord " + num(chord) +
-                             "), weighted with 1 / the scripted lifetimes"
-                   : scripted > 0.0 ? "1 / the mean scripted lifetime " + num(scripted_life / scripted) + " ticks"
-                                    : "targets.death_probability and leaving the region (mean chord pi A / perimeter = " +
-                                          num(chord) + " at the rms speed)"};
+      termination, born > 0.0 && scripted > 0.0 ? "death_probability and leaving the region (mean chord " + num(chord) +
+                                                      "), weighted with 1 / the scripted lifetimes"
+                   : scripted > 0.0
+                       ? "1 / the mean scripted lifetime " + num(scripted_life / scripted) + " ticks"
+                       : "targets.death_probability and leaving the region (mean chord pi A / perimeter = " +
+                             num(chord) + " at the rms speed)"};
 }
 
 common::ObservationStatistics observationStatistics(const common::Scenario& scenario) {
   common::ObservationStatistics stats;
   deriveTargetStatistics(scenario, stats);
   const SensorMeasurement m = measureSensorModel(scenario, std::sqrt(2.0) * stats.velocity_sigma.value);
-  const std::string probe = " over " + std::to_string(m.samples) + " probe samples of sensor_model '" +
-                            scenario.sensor_model.kind + "'";
+  const std::string probe =
+      " over " + std::to_string(m.samples) + " probe samples of sensor_model '" + scenario.sensor_model.kind + "'";
   stats.position_sigma = {m.position_sigma, "rms report error per axis" + probe};
   stats.sensing_probability = {m.sensing_probability, "share of probe targets with a report" + probe};
-  stats.false_report_density = {m.false_report_density, "reports per area and tick on " + std::to_string(m.empty_ticks) +
-                                                    " ticks without targets of sensor_model '" + scenario.sensor_model.kind +
-                                                    "' (at least 3: the rule of three when none is seen)"};
+  stats.false_report_density = {m.false_report_density,
+                                "false reports per area and tick on " + std::to_string(m.empty_ticks) +
+                                    " ticks without targets of sensor_model '" + scenario.sensor_model.kind +
+                                    "' (at least 3: the rule of three when none is seen)"};
   std::tie(stats.delivery_probability, stats.on_time_probability) = deliveryProbabilities(scenario);
   return stats;
 }

@@ -70,7 +70,10 @@ SupernodeTracker::TickOutput SupernodeTracker::step(std::int32_t tick, std::span
   // passed to that supernode.
   for (const auto& prediction : engine_->predictions()) {  // sorted by id
     const std::uint32_t owner = nearestSupernode(supernodes_, prediction.next_position);
-    if (owner != index_) out.handoffs.push_back(engine_->release(prediction.track, owner));
+    if (owner != index_) {
+      keepSettledOf(prediction.track, tick);
+      out.handoffs.push_back(engine_->release(prediction.track, owner));
+    }
   }
   out.observations_in_window = static_cast<std::uint32_t>(window_.size());
   out.observations_dropped_stale = window_.droppedStale();
@@ -84,15 +87,33 @@ SupernodeTracker::TickOutput SupernodeTracker::step(std::int32_t tick, std::span
   return out;
 }
 
-std::vector<common::TrackEstimate> SupernodeTracker::settle(std::int32_t tick) const {
-  if (auto revised = engine_->revisedTracks(tick)) {
-    std::sort(revised->begin(), revised->end(),
-              [](const common::TrackEstimate& a, const common::TrackEstimate& b) { return a.track < b.track; });
-    return std::move(*revised);
+void SupernodeTracker::keepSettledOf(common::TrackId track, std::int32_t tick) {
+  // The neighbour continues the track from an anchor at `tick`: the ticks before it that are
+  // still in this window would be in neither window's revised estimate. Keep this window's
+  // estimate of them as it stands now.
+  for (std::int32_t t = settled_through_ + 1; t <= tick; ++t) {
+    const auto revised = engine_->revisedTracks(t);
+    if (!revised) return;  // an engine that does not revise: its live history has the track
+    for (const auto& estimate : *revised)
+      if (estimate.track == track) released_settled_[t].push_back(estimate);
   }
-  for (const auto& [t, tracks] : live_history_)
-    if (t == tick) return tracks;
-  return {};
+}
+
+std::vector<common::TrackEstimate> SupernodeTracker::settle(std::int32_t tick) {
+  std::vector<common::TrackEstimate> tracks;
+  if (auto revised = engine_->revisedTracks(tick)) {
+    tracks = std::move(*revised);
+  } else {
+    for (const auto& [t, live] : live_history_)
+      if (t == tick) tracks = live;
+  }
+  if (const auto it = released_settled_.find(tick); it != released_settled_.end()) {
+    tracks.insert(tracks.end(), it->second.begin(), it->second.end());
+    released_settled_.erase(it);
+  }
+  std::sort(tracks.begin(), tracks.end(),
+            [](const common::TrackEstimate& a, const common::TrackEstimate& b) { return a.track < b.track; });
+  return tracks;
 }
 
 SupernodeTracker::Settled SupernodeTracker::settleRemaining() {

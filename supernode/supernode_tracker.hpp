@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <memory>
 #include <span>
 #include <utility>
@@ -87,8 +88,14 @@ class SupernodeTracker {
   std::deque<std::pair<std::int32_t, std::vector<common::TrackEstimate>>> live_history_;
   std::int32_t settled_through_ = 0;  ///< every tick up to this one is settled
 
-  /// The settled tracks of `tick` (still in the window).
-  std::vector<common::TrackEstimate> settle(std::int32_t tick) const;
+  /// Revised estimates of tracks handed to a neighbour, for the ticks not settled yet, by tick.
+  std::map<std::int32_t, std::vector<common::TrackEstimate>> released_settled_;
+
+  /// The settled tracks of `tick` (still in the window), those handed on before included.
+  std::vector<common::TrackEstimate> settle(std::int32_t tick);
+  /// Keeps the revised estimate of `track`, about to be handed on at `tick`, of every tick not
+  /// settled yet.
+  void keepSettledOf(common::TrackId track, std::int32_t tick);
 };
 
 }  // namespace wsn::supernode

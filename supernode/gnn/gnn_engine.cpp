@@ -72,7 +72,8 @@ std::int32_t confirmHits(const Statistics& s, const Resolved& r) {
         std::exp(std::lgamma(static_cast<double>(n)) - std::lgamma(static_cast<double>(m)) - std::lgamma(n - m + 1.0));
     return common::falseTrackRate(m, lambda_f, s.region_area, first, later) * placements;
   };
-  return common::leastCostConfirmation(false_tracks, r.at("max_misses").value, births, pd, 1, 50);
+  return common::leastCostConfirmation(false_tracks, r.at("max_misses").value, births,
+                                       [&](std::int32_t k) { return common::ticksForReports(k, pd); }, 1, 50);
 }
 
 std::string confirmationHow(const Statistics& s) {
@@ -87,11 +88,13 @@ std::map<std::string, common::ParamDerivation> derivations() {
   d["measurement_sigma"] = common::reportErrorDerivation();
   d["initial_velocity_sigma"] = common::newTrackVelocityDerivation();
   d["confirm_hits"] = {"hits that balance confirmed tracks of clutter against the wait of every new target",
-                       [](const Statistics& s, const Resolved& r) {
+                       [](const common::StatisticsSource& stats, const Resolved& r) {
+                         const Statistics& s = stats();
                          return Derived{static_cast<double>(confirmHits(s, r)), confirmationHow(s)};
                        }};
   d["confirm_window"] = {"ticks in which a target's track collects confirm_hits with probability 0.95",
-                         [](const Statistics& s, const Resolved& r) {
+                         [](const common::StatisticsSource& stats, const Resolved& r) {
+                           const Statistics& s = stats();
                            const auto m = static_cast<std::int32_t>(r.at("confirm_hits").value);
                            const double pd = s.detectionProbability();
                            return Derived{static_cast<double>(confirmationWindow(m, pd)),
@@ -99,7 +102,8 @@ std::map<std::string, common::ParamDerivation> derivations() {
                                               shortNumber(pd)};
                          }};
   d["max_misses"] = {"consecutive misses rarer than 1 % at the scenario's pd (sensed and delivered in the window)",
-                     [](const Statistics& s, const Resolved&) {
+                     [](const common::StatisticsSource& stats, const Resolved&) {
+                       const Statistics& s = stats();
                        // GNN replays the window every tick, so a report that arrives late still
                        // counts: the in-window pd, not the on-time one (measured: judged on time,
                        // the long coasts let clutter tracks run away at pde = 0.6).

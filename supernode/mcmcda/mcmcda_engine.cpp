@@ -66,25 +66,32 @@ std::map<std::string, common::ParamDerivation> derivations() {
   std::map<std::string, common::ParamDerivation> d;
   d["detection_probability"] = {
       "the sensor model's sensing probability x the network's delivery into the window",
-      [](const Statistics& s, const Resolved&) {
+      [](const common::StatisticsSource& stats, const Resolved&) {
+        const Statistics& s = stats();
         return Derived{s.detectionProbability(), shortNumber(s.sensing_probability.value) + " sensed (" +
                                                      s.sensing_probability.how + ") x " +
                                                      shortNumber(s.delivery_probability.value) + " delivered (" +
                                                      s.delivery_probability.how + ")"};
       }};
-  d["termination_probability"] = {"targets.death_probability, leaving the region, scripted lifetimes",
-                                  [](const Statistics& s, const Resolved&) { return s.termination_probability; }};
-  d["birth_density"] = {"targets.birth_rate and the scripted targets",
-                        [](const Statistics& s, const Resolved&) { return s.birth_density; }};
+  d["termination_probability"] = {
+      "targets.death_probability, leaving the region, scripted lifetimes",
+      [](const common::StatisticsSource& stats, const Resolved&) { return stats().termination_probability; }};
+  d["birth_density"] = {
+      "targets.birth_rate and the scripted targets",
+      [](const common::StatisticsSource& stats, const Resolved&) { return stats().birth_density; }};
   d["false_alarm_density"] = {
-      "the sensor model's false reports x the network's delivery", [](const Statistics& s, const Resolved&) {
+      "the sensor model's false reports x the network's delivery",
+      [](const common::StatisticsSource& stats, const Resolved&) {
+        const Statistics& s = stats();
         return Derived{s.falseAlarmDensity(), shortNumber(s.false_report_density.value) + " reported (" +
                                                   s.false_report_density.how + ") x " +
                                                   shortNumber(s.delivery_probability.value) + " delivered"};
       }};
   d["measurement_sigma"] = common::reportErrorDerivation();
   d["initial_velocity_sigma"] = common::newTrackVelocityDerivation();
-  d["max_speed"] = {"the targets' speed bound + 3 sqrt 2 measurement_sigma", [](const Statistics& s, const Resolved& r) {
+  d["max_speed"] = {"the targets' speed bound + 3 sqrt 2 measurement_sigma",
+                    [](const common::StatisticsSource& stats, const Resolved& r) {
+                      const Statistics& s = stats();
                       // Two reports one tick apart differ by the step plus two errors of sigma per axis.
                       const double slack = 3.0 * std::sqrt(2.0) * r.at("measurement_sigma").value;
                       return Derived{s.max_speed.value + slack,
@@ -93,7 +100,8 @@ std::map<std::string, common::ParamDerivation> derivations() {
                     }};
   d["max_gap"] = {"ticks until a run of misses at the newest tick (sensed and not delayed) is rarer than 1 %, at "
                   "most window_size",
-                  [](const Statistics& s, const Resolved&) {
+                  [](const common::StatisticsSource& stats, const Resolved&) {
+                    const Statistics& s = stats();
                     // Judged at the live edge, where a delayed report has not arrived yet: a
                     // track whose reports are late must still be continued and reported.
                     const double pd = s.onTimeDetectionProbability();
@@ -103,7 +111,8 @@ std::map<std::string, common::ParamDerivation> derivations() {
                   }};
   d["confirm_observations"] = {
       "observations that balance reported chains of clutter against the wait of every new target",
-      [](const Statistics& s, const Resolved& r) {
+      [](const common::StatisticsSource& stats, const Resolved& r) {
+        const Statistics& s = stats();
         const double sigma2 = std::pow(r.at("measurement_sigma").value, 2);
         const double v2 = std::pow(r.at("initial_velocity_sigma").value, 2);
         const double lambda_f = r.at("false_alarm_density").value;
@@ -119,7 +128,8 @@ std::map<std::string, common::ParamDerivation> derivations() {
         const double false_life = r.at("max_gap").value;
         const auto n = common::leastCostConfirmation(
             [&](std::int32_t k) { return common::falseTrackRate(k, lambda_f, s.region_area, first, later); },
-            false_life, births, pd, 2, std::max(2, s.window_size));
+            false_life, births, [&](std::int32_t k) { return common::ticksForReports(k, pd); }, 2,
+            std::max(2, s.window_size));
         return Derived{static_cast<double>(n),
                        "fewest wrong track-ticks: chains of clutter (lambda_f " + shortNumber(lambda_f) + " over " +
                            shortNumber(s.region_area) + ", each kept max_gap ticks) against the wait of " +

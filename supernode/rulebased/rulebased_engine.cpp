@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <memory>
 #include <string>
 
 #include "common/assignment.hpp"
+#include "common/track_confirmation.hpp"
 #include "common/track_id.hpp"
 
 namespace wsn::supernode::rulebased {
@@ -22,6 +24,42 @@ common::Vec2 positionOf(const GaussianState& s) { return {s.x(kX), s.x(kY)}; }
 common::Vec2 velocityOf(const GaussianState& s) { return {s.x(kVx), s.x(kVy)}; }
 
 bool byId(const RulebasedEngine::Identity& a, const RulebasedEngine::Identity& b) { return a.id < b.id; }
+
+using Resolved = std::map<std::string, common::EngineParam>;
+
+/// The sightings a new target's cluster needs follow the clutter that reaches the tracker.
+std::map<std::string, common::ParamDerivation> derivations() {
+  std::map<std::string, common::ParamDerivation> d;
+  d["confirm_ticks"] = {
+      "sightings that balance tracks born of clutter against the wait of every new target; 2 with denoise",
+      [](const common::StatisticsSource& stats, const Resolved& r) -> common::Derived {
+        // With the An et al. 2013 steps on, isolated noise is removed before clustering: the raw
+        // report rate the probe measures never reaches the birth test.
+        if (r.at("denoise").value != 0.0)
+          return {2.0, "denoise on: the noise steps remove the clutter the probe counts; two sightings give a velocity"};
+        const common::ObservationStatistics& s = stats();  // measured only when needed
+        const double lambda_f = s.falseAlarmDensity();
+        // Sightings must come on consecutive ticks, and a tick is decided decision_lag ticks late:
+        // without a lag, only the reports that were not delayed count.
+        const double pd = r.at("decision_lag").value > 0.0 ? s.detectionProbability() : s.onTimeDetectionProbability();
+        const double births = std::max(s.birth_density.value * s.region_area, 1.0 / std::max(1, s.run_ticks));
+        // A candidate continues in a cluster within claim_gate Ds of it (single-report clusters):
+        // each sighting after the first is a disc of that radius.
+        const double reach = r.at("claim_gate").value * s.sensor_spacing;
+        const double gate = 3.14159265358979 * reach * reach;
+        const auto n = common::leastCostConfirmation(
+            [&](std::int32_t k) { return common::falseTrackRate(k, lambda_f, s.region_area, gate, gate); },
+            r.at("max_coast_ticks").value, births,
+            [&](std::int32_t k) { return common::ticksForConsecutiveReports(k, pd); }, 2, 100);
+        return {static_cast<double>(n),
+                "fewest wrong track-ticks: candidates of clutter (" + common::shortNumber(lambda_f) +
+                    " per area and tick, gate radius claim_gate Ds = " + common::shortNumber(reach) +
+                    ", kept max_coast_ticks) against the wait of " + common::shortNumber(births) +
+                    " births per tick, sighted on consecutive ticks at pd " + common::shortNumber(pd) +
+                    "; at least 2 sightings, which give a velocity"};
+      }};
+  return d;
+}
 
 
 
@@ -112,7 +150,7 @@ EngineSpec engineSpec() {
       "rule-based centroid tracker (An et al. 2014): 8-connected clusters of detecting sensors, weighted "
       "centroids, match/merge indicators through merging and splitting, nearest-neighbour Kalman tracks with "
       "NIS-adapted process noise; optional noise mitigation (An et al. 2013). Lengths in sensor separations Ds";
-  spec.params = common::paramSpecs(paramTable());
+  spec.params = common::paramSpecs(paramTable(), derivations());
   spec.create = [](const EngineContext& context) -> std::unique_ptr<Engine> {
     return std::make_unique<RulebasedEngine>(context);
   };

@@ -19,8 +19,9 @@ TEST_CASE("a chain of false reports multiplies the expected clutter of each gate
 
 TEST_CASE("without clutter a single report is decisive") {
   const auto none = [](std::int32_t n) { return falseTrackRate(n, 0.0, 1e4, 50.0, 2.0); };
-  CHECK(leastCostConfirmation(none, 4.0, 0.1, 0.7, 1, 50) == 1);
-  CHECK(leastCostConfirmation(none, 4.0, 0.1, 0.7, 2, 50) == 2);  // an engine whose tracks need two
+  const auto wait07 = [](std::int32_t n) { return ticksForReports(n, 0.7); };
+  CHECK(leastCostConfirmation(none, 4.0, 0.1, wait07, 1, 50) == 1);
+  CHECK(leastCostConfirmation(none, 4.0, 0.1, wait07, 2, 50) == 2);  // an engine whose tracks need two
 }
 
 TEST_CASE("the confirmation weighs clutter tracks against the wait of every target") {
@@ -28,9 +29,10 @@ TEST_CASE("the confirmation weighs clutter tracks against the wait of every targ
   // False tracks of the chain above, kept 4 ticks: n = 2 costs 0.5 x 4 + 0.2 = 2.2, n = 3 costs
   // 0.004 + 0.4 = 0.404, n = 4 costs 8e-6 + 0.6: n = 3 is cheapest.
   const auto chain = [](std::int32_t n) { return falseTrackRate(n, 1e-3, 1e4, 50.0, 2.0); };
-  CHECK(leastCostConfirmation(chain, 4.0, 0.1, 0.5, 1, 50) == 3);
+  const auto wait05 = [](std::int32_t n) { return ticksForReports(n, 0.5); };
+  CHECK(leastCostConfirmation(chain, 4.0, 0.1, wait05, 1, 50) == 3);
   // Ten times the births make waiting dearer: n = 2 costs 2 + 2 = 4, n = 3 costs 0.004 + 4.
-  CHECK(leastCostConfirmation(chain, 4.0, 1.0, 0.5, 1, 50) == 2);
+  CHECK(leastCostConfirmation(chain, 4.0, 1.0, wait05, 1, 50) == 2);
 }
 
 TEST_CASE("a run of misses is rare once its probability is below the tolerance") {
@@ -45,4 +47,15 @@ TEST_CASE("a run of misses is rare once its probability is below the tolerance")
 
 TEST_CASE("the chi-square gate of an isotropic innovation is an ellipse of area pi g s2") {
   CHECK(gateArea(9.21, 0.5) == Approx(M_PI * 4.605));
+}
+
+TEST_CASE("a run of consecutive reports takes longer to come than as many reports") {
+  // p = 0.5: a run of 2 takes (1 - 0.25) / (0.5 x 0.25) = 6 trials, 5 after the first; 2
+  // reports in any order take 1 / 0.5 = 2 ticks after the first.
+  CHECK(ticksForConsecutiveReports(2, 0.5) == Approx(5.0));
+  CHECK(ticksForReports(2, 0.5) == Approx(2.0));
+  // A run of 3: (1 - 0.125) / (0.5 x 0.125) = 14 trials.
+  CHECK(ticksForConsecutiveReports(3, 0.5) == Approx(13.0));
+  // Certain reports: n - 1 ticks either way.
+  CHECK(ticksForConsecutiveReports(3, 1.0) == Approx(2.0));
 }
