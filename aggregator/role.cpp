@@ -53,7 +53,8 @@ void runAggregatorRole(const dds::RoleContext& context) {
         if (batch.run_id != context.run_id || batch.supernode >= supernodes) return;
         inbox.put(batch.tick, batch.supernode,
                   {decode(batch.tracks), batch.observations_in_window, batch.observations_dropped_stale,
-                   batch.settled_first, decodeSettled(batch.settled, batch.settled_first, batch.settled_last)});
+                   batch.settled_first,
+                   decodeSettled(batch.settled, batch.settled_first, batch.settled_last, scenario.tracker.window_size)});
       });
     });
     // Every role reads the global batches: the tiles for back-pressure, all for the end of run.
@@ -88,7 +89,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
       }
       // Every supernode settles the same ticks (one window size); a tick settles once.
       for (auto& [tick, settled_tracks] : settled_inputs) {
-        if (tick <= settled_through || tick > t || settled_tracks.size() != supernodes)
+        if (tick != settled_through + 1 || tick > t || settled_tracks.size() != supernodes)
           throw std::runtime_error("settled tracks of tick " + std::to_string(tick) + " came from " +
                                    std::to_string(settled_tracks.size()) + " of " + std::to_string(supernodes) +
                                    " supernodes at tick " + std::to_string(t) + " (settled through " +

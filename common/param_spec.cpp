@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace wsn::common {
 
@@ -17,6 +18,7 @@ void resolveParams(const std::string& source_path, const std::string& section, c
       throw ScenarioError(where(param.line) + "unknown parameter '" + name + "' for " + owner +
                           "; expected one of: " + (names.empty() ? "(none)" : names));
     }
+    if (param.automatic) continue;  // a known name asking for its default: nothing to range-check
     const double v = param.value;
     if (!(v >= it->min && v <= it->max))  // also rejects NaN
       throw ScenarioError(where(param.line) + "'" + section + "." + name + "' must be in [" + config::compactNumber(it->min) +
@@ -25,6 +27,7 @@ void resolveParams(const std::string& source_path, const std::string& section, c
       throw ScenarioError(where(param.line) + "'" + section + "." + name + "' must be a whole number, got " +
                           config::compactNumber(v));
   }
+  std::erase_if(params, [](const auto& entry) { return entry.second.automatic; });
   // Fixed defaults first, so that a derivation can read any of them; then the derived ones in
   // table order, each seeing those before it.
   std::vector<const ParamSpec*> to_derive;
@@ -36,7 +39,13 @@ void resolveParams(const std::string& source_path, const std::string& section, c
       params[p.name] = EngineParam{p.default_value, 0};
   }
   for (const ParamSpec* p : to_derive) {
-    const Derived d = p->derivation.derive(statistics, params);
+    Derived d;
+    try {
+      d = p->derivation.derive(statistics, params);
+    } catch (const std::out_of_range&) {  // it read a derived parameter listed after it
+      throw std::logic_error("the derivation of '" + section + "." + p->name + "' of " + owner +
+                             " reads a parameter that is derived after it: list it later in the table");
+    }
     double value = std::isfinite(d.value) ? d.value : p->default_value;
     if (p->integer) value = std::ceil(value - 1e-9);
     const double clamped = std::clamp(value, p->min, p->max);

@@ -181,7 +181,10 @@ std::map<std::string, EngineParam> readParams(const Reader& r, const Entry& entr
   for (const auto& [name, value] : p.entries) {
     // `auto` asks for the component's default, derived from the scenario where it has a physical
     // meaning: the same as leaving the key out, and a way for --set to undo a value the file sets.
-    if (value.value.IsScalar() && value.value.Scalar() == "auto") continue;
+    if (value.value.IsScalar() && value.value.Scalar() == "auto") {
+      params[name] = EngineParam{0.0, Reader::lineOf(value.key), true};
+      continue;
+    }
     params[name] = EngineParam{r.anyNumber(value, p.pathOf(name)), Reader::lineOf(value.key)};
   }
   return params;

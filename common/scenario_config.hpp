@@ -131,6 +131,9 @@ struct NetworkConfig {
 struct EngineParam {
   double value = 0.0;
   int line = 0;
+  /// Written `auto`: the component's default (derived where it has one); the name is still
+  /// checked, and resolution replaces the entry.
+  bool automatic = false;
   /// Equal by value: the line only serves messages.
   friend bool operator==(const EngineParam& a, const EngineParam& b) { return a.value == b.value; }
 };

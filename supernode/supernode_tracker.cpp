@@ -88,10 +88,10 @@ SupernodeTracker::TickOutput SupernodeTracker::step(std::int32_t tick, std::span
 }
 
 void SupernodeTracker::keepSettledOf(common::TrackId track, std::int32_t tick) {
-  // The neighbour continues the track from an anchor at `tick`: the ticks before it that are
-  // still in this window would be in neither window's revised estimate. Keep this window's
-  // estimate of them as it stands now.
-  for (std::int32_t t = settled_through_ + 1; t <= tick; ++t) {
+  // The neighbour continues the track from an anchor at `tick` (and settles that tick itself):
+  // the ticks before it that are still in this window would be in neither window's revised
+  // estimate. Keep this window's estimate of them as it stands now.
+  for (std::int32_t t = settled_through_ + 1; t < tick; ++t) {
     const auto revised = engine_->revisedTracks(t);
     if (!revised) return;  // an engine that does not revise: its live history has the track
     for (const auto& estimate : *revised)

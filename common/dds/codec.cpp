@@ -192,8 +192,13 @@ std::vector<wsn_msg_SettledTrack> encodeSettled(std::int32_t first,
 }
 
 std::vector<std::vector<common::TrackEstimate>> decodeSettled(const dds_sequence_wsn_msg_SettledTrack& seq,
-                                                              std::int32_t first, std::int32_t last) {
-  std::vector<std::vector<common::TrackEstimate>> by_tick(last >= first ? static_cast<std::size_t>(last - first + 1) : 0);
+                                                              std::int32_t first, std::int32_t last,
+                                                              std::int32_t max_ticks) {
+  const std::int64_t span = last >= first ? static_cast<std::int64_t>(last) - first + 1 : 0;
+  if (span > max_ticks)
+    throw std::length_error("settled ticks " + std::to_string(first) + " .. " + std::to_string(last) + " span " +
+                            std::to_string(span) + " ticks, more than the window's " + std::to_string(max_ticks));
+  std::vector<std::vector<common::TrackEstimate>> by_tick(static_cast<std::size_t>(span));
   for (std::uint32_t i = 0; i < seq._length; ++i) {
     const auto& item = seq._buffer[i];
     if (item.tick < first || item.tick > last) continue;

@@ -67,8 +67,11 @@ std::vector<common::TrackEstimate> decode(const dds_sequence_wsn_msg_TrackEstima
 std::vector<wsn_msg_SettledTrack> encodeSettled(std::int32_t first,
                                                 const std::vector<std::vector<common::TrackEstimate>>& by_tick);
 /// The tracks of each tick first .. last (empty when last < first); items outside are ignored.
+/// Throws std::length_error when the range spans more than max_ticks ticks (a batch settles at
+/// most a window's worth), so a malformed sample cannot make it allocate without bound.
 std::vector<std::vector<common::TrackEstimate>> decodeSettled(const dds_sequence_wsn_msg_SettledTrack& seq,
-                                                              std::int32_t first, std::int32_t last);
+                                                              std::int32_t first, std::int32_t last,
+                                                              std::int32_t max_ticks);
 
 std::vector<wsn_msg_TrackHandoff> encode(const std::vector<common::TrackHandoff>& handoffs);
 std::vector<common::TrackHandoff> decode(const dds_sequence_wsn_msg_TrackHandoff& seq);

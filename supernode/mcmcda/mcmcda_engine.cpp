@@ -682,7 +682,18 @@ std::optional<std::vector<common::TrackEstimate>> McmcdaEngine::revisedTracks(st
   for (const auto& track : tracks_) {
     if (track.totalObservations() < params_.confirm_observations || track.observations.empty()) continue;
     const std::int32_t first = track.anchor ? track.anchor->tick : track.observations.front().tick;
-    if (tick < first || tick > track.observations.back().tick) continue;
+    if (tick < first) continue;
+    if (tick > track.observations.back().tick) {
+      // Past its last observation (a report still in transit, near the end of a run or a
+      // handoff): reported as the live estimate reports it, the filtered state predicted, while
+      // its target is more likely there than gone and inside the region.
+      if (!isLive(track) || !probablyAlive(track)) continue;
+      const TrackState& last = track.states.back();
+      const TrackState predicted = motion_.predict(last, tick - last.tick);
+      if (!region_.contains({predicted.x, predicted.y})) continue;
+      out.push_back(estimate(track.id, predicted, track.observations.back().tick));
+      continue;
+    }
     // The track's filtered states in tick order, the anchor's prior first.
     std::vector<const TrackState*> filtered;
     if (track.anchor) filtered.push_back(&track.anchor->prior);

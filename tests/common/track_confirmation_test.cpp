@@ -38,9 +38,9 @@ TEST_CASE("the confirmation weighs clutter tracks against the wait of every targ
 TEST_CASE("a run of misses is rare once its probability is below the tolerance") {
   // 0.3^3 = 0.027 > 0.01 >= 0.3^4 = 0.0081.
   CHECK(rareMissRun(0.7, 0.01, 50) == 4);
-  // 0.5^6 = 0.0156, 0.5^7 = 0.0078; capped at 5.
+  // 0.5^6 = 0.0156, 0.5^7 = 0.0078.
   CHECK(rareMissRun(0.5, 0.01, 50) == 7);
-  CHECK(rareMissRun(0.5, 0.01, 5) == 5);
+  CHECK(rareMissRun(0.5, 0.01, 5) == 5);  // capped
   CHECK(rareMissRun(1.0, 0.01, 50) == 1);
   CHECK(rareMissRun(0.0, 0.01, 50) == 50);
 }

@@ -97,3 +97,8 @@ TEST_CASE("MCMCDA needs two observations without clutter and more under clutter"
   CHECK(param(resolved("oh_single_supernode"), "confirm_observations") == 2);
   CHECK(param(resolved("oh_quadrants", {"sensor_model.noise_sigma=0.8"}), "confirm_observations") >= 3);
 }
+
+TEST_CASE("a misspelt parameter written auto is still an unknown parameter") {
+  CHECK_THROWS_WITH(resolved("oh_quadrants", {"tracker.params.max_sped=auto"}),
+                    Catch::Matchers::Contains("unknown parameter 'max_sped'"));
+}

@@ -205,3 +205,23 @@ TEST_CASE("a kind the IDL does not know never crosses the wire", "[codec]") {
 
 }  // namespace
 }  // namespace wsn::dds
+
+TEST_CASE("the settled tracks of several ticks cross the wire by tick, empty ticks included") {
+  wsn::common::TrackEstimate a{7, 1.0, 2.0, 0.5, -0.5, {}, 3};
+  a.covariance[0] = 0.25;
+  const wsn::common::TrackEstimate b{9, 4.0, 5.0, 0.0, 0.0, {}, 4};
+  const std::vector<std::vector<wsn::common::TrackEstimate>> by_tick{{a, b}, {}, {b}};
+  auto items = wsn::dds::encodeSettled(3, by_tick);
+  REQUIRE(items.size() == 3);
+  CHECK(items[0].tick == 3);
+  CHECK(items[2].tick == 5);
+  const auto seq = wsn::dds::sequenceView<dds_sequence_wsn_msg_SettledTrack>(items);
+  const auto back = wsn::dds::decodeSettled(seq, 3, 5, 10);
+  REQUIRE(back.size() == 3);
+  CHECK(back[0] == by_tick[0]);
+  CHECK(back[1].empty());
+  CHECK(back[2] == by_tick[2]);
+  // An empty range (last < first) decodes to no ticks; one wider than the window is refused.
+  CHECK(wsn::dds::decodeSettled(seq, 6, 5, 10).empty());
+  CHECK_THROWS_AS(wsn::dds::decodeSettled(seq, 1, 11, 10), std::length_error);
+}
