@@ -67,4 +67,23 @@ inline std::int32_t rareMissRun(double pd, double tolerance, std::int32_t max_k)
 /// pi g sqrt(det S) = pi g s2.
 inline double gateArea(double gate_chi2, double s2) { return 3.14159265358979323846 * gate_chi2 * s2; }
 
+/// True births per tick over `area`: at least one target per run, so that a scenario with no
+/// births still weighs the wait of the targets it has.
+inline double birthsPerTick(double birth_density, double area, std::int32_t run_ticks) {
+  return std::max(birth_density * area, 1.0 / std::max(1, run_ticks));
+}
+
+/// The gates a new constant-velocity track's next reports fall in (Oh eq. 8, R = r^2 I).
+struct NewTrackGates {
+  double first = 0.0;  ///< the second report: a track born at rest, 2 r^2 + v^2 delta^2 per axis
+  double later = 0.0;  ///< once two reports fix its velocity (predicted 2 z2 - z1: 5 r^2, plus r^2)
+};
+inline NewTrackGates newTrackGates(double gate_chi2, double measurement_sigma, double velocity_sigma,
+                                   double process_noise_sigma, double delta) {
+  const double r2 = measurement_sigma * measurement_sigma;
+  const double q = process_noise_sigma * delta * delta / 2.0;  // a tick's acceleration noise in position
+  return {gateArea(gate_chi2, 2.0 * r2 + velocity_sigma * velocity_sigma * delta * delta + q * q),
+          gateArea(gate_chi2, 6.0 * r2 + q * q)};
+}
+
 }  // namespace wsn::common

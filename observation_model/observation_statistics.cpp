@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/rng.hpp"
+#include "common/scenario_schema.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
 #include "network_model/calibration.hpp"
@@ -38,19 +39,19 @@ constexpr std::int32_t kProbeLife = 3;
 constexpr std::int32_t kEmptyTicks = 2;
 constexpr std::int32_t kGenerationTicks = kProbeLife + kEmptyTicks;
 
-std::string speedClassName(common::SpeedClass speed_class) {
-  switch (speed_class) {
-    case common::SpeedClass::kSlow:
-      return "slow";
-    case common::SpeedClass::kMedium:
-      return "medium";
-    case common::SpeedClass::kFast:
-      return "fast";
-  }
-  return "medium";
+/// The speed class as the scenario file spells it (the targets table owns the names).
+std::string speedClassName(const common::TargetsConfig& targets) {
+  return common::schema::targets().find("speed_class")->get_text(targets);
 }
 
-std::string num(double v) { return common::shortNumber(v); }
+using common::shortNumber;
+
+/// The scenario's sensor field under the probe's seed.
+common::SensorFieldConfig probeField(const common::Scenario& scenario) {
+  common::SensorFieldConfig field = common::sensorFieldConfig(scenario);
+  field.seed = kProbeSeed;
+  return field;
+}
 
 struct SensorMeasurement {
   double position_sigma = 0.0;
@@ -65,18 +66,17 @@ struct SensorMeasurement {
 /// Runs the scenario's sensor model over its whole field as one tile, with probe targets on a
 /// jittered lattice far enough apart that their reports never mix, and compares the reports
 /// with them.
-SensorMeasurement measureSensorModel(const common::Scenario& scenario, double rms_speed) {
-  common::SensorFieldConfig field = common::sensorFieldConfig(scenario);
-  field.seed = kProbeSeed;
-  const common::SensorLayout layout(field);
+SensorMeasurement measureSensorModel(const common::Scenario& scenario, const common::SensorLayout& layout,
+                                     double rms_speed) {
+  const common::SensorLayoutConfig& placement = scenario.sensors;
   const auto tiles = node::makeTiles(layout, 1);
   const common::Rect& region = scenario.region;
 
   double reach = scenario.sensor_model.sensing_range;
   for (const auto& t : scenario.targets.scripted) reach = std::max(reach, t.sensing_range);
-  const double spacing = field.sensors.kind == common::SensorLayoutConfig::Kind::kGrid
-                             ? field.sensors.spacing
-                             : std::sqrt(region.area() / std::max<double>(1.0, field.sensors.count));
+  const double spacing = placement.kind == common::SensorLayoutConfig::Kind::kGrid
+                             ? placement.spacing
+                             : std::sqrt(region.area() / std::max<double>(1.0, placement.count));
   // Reports of two probes must never interact: Oh eq. 6 elects over 2 Rs, so keep 5 Rs between
   // probes plus the jitter that moves each over a whole sensor cell.
   const double jitter = std::max(spacing, reach);
@@ -184,20 +184,18 @@ SensorMeasurement measureSensorModel(const common::Scenario& scenario, double rm
 
 /// The shares of reports that reach their supernode's window, and at once: Oh eq. (7) over the
 /// hop histogram.
-std::pair<Derived, Derived> deliveryProbabilities(const common::Scenario& scenario) {
-  common::SensorFieldConfig field = common::sensorFieldConfig(scenario);
-  field.seed = kProbeSeed;
-  const common::SensorLayout layout(field);
+std::pair<Derived, Derived> deliveryProbabilities(const common::Scenario& scenario,
+                                                  const common::SensorLayout& layout) {
   const network_model::Topology topology(network_model::topologyConfig(scenario), layout.truePositions());
   const auto ratios =
       network_model::expectedRatios(topology, scenario.network.pte, scenario.network.pde, scenario.tracker.window_size);
   const double in_window =
       std::clamp(1.0 - ratios.lost_to_total - ratios.delayed_to_total + ratios.delayed_in_window_to_total, 0.0, 1.0);
   const double on_time = std::clamp(1.0 - ratios.lost_to_total - ratios.delayed_to_total, 0.0, 1.0);
-  return {{in_window, "Oh eq. 7 over the topology: lost " + num(ratios.lost_to_total) + ", delayed past the window " +
-                          num(ratios.delayed_to_total - ratios.delayed_in_window_to_total)},
-          {on_time, "Oh eq. 7 over the topology: lost " + num(ratios.lost_to_total) + ", delayed " +
-                        num(ratios.delayed_to_total)}};
+  return {{in_window, "Oh eq. 7 over the topology: lost " + shortNumber(ratios.lost_to_total) + ", delayed past the window " +
+                          shortNumber(ratios.delayed_to_total - ratios.delayed_in_window_to_total)},
+          {on_time, "Oh eq. 7 over the topology: lost " + shortNumber(ratios.lost_to_total) + ", delayed " +
+                        shortNumber(ratios.delayed_to_total)}};
 }
 
 }  // namespace
@@ -237,22 +235,22 @@ void deriveTargetStatistics(const common::Scenario& scenario, common::Observatio
   const double velocity_ms = all > 0.0 ? (born * class_ms + scripted_ms) / all : class_ms;
   stats.velocity_sigma = {
       std::sqrt(velocity_ms),
-      born > 0.0 && scripted > 0.0 ? "rms of the speed class '" + speedClassName(targets.speed_class) +
+      born > 0.0 && scripted > 0.0 ? "rms of the speed class '" + speedClassName(targets) +
                                          "' and the scripted velocities, weighted by count"
       : scripted > 0.0 ? "rms of the scripted velocities per axis"
-                       : "rms per axis of the speed class '" + speedClassName(targets.speed_class) + "' (Oh §VII-A)"};
+                       : "rms per axis of the speed class '" + speedClassName(targets) + "' (Oh §VII-A)"};
 
   // Oh eq. (8) lets the velocity wander by q per tick on each axis: over a life of L ticks by
   // q sqrt(L); two of those on top of the largest initial component bound nearly every target.
   const double axis_max = std::max(born > 0.0 ? speed.max : 0.0, scripted_max);
   const double drift = 2.0 * q * std::sqrt(std::max(1.0, longest_life));
-  stats.max_speed = {std::sqrt(2.0) * (axis_max + drift), "sqrt 2 x (largest initial speed per axis " + num(axis_max) +
-                                                              " + 2 q sqrt(longest life " + num(longest_life) +
-                                                              " ticks) = " + num(drift) + ")"};
+  stats.max_speed = {std::sqrt(2.0) * (axis_max + drift), "sqrt 2 x (largest initial speed per axis " + shortNumber(axis_max) +
+                                                              " + 2 q sqrt(longest life " + shortNumber(longest_life) +
+                                                              " ticks) = " + shortNumber(drift) + ")"};
 
   // Births: the Poisson rate per area, and scripted targets spread over the run.
   stats.birth_density = {targets.birth_rate + scripted / (area * ticks),
-                         "targets.birth_rate + " + num(scripted) + " scripted targets over the region and run"};
+                         "targets.birth_rate + " + shortNumber(scripted) + " scripted targets over the region and run"};
 
   // A born target ends by pz or by leaving the region: the mean chord of a convex region is
   // pi A / perimeter (Cauchy), crossed at the rms speed sqrt 2 x velocity sigma.
@@ -263,18 +261,21 @@ void deriveTargetStatistics(const common::Scenario& scenario, common::Observatio
   const double scripted_end = scripted > 0.0 ? scripted / scripted_life : 0.0;
   const double termination = all > 0.0 ? (born * born_end + scripted * scripted_end) / all : born_end;
   stats.termination_probability = {
-      termination, born > 0.0 && scripted > 0.0 ? "death_probability and leaving the region (mean chord " + num(chord) +
+      termination, born > 0.0 && scripted > 0.0 ? "death_probability and leaving the region (mean chord " + shortNumber(chord) +
                                                       "), weighted with 1 / the scripted lifetimes"
                    : scripted > 0.0
-                       ? "1 / the mean scripted lifetime " + num(scripted_life / scripted) + " ticks"
+                       ? "1 / the mean scripted lifetime " + shortNumber(scripted_life / scripted) + " ticks"
                        : "targets.death_probability and leaving the region (mean chord pi A / perimeter = " +
-                             num(chord) + " at the rms speed)"};
+                             shortNumber(chord) + " at the rms speed)"};
 }
 
 common::ObservationStatistics observationStatistics(const common::Scenario& scenario) {
   common::ObservationStatistics stats;
   deriveTargetStatistics(scenario, stats);
-  const SensorMeasurement m = measureSensorModel(scenario, std::sqrt(2.0) * stats.velocity_sigma.value);
+  // One layout for the probe and the topology, with the probe's own seed (a random layout and
+  // localisation errors are drawn once, not per run seed).
+  const common::SensorLayout layout(probeField(scenario));
+  const SensorMeasurement m = measureSensorModel(scenario, layout, std::sqrt(2.0) * stats.velocity_sigma.value);
   const std::string probe =
       " over " + std::to_string(m.samples) + " probe samples of sensor_model '" + scenario.sensor_model.kind + "'";
   stats.position_sigma = {m.position_sigma, "rms report error per axis" + probe};
@@ -283,7 +284,7 @@ common::ObservationStatistics observationStatistics(const common::Scenario& scen
                                 "false reports per area and tick on " + std::to_string(m.empty_ticks) +
                                     " ticks without targets of sensor_model '" + scenario.sensor_model.kind +
                                     "' (at least 3: the rule of three when none is seen)"};
-  std::tie(stats.delivery_probability, stats.on_time_probability) = deliveryProbabilities(scenario);
+  std::tie(stats.delivery_probability, stats.on_time_probability) = deliveryProbabilities(scenario, layout);
   return stats;
 }
 

@@ -55,22 +55,16 @@ std::int32_t confirmationWindow(std::int32_t m, double pd) {
 /// within the N ticks of confirmationWindow(M)), each kept max_misses ticks, against the wait of
 /// every true target.
 std::int32_t confirmHits(const Statistics& s, const Resolved& r) {
-  const double sigma2 = std::pow(r.at("measurement_sigma").value, 2);
-  const double v2 = std::pow(r.at("initial_velocity_sigma").value, 2);
-  const double q = s.process_noise_sigma * s.delta * s.delta / 2.0;
-  const double gate = r.at("gate_chi2").value;
   const double pd = s.detectionProbability();
   const double lambda_f = s.falseAlarmDensity();
-  const double births = std::max(s.birth_density.value * s.region_area, 1.0 / std::max(1, s.run_ticks));
-  // A track born at a report, at rest: the next report is gated with 2 sigma^2 + v^2 delta^2;
-  // once two reports fix its velocity, with about 6 sigma^2.
-  const double first = common::gateArea(gate, 2.0 * sigma2 + v2 * s.delta * s.delta + q * q);
-  const double later = common::gateArea(gate, 6.0 * sigma2 + q * q);
+  const double births = common::birthsPerTick(s.birth_density.value, s.region_area, s.run_ticks);
+  const auto gates = common::newTrackGates(r.at("gate_chi2").value, r.at("measurement_sigma").value,
+                                           r.at("initial_velocity_sigma").value, s.process_noise_sigma, s.delta);
   const auto false_tracks = [&](std::int32_t m) {
     const std::int32_t n = confirmationWindow(m, pd);
     const double placements =
         std::exp(std::lgamma(static_cast<double>(n)) - std::lgamma(static_cast<double>(m)) - std::lgamma(n - m + 1.0));
-    return common::falseTrackRate(m, lambda_f, s.region_area, first, later) * placements;
+    return common::falseTrackRate(m, lambda_f, s.region_area, gates.first, gates.later) * placements;
   };
   return common::leastCostConfirmation(false_tracks, r.at("max_misses").value, births,
                                        [&](std::int32_t k) { return common::ticksForReports(k, pd); }, 1, 50);

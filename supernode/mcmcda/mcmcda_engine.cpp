@@ -113,21 +113,16 @@ std::map<std::string, common::ParamDerivation> derivations() {
       "observations that balance reported chains of clutter against the wait of every new target",
       [](const common::StatisticsSource& stats, const Resolved& r) {
         const Statistics& s = stats();
-        const double sigma2 = std::pow(r.at("measurement_sigma").value, 2);
-        const double v2 = std::pow(r.at("initial_velocity_sigma").value, 2);
         const double lambda_f = r.at("false_alarm_density").value;
         const double pd = r.at("detection_probability").value;
-        const double births = std::max(r.at("birth_density").value * s.region_area, 1.0 / std::max(1, s.run_ticks));
-        // A second report near the first as the velocity prior allows (2 sigma^2 + v^2 per axis);
-        // later ones inside the gate of a track started from two reports (predicted 2 z2 - z1:
-        // 5 sigma^2, plus the report's own sigma^2).
-        const double q = s.process_noise_sigma * s.delta * s.delta / 2.0;
-        const double gate = r.at("greedy_gate_chi2").value;
-        const double first = common::gateArea(gate, 2.0 * sigma2 + v2 * s.delta * s.delta + q * q);
-        const double later = common::gateArea(gate, 6.0 * sigma2 + q * q);
+        const double births = common::birthsPerTick(r.at("birth_density").value, s.region_area, s.run_ticks);
+        const auto gates = common::newTrackGates(r.at("greedy_gate_chi2").value, r.at("measurement_sigma").value,
+                                                 r.at("initial_velocity_sigma").value, s.process_noise_sigma, s.delta);
         const double false_life = r.at("max_gap").value;
         const auto n = common::leastCostConfirmation(
-            [&](std::int32_t k) { return common::falseTrackRate(k, lambda_f, s.region_area, first, later); },
+            [&](std::int32_t k) {
+              return common::falseTrackRate(k, lambda_f, s.region_area, gates.first, gates.later);
+            },
             false_life, births, [&](std::int32_t k) { return common::ticksForReports(k, pd); }, 2,
             std::max(2, s.window_size));
         return Derived{static_cast<double>(n),

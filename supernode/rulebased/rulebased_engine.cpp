@@ -42,7 +42,7 @@ std::map<std::string, common::ParamDerivation> derivations() {
         // Sightings must come on consecutive ticks, and a tick is decided decision_lag ticks late:
         // without a lag, only the reports that were not delayed count.
         const double pd = r.at("decision_lag").value > 0.0 ? s.detectionProbability() : s.onTimeDetectionProbability();
-        const double births = std::max(s.birth_density.value * s.region_area, 1.0 / std::max(1, s.run_ticks));
+        const double births = common::birthsPerTick(s.birth_density.value, s.region_area, s.run_ticks);
         // A candidate continues in a cluster within claim_gate Ds of it (single-report clusters):
         // each sighting after the first is a disc of that radius.
         const double reach = r.at("claim_gate").value * s.sensor_spacing;

@@ -102,3 +102,26 @@ TEST_CASE("a misspelt parameter written auto is still an unknown parameter") {
   CHECK_THROWS_WITH(resolved("oh_quadrants", {"tracker.params.max_sped=auto"}),
                     Catch::Matchers::Contains("unknown parameter 'max_sped'"));
 }
+
+TEST_CASE("a derivation that reads a parameter derived after it is a programming error, named") {
+  // Derivations run in table order: 'a' reading 'b', derived later, must fail loudly rather than
+  // read a missing value.
+  std::vector<common::ParamSpec> specs(2);
+  specs[0].name = "a";
+  specs[1].name = "b";
+  for (auto& spec : specs) {
+    spec.max = 10.0;
+    spec.derivation = {"test", [](const common::StatisticsSource&, const std::map<std::string, common::EngineParam>& r) {
+                         return common::Derived{r.at("b").value, "reads b"};
+                       }};
+  }
+  specs[1].derivation.derive = [](const common::StatisticsSource&, const std::map<std::string, common::EngineParam>&) {
+    return common::Derived{1.0, "fixed"};
+  };
+  const common::ObservationStatistics none;
+  const common::StatisticsSource statistics = [&none]() -> const common::ObservationStatistics& { return none; };
+  std::map<std::string, common::EngineParam> params;
+  CHECK_THROWS_WITH(common::resolveParams("s.yaml", "tracker.params", "engine 'x'", specs, params, statistics),
+                    Catch::Matchers::Contains("'tracker.params.a'") &&
+                        Catch::Matchers::Contains("derived after it"));
+}
