@@ -58,9 +58,10 @@ struct AssociationSpec {
 const common::Registry<AssociationSpec>& associationRegistry();
 
 /// Checks scenario.aggregator.association and .params against the registry and fills in
-/// defaults; throws common::ScenarioError "file:line: ..." on an unknown method or parameter or
+/// defaults, deriving those with a physical meaning from `statistics` (without it: the fixed
+/// defaults); throws common::ScenarioError "file:line: ..." on an unknown method or parameter or
 /// a value out of range.
-void resolveAssociationParams(common::Scenario& scenario);
+void resolveAssociationParams(common::Scenario& scenario, const common::StatisticsSource& statistics = {});
 
 /// Builds the method context.association names; throws std::invalid_argument for an unknown name.
 std::unique_ptr<TrackAssociator> makeAssociator(const AssociationContext& context);

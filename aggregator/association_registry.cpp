@@ -13,12 +13,12 @@ const common::Registry<AssociationSpec>& associationRegistry() {
   return registry;
 }
 
-void resolveAssociationParams(common::Scenario& scenario) {
+void resolveAssociationParams(common::Scenario& scenario, const common::StatisticsSource& statistics) {
   auto& aggregator = scenario.aggregator;
   const AssociationSpec& spec = associationRegistry().at<common::ScenarioError>(
       aggregator.association, scenario.source_path + ":" + std::to_string(aggregator.association_line) + ": ");
   common::resolveParams(scenario.source_path, "aggregator.params", "association '" + spec.name + "'", spec.params,
-                        aggregator.params);
+                        aggregator.params, statistics, &scenario.derived);
 }
 
 AssociationContext associationContext(const common::Scenario& resolved) {

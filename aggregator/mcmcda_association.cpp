@@ -4,6 +4,8 @@
 #include <cmath>
 #include <set>
 
+#include "common/shared_derivations.hpp"
+
 namespace wsn::aggregator {
 namespace {
 
@@ -43,7 +45,13 @@ AssociationSpec mcmcdaAssociationSpec() {
   spec.description =
       "track-level MCMCDA (Oh et al. §VI): the supernodes' tracks at the ticks they were observed form Yc, "
       "a sliding-window MCMCDA over the whole region links them into global tracks";
-  spec.params = common::paramSpecs(mcmcdaAssociationParamTable());
+  // The targets' model follows the scenario as at the supernodes; the rest describes supernode
+  // tracks rather than reports, and keeps the defaults above (docs/AGGREGATION.md).
+  spec.params = common::paramSpecs(mcmcdaAssociationParamTable(),
+                                   {{"initial_velocity_sigma", common::newTrackVelocityDerivation()},
+                                    {"max_speed", common::linkSpeedDerivation()},
+                                    {"termination_probability", common::terminationDerivation()},
+                                    {"birth_density", common::birthDensityDerivation()}});
   spec.create = [](const AssociationContext& context) -> std::unique_ptr<TrackAssociator> {
     return std::make_unique<McmcdaAssociator>(context);
   };

@@ -25,6 +25,7 @@ enum class Purpose : std::uint64_t {
   kEnvironmentalNoisePhase = 13,  ///< per (sensor, component): offset of its noise episodes
   kEnvironmentalNoise = 14,    ///< per (sensor, component, episode): noisy or not, and its power
   kDerivationProbe = 15,       ///< per generation: the probe targets that measure a sensor model (observation_model/)
+  kTruthDrawn = 16,            ///< per drawn target (targets.count): its lifetime, appear tick, velocity and start
 };
 
 /// SplitMix64 finaliser: a bijective 64-bit mix with full avalanche.

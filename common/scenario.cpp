@@ -234,6 +234,12 @@ void readTargets(const Reader& r, const Section& top, const node::SensorModelSpe
     const Section sec = r.section(*e, schema::targets());
     r.fields(sec, schema::targets(), s.targets);
     if (sec.find("birth_rate") != nullptr) birthsPerTickBounded(r, s, Reader::lineOf(*sec.find("birth_rate")));
+    if (s.targets.lifetime_max < s.targets.lifetime_min) {
+      const Entry* at = sec.find("lifetime_max") != nullptr ? sec.find("lifetime_max") : sec.find("lifetime_min");
+      r.fail(Reader::lineOf(*at), "'targets.lifetime_max' " + std::to_string(s.targets.lifetime_max) +
+                                      " is below 'targets.lifetime_min' " + std::to_string(s.targets.lifetime_min) +
+                                      "; expected lifetime_min <= lifetime_max");
+    }
     if (const Entry* scripted = sec.find("scripted"); scripted != nullptr && !scripted->value.IsNull()) {
       const std::string shape = "{appear_tick, disappear_tick, x, y, vx, vy}";
       if (!scripted->value.IsSequence())

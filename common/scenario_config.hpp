@@ -107,6 +107,12 @@ struct TargetsConfig {
   /// pz); scripted targets keep their scripted lifetime.
   double death_probability = 0.0;
   SpeedClass speed_class = SpeedClass::kMedium;
+  /// Targets drawn per seed at random times (Oh §VII-A: "10 targets appear and disappear at random
+  /// times"): each lives a whole number of ticks in [lifetime_min, lifetime_max] that fits the run,
+  /// with a speed-class velocity, from a start whose straight path stays in the region.
+  std::int32_t count = 0;
+  std::int32_t lifetime_min = 25;
+  std::int32_t lifetime_max = 45;
   friend bool operator==(const TargetsConfig&, const TargetsConfig&) = default;
 };
 

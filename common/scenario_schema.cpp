@@ -92,6 +92,14 @@ const FieldTable<TargetsConfig>& targets() {
           choice<C>("speed_class", &C::speed_class, {"slow", "medium", "fast"},
                     "initial speeds of born targets, §VII-A. Each of \\|vx\\| and \\|vy\\| is uniform in [0, 1], "
                     "[1, 2] or [2, 5] per tick, with a random sign"),
+          integer<C>("count", &C::count, 0, 1e4, "targets",
+                     "targets drawn at random for each seed, Oh §VII-A's \"10 targets appear and disappear at random "
+                     "times\": a lifetime L in [`lifetime_min`, `lifetime_max`] (at most the run), an appear tick "
+                     "so that the life fits the run, a `speed_class` velocity and a start from which the straight "
+                     "path stays in the region (5 % in from its edges) as long as it can. Ids follow the scripted ones"),
+          integer<C>("lifetime_min", &C::lifetime_min, 1, 1e6, "ticks", "shortest life of a drawn target"),
+          withNotes(integer<C>("lifetime_max", &C::lifetime_max, 1, 1e6, "ticks", "longest life of a drawn target"),
+                    "[`lifetime_min`, 10^6]"),
           nested<C>("scripted", "list", "`[]`", "see below",
                     "targets placed explicitly. They get ids 0…n−1 in file order"),
       }};

@@ -1,5 +1,6 @@
-// Derivations that several engines share: a parameter with the same physical meaning (a report's
-// error, a new track's velocity prior) is derived from the scenario the same way in every engine.
+// Derivations that several components share: a parameter with the same physical meaning (a report's
+// error, a new track's velocity prior, the targets' speed, births and ends) is derived from the
+// scenario the same way in every engine and association.
 #pragma once
 
 #include <cmath>
@@ -26,6 +27,33 @@ inline ParamDerivation newTrackVelocityDerivation() {
             return Derived{std::hypot(s.velocity_sigma.value, q), "hypot(" + shortNumber(s.velocity_sigma.value) +
                                                                       " (" + s.velocity_sigma.how + "), q delta)"};
           }};
+}
+
+/// v-bar of MCMCDA's links: the targets' speed bound plus 3 sqrt 2 of the resolved
+/// `measurement_sigma` (two reports one tick apart differ by the step plus two errors per axis).
+inline ParamDerivation linkSpeedDerivation() {
+  return {"the targets' speed bound + 3 sqrt 2 measurement_sigma",
+          [](const StatisticsSource& stats, const std::map<std::string, EngineParam>& r) {
+            const ObservationStatistics& s = stats();
+            const double sigma = r.at("measurement_sigma").value;
+            return Derived{s.max_speed.value + 3.0 * std::sqrt(2.0) * sigma,
+                           shortNumber(s.max_speed.value) + " (" + s.max_speed.how + ") + 3 sqrt 2 x sigma " +
+                               shortNumber(sigma)};
+          }};
+}
+
+/// pz of eq. (3): how targets end (death probability, leaving the region, lifetimes).
+inline ParamDerivation terminationDerivation() {
+  return {"targets.death_probability, leaving the region, scripted and drawn lifetimes",
+          [](const StatisticsSource& stats, const std::map<std::string, EngineParam>&) {
+            return stats().termination_probability;
+          }};
+}
+
+/// lambda_b of eq. (3): new targets per unit area per tick.
+inline ParamDerivation birthDensityDerivation() {
+  return {"targets.birth_rate, the scripted and the drawn targets",
+          [](const StatisticsSource& stats, const std::map<std::string, EngineParam>&) { return stats().birth_density; }};
 }
 
 }  // namespace wsn::common

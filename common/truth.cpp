@@ -1,6 +1,7 @@
 #include "common/truth.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "common/rng.hpp"
 
@@ -25,6 +26,42 @@ void propagate(TargetState& s, const DynamicsConfig& dynamics, Stream& noise) {
   s.vy += d * wy;
 }
 
+/// Oh §VII-A's "10 targets appear and disappear at random times": target `id`'s life, velocity
+/// and start, drawn from its own stream so that one target's draw never moves another's.
+TargetSpec drawnTarget(const TruthConfig& config, TargetId id) {
+  const TargetsConfig& targets = config.targets;
+  Stream draw(config.seed, Purpose::kTruthDrawn, static_cast<std::uint64_t>(id), 0);
+  const std::int32_t longest = std::min(targets.lifetime_max, config.ticks);
+  const std::int32_t shortest = std::min(targets.lifetime_min, longest);
+  const auto life = static_cast<std::int32_t>(std::min<double>(
+      longest, shortest + std::floor(draw.uniform() * (longest - shortest + 1))));
+  const auto latest_start = static_cast<double>(config.ticks + 1 - life);  // the life fits the run
+  TargetSpec spec;
+  spec.appear_tick = static_cast<std::int32_t>(std::min(latest_start, 1.0 + std::floor(draw.uniform() * latest_start)));
+  spec.disappear_tick = spec.appear_tick + life;
+  const SpeedInterval speed = speedInterval(targets.speed_class);
+  spec.velocity.x = draw.uniform(speed.min, speed.max) * (draw.bernoulli(0.5) ? 1.0 : -1.0);
+  spec.velocity.y = draw.uniform(speed.min, speed.max) * (draw.bernoulli(0.5) ? 1.0 : -1.0);
+
+  // The start: its straight path stays 5 % in from the region's edges for the whole life, or, for
+  // a path longer than the region allows, for as long as any start keeps it in.
+  const Rect& r = config.region;
+  const double margin_x = 0.05 * r.width();
+  const double margin_y = 0.05 * r.height();
+  const double inner_w = r.width() - 2.0 * margin_x;
+  const double inner_h = r.height() - 2.0 * margin_y;
+  double steps = (life - 1.0) * config.dynamics.delta;  // eq. (8) moves a target delta v per tick
+  if (std::abs(spec.velocity.x) * steps > inner_w) steps = inner_w / std::abs(spec.velocity.x);
+  if (std::abs(spec.velocity.y) * steps > inner_h) steps = inner_h / std::abs(spec.velocity.y);
+  const auto start = [&](double lo, double hi, double v) {
+    const double travel = v * steps;
+    return draw.uniform(lo + std::max(0.0, -travel), hi - std::max(0.0, travel));
+  };
+  spec.position.x = start(r.x_min + margin_x, r.x_max - margin_x, spec.velocity.x);
+  spec.position.y = start(r.y_min + margin_y, r.y_max - margin_y, spec.velocity.y);
+  return spec;
+}
+
 }  // namespace
 
 SpeedInterval speedInterval(SpeedClass speed_class) {
@@ -47,9 +84,14 @@ Truth::Truth(const TruthConfig& config) {
 
   std::vector<LiveTarget> live;
   TargetId next_id = 0;
-  // Scripted targets keep ids 0..n-1 in file order; random births follow.
+  // Scripted targets keep ids 0..n-1 in file order, drawn targets (targets.count) follow, then
+  // random births. A drawn target lives like a scripted one, with its plan from drawnTarget().
   std::vector<std::pair<TargetSpec, TargetId>> scripted;
   for (const auto& spec : config.targets.scripted) scripted.emplace_back(spec, next_id++);
+  for (std::int32_t k = 0; k < config.targets.count; ++k) {
+    const TargetId id = next_id++;
+    scripted.emplace_back(drawnTarget(config, id), id);
+  }
 
   const SpeedInterval speed = speedInterval(config.targets.speed_class);
   const double birth_mean = config.targets.birth_rate * config.region.area();

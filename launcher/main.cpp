@@ -54,8 +54,9 @@ std::vector<common::ScenarioOverride> overridesOf(const po::variables_map& vm) {
 
 /// Resolves the parameters of the supernode engine and of the aggregator's association.
 void resolveComponentParams(common::Scenario& scenario) {
-  supernode::resolveEngineParams(scenario, observation_model::lazyStatistics(scenario));
-  aggregator::resolveAssociationParams(scenario);
+  const common::StatisticsSource statistics = observation_model::lazyStatistics(scenario);  // measured once, if at all
+  supernode::resolveEngineParams(scenario, statistics);
+  aggregator::resolveAssociationParams(scenario, statistics);
   launcher::checkComponentsFit(scenario);
 }
 

@@ -213,8 +213,12 @@ void deriveTargetStatistics(const common::Scenario& scenario, common::Observatio
   stats.window_size = scenario.tracker.window_size;
   stats.run_ticks = scenario.run.ticks;
 
-  // How many targets each source brings over the run, to weigh their speeds and lifetimes.
-  const double born = targets.birth_rate * area * ticks;
+  // How many targets each source brings over the run, to weigh their speeds and lifetimes. Drawn
+  // targets (targets.count) move like born ones and live a drawn lifetime like scripted ones.
+  const double drawn = targets.count;
+  const double drawn_longest = std::min<double>(targets.lifetime_max, ticks);
+  const double drawn_life = 0.5 * (std::min<double>(targets.lifetime_min, drawn_longest) + drawn_longest);
+  const double born = targets.birth_rate * area * ticks + drawn;
   const auto scripted = static_cast<double>(targets.scripted.size());
   const double all = born + scripted;
 
@@ -223,7 +227,7 @@ void deriveTargetStatistics(const common::Scenario& scenario, common::Observatio
   double scripted_ms = 0.0;
   double scripted_max = 0.0;
   double scripted_life = 0.0;
-  double longest_life = born > 0.0 ? ticks : 0.0;
+  double longest_life = targets.birth_rate > 0.0 ? ticks : drawn > 0.0 ? drawn_longest : 0.0;
   for (const auto& t : targets.scripted) {
     scripted_ms += 0.5 * (t.velocity.x * t.velocity.x + t.velocity.y * t.velocity.y);
     scripted_max = std::max({scripted_max, std::abs(t.velocity.x), std::abs(t.velocity.y)});
@@ -249,24 +253,32 @@ void deriveTargetStatistics(const common::Scenario& scenario, common::Observatio
                                                               " ticks) = " + shortNumber(drift) + ")"};
 
   // Births: the Poisson rate per area, and scripted targets spread over the run.
-  stats.birth_density = {targets.birth_rate + scripted / (area * ticks),
-                         "targets.birth_rate + " + shortNumber(scripted) + " scripted targets over the region and run"};
+  stats.birth_density = {targets.birth_rate + (scripted + drawn) / (area * ticks),
+                         "targets.birth_rate + " + shortNumber(scripted + drawn) +
+                             " scripted and drawn targets over the region and run"};
 
   // A born target ends by pz or by leaving the region: the mean chord of a convex region is
   // pi A / perimeter (Cauchy), crossed at the rms speed sqrt 2 x velocity sigma.
   const double perimeter = 2.0 * (region.width() + region.height());
   const double chord = std::numbers::pi * area / perimeter;
   const double exit = std::min(1.0, std::sqrt(2.0 * class_ms) * scenario.dynamics.delta / chord);
-  const double born_end = 1.0 - (1.0 - targets.death_probability) * (1.0 - exit);
+  const double random_born = born - drawn;
+  const double random_end = 1.0 - (1.0 - targets.death_probability) * (1.0 - exit);
+  // A drawn target ends after its lifetime, or sooner when it crosses the region first.
+  const double drawn_end = drawn > 0.0 ? std::max(1.0 / drawn_life, exit) : 0.0;
+  const double born_end = born > 0.0 ? (random_born * random_end + drawn * drawn_end) / born : random_end;
   const double scripted_end = scripted > 0.0 ? scripted / scripted_life : 0.0;
   const double termination = all > 0.0 ? (born * born_end + scripted * scripted_end) / all : born_end;
   stats.termination_probability = {
       termination, born > 0.0 && scripted > 0.0 ? "death_probability and leaving the region (mean chord " + shortNumber(chord) +
-                                                      "), weighted with 1 / the scripted lifetimes"
+                                                      "), drawn lifetimes, weighted with 1 / the scripted lifetimes"
                    : scripted > 0.0
                        ? "1 / the mean scripted lifetime " + shortNumber(scripted_life / scripted) + " ticks"
                        : "targets.death_probability and leaving the region (mean chord pi A / perimeter = " +
-                             shortNumber(chord) + " at the rms speed)"};
+                             shortNumber(chord) + " at the rms speed)" +
+                             (drawn > 0.0 ? "; drawn targets: 1 / their mean lifetime " + shortNumber(drawn_life) +
+                                                " ticks, or leaving the region if sooner"
+                                          : "")};
 }
 
 common::ObservationStatistics observationStatistics(const common::Scenario& scenario) {

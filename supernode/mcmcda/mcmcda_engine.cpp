@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -73,12 +74,8 @@ std::map<std::string, common::ParamDerivation> derivations() {
                                                      shortNumber(s.delivery_probability.value) + " delivered (" +
                                                      s.delivery_probability.how + ")"};
       }};
-  d["termination_probability"] = {
-      "targets.death_probability, leaving the region, scripted lifetimes",
-      [](const common::StatisticsSource& stats, const Resolved&) { return stats().termination_probability; }};
-  d["birth_density"] = {
-      "targets.birth_rate and the scripted targets",
-      [](const common::StatisticsSource& stats, const Resolved&) { return stats().birth_density; }};
+  d["termination_probability"] = common::terminationDerivation();
+  d["birth_density"] = common::birthDensityDerivation();
   d["false_alarm_density"] = {
       "the sensor model's false reports x the network's delivery",
       [](const common::StatisticsSource& stats, const Resolved&) {
@@ -89,15 +86,7 @@ std::map<std::string, common::ParamDerivation> derivations() {
       }};
   d["measurement_sigma"] = common::reportErrorDerivation();
   d["initial_velocity_sigma"] = common::newTrackVelocityDerivation();
-  d["max_speed"] = {"the targets' speed bound + 3 sqrt 2 measurement_sigma",
-                    [](const common::StatisticsSource& stats, const Resolved& r) {
-                      const Statistics& s = stats();
-                      // Two reports one tick apart differ by the step plus two errors of sigma per axis.
-                      const double slack = 3.0 * std::sqrt(2.0) * r.at("measurement_sigma").value;
-                      return Derived{s.max_speed.value + slack,
-                                     shortNumber(s.max_speed.value) + " (" + s.max_speed.how + ") + 3 sqrt 2 x sigma " +
-                                         shortNumber(r.at("measurement_sigma").value)};
-                    }};
+  d["max_speed"] = common::linkSpeedDerivation();
   d["max_gap"] = {"ticks until a run of misses at the newest tick (sensed and not delayed) is rarer than 1 %, at "
                   "most window_size",
                   [](const common::StatisticsSource& stats, const Resolved&) {
@@ -118,16 +107,19 @@ std::map<std::string, common::ParamDerivation> derivations() {
         const double births = common::birthsPerTick(r.at("birth_density").value, s.region_area, s.run_ticks);
         const auto gates = common::newTrackGates(r.at("greedy_gate_chi2").value, r.at("measurement_sigma").value,
                                                  r.at("initial_velocity_sigma").value, s.process_noise_sigma, s.delta);
-        const double false_life = r.at("max_gap").value;
+        // A chain of clutter is reported until max_gap ticks pass without a continuation; a lone
+        // report (n = 1) only at the tick it arrives, unless the next one continues it.
+        const double chain_life = r.at("max_gap").value;
         const auto n = common::leastCostConfirmation(
             [&](std::int32_t k) {
-              return common::falseTrackRate(k, lambda_f, s.region_area, gates.first, gates.later);
+              return common::falseTrackRate(k, lambda_f, s.region_area, gates.first, gates.later) *
+                     (k == 1 ? 1.0 : chain_life);
             },
-            false_life, births, [&](std::int32_t k) { return common::ticksForReports(k, pd); }, 2,
+            1.0, births, [&](std::int32_t k) { return common::ticksForReports(k, pd); }, 1,
             std::max(2, s.window_size));
         return Derived{static_cast<double>(n),
                        "fewest wrong track-ticks: chains of clutter (lambda_f " + shortNumber(lambda_f) + " over " +
-                           shortNumber(s.region_area) + ", each kept max_gap ticks) against the wait of " +
+                           shortNumber(s.region_area) + ", each kept max_gap ticks, a lone report 1) against the wait of " +
                            shortNumber(births) + " births per tick at pd " + shortNumber(pd)};
       }};
   return d;
@@ -182,7 +174,7 @@ const config::FieldTable<McmcdaParams>& paramTable() {
               "greedy_gate_chi2", &McmcdaParams::greedy_gate_chi2, config::closed(0.1, 1000.0), "",
               "gate (squared Mahalanobis distance) of the greedy start that joins the newest observations to tracks"),
           integer<McmcdaParams>(
-              "confirm_observations", &McmcdaParams::confirm_observations, 2.0, 1000.0, "observations",
+              "confirm_observations", &McmcdaParams::confirm_observations, 1.0, 1000.0, "observations",
               "observations a track needs (in all, before the window included) before it is reported"),
       }};
   return table;
@@ -283,7 +275,10 @@ void McmcdaEngine::step(const ObservationWindow& window) {
 
 void McmcdaEngine::commitLeavingObservations(std::int32_t oldest) {
   // Observations that leave the window are committed: the track's filtered state at the last of
-  // them becomes its anchor, so the chain continues the track without re-deciding its past.
+  // them becomes its anchor, so the chain continues the track without re-deciding its past. A
+  // newborn whose report leaves (a window of one tick) was not continued: it ends, as it would
+  // have a tick later in a longer window.
+  std::erase_if(tracks_, [&](const LiveTrack& t) { return isNewborn(t) && t.observations.front().tick < oldest; });
   for (auto& track : tracks_) {
     std::size_t gone = 0;
     while (gone < track.observations.size() && track.observations[gone].tick < oldest) ++gone;
@@ -394,9 +389,10 @@ Partition McmcdaEngine::startState(const WindowProblem& wp, std::vector<std::int
   for (std::size_t k = 0; k < lists.size(); ++k) {
     const auto& list = lists[k];
     if (list.empty() || problem.tick(list.back()) != newest_tick_ - 1) continue;
-    if (list.size() == 1 && !problem.isAnchor(list.front())) continue;
+    // A lone report starts a list only as a newborn track (confirmation at one report).
+    if (list.size() == 1 && !problem.isAnchor(list.front()) && params_.confirm_observations > 1) continue;
     TrackState last;
-    if (list.size() >= 2)
+    if (list.size() >= 2 || !problem.isAnchor(list.front()))
       problem.trackScore(list, &last);
     else
       last = problem.observation(list.front()).prior;
@@ -503,15 +499,27 @@ void McmcdaEngine::adoptBest(const ObservationWindow& window, const WindowProble
     if (previous_of[static_cast<std::size_t>(o.track)] < 0 && successor_of[static_cast<std::size_t>(o.previous)] < 0)
       link(static_cast<std::size_t>(o.track), o.previous);
 
-  // The new track set: ω̂'s tracks, plus the previous anchored tracks nobody continued that a later
-  // (or late) observation can still continue.
-  std::vector<LiveTrack> next;
-  std::vector<TrackState> states;
   // Ids that stay in use whatever the new tracks are called: continued tracks and the anchored
   // tracks kept below for a late continuation.
   std::set<common::TrackId> in_use;
   for (std::size_t k = 0; k < tracks_.size(); ++k)
     if (successor_of[k] >= 0 || tracks_[k].anchor) in_use.insert(tracks_[k].id);
+  const auto newId = [&](std::span<const std::int32_t> elements) {
+    common::TrackId proposed = 0;
+    if (propose_id_) {
+      std::vector<ObservationKey> keys;
+      for (const auto i : elements) keys.push_back(wp.keys[static_cast<std::size_t>(i)]);
+      proposed = propose_id_(keys);
+    }
+    const common::TrackId id = proposed != 0 && !in_use.contains(proposed) ? proposed : mintId();
+    in_use.insert(id);
+    return id;
+  };
+
+  // The new track set: ω̂'s tracks, plus the previous anchored tracks nobody continued that a later
+  // (or late) observation can still continue.
+  std::vector<LiveTrack> next;
+  std::vector<TrackState> states;
   for (std::size_t n = 0; n < best.size(); ++n) {
     LiveTrack track;
     const std::int32_t previous = previous_of[n];
@@ -520,14 +528,7 @@ void McmcdaEngine::adoptBest(const ObservationWindow& window, const WindowProble
       track.id = before.id;
       track.past_observations = before.past_observations;
     } else {
-      common::TrackId proposed = 0;
-      if (propose_id_) {
-        std::vector<ObservationKey> keys;
-        for (const auto i : best[n]) keys.push_back(wp.keys[static_cast<std::size_t>(i)]);
-        proposed = propose_id_(keys);
-      }
-      track.id = proposed != 0 && !in_use.contains(proposed) ? proposed : mintId();
-      in_use.insert(track.id);
+      track.id = newId(best[n]);
     }
     problem.filterTrack(best[n], states);
     std::size_t from = 0;
@@ -540,6 +541,28 @@ void McmcdaEngine::adoptBest(const ObservationWindow& window, const WindowProble
       track.states.push_back(states[m]);
     }
     next.push_back(std::move(track));
+  }
+  if (params_.confirm_observations <= 1) {
+    // Confirmation at one report means a report is decisive: nothing but a target could have made
+    // it (lambda_f ~ 0). A report of the newest tick that ω̂ leaves out of every track is then a
+    // target born now, reported at once; its next report makes it a track of ω̂, which keeps its id
+    // by the overlap above. One not continued is gone a tick later, as eq. (3) would call it a
+    // false alarm.
+    std::vector<bool> in_track(static_cast<std::size_t>(problem.size()), false);
+    for (const auto& track : best)
+      for (const auto i : track) in_track[static_cast<std::size_t>(i)] = true;
+    std::int32_t newest_begin = problem.size();
+    while (newest_begin > 0 && problem.tick(newest_begin - 1) == newest_tick_) --newest_begin;
+    for (std::int32_t i = newest_begin; i < problem.size(); ++i) {
+      if (in_track[static_cast<std::size_t>(i)] || problem.isAnchor(i)) continue;
+      const std::int32_t lone[] = {i};
+      LiveTrack track;
+      track.id = newId(lone);
+      problem.filterTrack(lone, states);
+      track.observations.push_back(wp.keys[static_cast<std::size_t>(i)]);
+      track.states.push_back(states.front());
+      next.push_back(std::move(track));
+    }
   }
   const std::int32_t next_oldest = std::max(1, newest_tick_ + 1 - window.windowSize() + 1);
   for (std::size_t k = 0; k < tracks_.size(); ++k) {
@@ -721,8 +744,10 @@ std::vector<TrackPrediction> McmcdaEngine::predictions() const {
   std::vector<TrackPrediction> out;
   for (const auto& track : tracks_) {
     // Handed on even when judged gone for now: the misses travel with it, so the receiver judges
-    // it the same way, and late reports may still revive it there.
-    if (!isLive(track)) continue;
+    // it the same way, and late reports may still revive it there. A newborn (one report, no past)
+    // is not: the receiver would take it for an established track and keep it going, where here
+    // it is gone a tick later unless a report continues it.
+    if (!isLive(track) || isNewborn(track)) continue;
     const TrackState& last = track.lastState();
     const TrackState next = motion_.predict(last, newest_tick_ + 1 - last.tick);
     out.push_back({track.id, {next.x, next.y}});

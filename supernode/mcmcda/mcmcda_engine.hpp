@@ -149,6 +149,10 @@ class McmcdaEngine final : public Engine {
   bool canContinue(const LiveTrack& track, std::int32_t oldest) const;
   /// The track may still be continued in the current window.
   bool isLive(const LiveTrack& track) const { return canContinue(track, oldest_tick_); }
+  /// A one-report track of confirmation at one report (adoptBest), not yet continued.
+  static bool isNewborn(const LiveTrack& track) {
+    return !track.anchor && track.past_observations == 0 && track.observations.size() == 1;
+  }
   /// The track's target is more likely still there than gone, given how long it has been unseen,
   /// the detection probability and the delays learnt so far.
   bool probablyAlive(const LiveTrack& track) const;

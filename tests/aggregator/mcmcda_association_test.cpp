@@ -193,6 +193,32 @@ TEST_CASE("The association registry names its methods and checks their parameter
                                         "got 2.5"));
 }
 
+TEST_CASE("The track-level association derives the targets' model and keeps the supernode-track defaults",
+          "[aggregator][mcmcda_association]") {
+  // Fast targets (speed bound 9.917 per tick): with the fixed link speed of 3 per tick the
+  // association could not join a fast target's consecutive supernode tracks at all.
+  wsn::common::ObservationStatistics stats;
+  stats.max_speed = {9.917, "speed bound"};
+  stats.velocity_sigma = {3.606, "fast class"};
+  stats.termination_probability = {0.065, "lifetimes"};
+  stats.birth_density = {2e-5, "10 drawn targets"};
+  stats.process_noise_sigma = 0.15;
+  stats.delta = 1.0;
+  Scenario s;
+  s.source_path = "test.yaml";
+  resolveAssociationParams(s, [&]() -> const wsn::common::ObservationStatistics& { return stats; });
+  const auto& p = s.aggregator.params;
+  // v-bar = 9.917 + 3 sqrt 2 x 0.2 (measurement_sigma, a fixed default here) = 10.766.
+  CHECK(p.at("max_speed").value == Approx(9.917 + 3.0 * std::sqrt(2.0) * 0.2));
+  CHECK(p.at("initial_velocity_sigma").value == Approx(std::hypot(3.606, 0.15)));
+  CHECK(p.at("termination_probability").value == 0.065);
+  CHECK(p.at("birth_density").value == 2e-5);
+  CHECK(s.derived.contains("aggregator.params.max_speed"));
+  CHECK(p.at("measurement_sigma").value == 0.2);
+  CHECK(p.at("confirm_observations").value == 2);
+  CHECK(p.at("false_alarm_density").value == 1e-5);
+}
+
 TEST_CASE("A track the chain re-forms under a new id is reported under its old one", "[aggregator][mcmcda_association]") {
   using wsn::aggregator::ReportedIds;
   ReportedIds ids;

@@ -198,6 +198,8 @@ TEST_CASE("a seed takes the whole uint64 range exactly", "[scenario]") {
   CHECK(errorOf("run: {seed: 18446744073709551616}\n") ==
         "s.yaml:1: 'run.seed' must be in [0, 18446744073709551615], got 18446744073709551616");
   CHECK(errorOf("run:\n  seed: -1\n") == "s.yaml:2: 'run.seed' must be in [0, 18446744073709551615], got -1");
+  CHECK(errorOf("targets:\n  count: 10\n  lifetime_min: 30\n  lifetime_max: 20\n") ==
+        "s.yaml:4: 'targets.lifetime_max' 20 is below 'targets.lifetime_min' 30; expected lifetime_min <= lifetime_max");
 }
 
 // ------------------------------------------------------------------------------------------

@@ -189,4 +189,79 @@ TEST_CASE("with death probability 1 a random target lives one tick, a scripted o
 }
 
 }  // namespace
+TEST_CASE("drawn targets live a drawn lifetime that fits the run, at the speed class, inside the region", "[truth]") {
+  // Oh §VII-A: 10 targets appear and disappear at random times, T = 50. Without process noise a
+  // drawn target moves in a straight line, so each one exists on exactly L consecutive ticks, L in
+  // [25, 45], and its path stays 5 % in from the edges ([5, 95]^2) whenever the class allows it:
+  // medium speed moves at most 2 x 44 = 88 < 90 per axis over a life, so it always does.
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    Scenario s;
+    s.run.ticks = 50;
+    s.run.seed = seed;
+    s.dynamics.process_noise_sigma = 0.0;
+    s.targets.count = 10;
+    s.targets.lifetime_min = 25;
+    s.targets.lifetime_max = 45;
+    const Truth truth(truthConfig(s));
+    REQUIRE(truth.targetCount() == 10);
+    for (TargetId id = 0; id < 10; ++id) {
+      std::int32_t first = 0, last = 0;
+      for (std::int32_t t = 1; t <= 50; ++t) {
+        const TargetState* now = find(truth, t, id);
+        if (now == nullptr) continue;
+        if (first == 0) first = t;
+        CHECK(last == (first == t ? 0 : t - 1));  // consecutive ticks
+        last = t;
+        CHECK(now->x >= 5.0 - 1e-9);
+        CHECK(now->x <= 95.0 + 1e-9);
+        CHECK(now->y >= 5.0 - 1e-9);
+        CHECK(now->y <= 95.0 + 1e-9);
+        CHECK(std::abs(now->vx) >= 1.0);
+        CHECK(std::abs(now->vx) <= 2.0);
+        CHECK(std::abs(now->vy) >= 1.0);
+        CHECK(std::abs(now->vy) <= 2.0);
+      }
+      REQUIRE(first > 0);
+      const std::int32_t life = last - first + 1;
+      CHECK(life >= 25);
+      CHECK(life <= 45);
+    }
+  }
+}
+
+TEST_CASE("a drawn target too fast to stay its life crosses the region from edge to edge", "[truth]") {
+  // Fast class, |v| per axis in [2, 5], lives of 40 ticks in [0, 100]^2: no start keeps such a
+  // path inside for 39 steps (at least 78 per axis against 90 of room, often more), so each
+  // start makes it stay in as long as any could: at least 90 / 5 = 18 steps, 19 ticks.
+  Scenario s;
+  s.run.ticks = 50;
+  s.run.seed = 4;
+  s.dynamics.process_noise_sigma = 0.0;
+  s.targets.speed_class = SpeedClass::kFast;
+  s.targets.count = 20;
+  s.targets.lifetime_min = 40;
+  s.targets.lifetime_max = 40;
+  const Truth truth(truthConfig(s));
+  for (TargetId id = 0; id < 20; ++id) {
+    std::int32_t ticks_alive = 0;
+    for (std::int32_t t = 1; t <= 50; ++t) ticks_alive += find(truth, t, id) != nullptr ? 1 : 0;
+    CHECK(ticks_alive >= 19);
+    CHECK(ticks_alive <= 40);
+  }
+}
+
+TEST_CASE("drawn targets take ids after the scripted ones, and births after both", "[truth]") {
+  Scenario s = randomScenario(5);
+  s.targets.scripted = {scripted(1, 0, {50, 50}, {0, 0})};
+  s.targets.count = 3;
+  const Truth truth(truthConfig(s));
+  CHECK(find(truth, 1, 0) != nullptr);
+  std::set<TargetId> drawn;
+  for (std::int32_t t = 1; t <= truth.ticks(); ++t)
+    for (const auto& target : truth.at(t))
+      if (target.id >= 1 && target.id <= 3) drawn.insert(target.id);
+  CHECK(drawn == std::set<TargetId>{1, 2, 3});
+  CHECK(truth.targetCount() > 4);
+}
+
 }  // namespace wsn::common

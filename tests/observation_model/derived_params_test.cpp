@@ -93,8 +93,11 @@ TEST_CASE("GNN confirms at the first report without clutter and waits for more u
   CHECK(param(cluttered, "max_misses") == 4);  // pd 0.725 as above
 }
 
-TEST_CASE("MCMCDA needs two observations without clutter and more under clutter") {
-  CHECK(param(resolved("oh_single_supernode"), "confirm_observations") == 2);
+TEST_CASE("MCMCDA reports a target at its first observation without clutter and waits under clutter") {
+  // No clutter: lambda_f is the probe's rule-of-three floor (6.25e-6 over 1e4), so reporting lone
+  // reports costs 0.0625 false track-ticks per tick, against 0.2 births per tick that would each
+  // wait 1 / pd = 1 tick for a second report.
+  CHECK(param(resolved("oh_single_supernode"), "confirm_observations") == 1);
   CHECK(param(resolved("oh_quadrants", {"sensor_model.noise_sigma=0.8"}), "confirm_observations") >= 3);
 }
 

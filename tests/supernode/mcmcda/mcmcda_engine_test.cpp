@@ -344,3 +344,43 @@ TEST_CASE("a missed report is bridged in the settled stream by smoothing across 
 }
 
 }  // namespace wsn::supernode::mcmcda
+
+namespace wsn::supernode::mcmcda {
+
+TEST_CASE("confirmed at one report a lone newest report is a track at once and keeps its id") {
+  // One target observed every tick from tick 1, and one stray report at tick 3 that nothing
+  // continues. With confirm_observations = 1 the target is reported from tick 1 (at confirmation
+  // 3 from tick 3), under one id throughout: its track of omega-hat at tick 2 takes the id of the
+  // lone track of tick 1 by their shared report. The stray report is a track at tick 3 only.
+  const Target target{40, 40, 1.0, 0.5};
+  // Confirmation at one report goes with a scenario without clutter (the derivation's reason).
+  common::Scenario scenario = mcmcdaScenario();
+  scenario.tracker.params["confirm_observations"] = {1, 0};
+  scenario.tracker.params["false_alarm_density"] = {1e-9, 0};
+  resolveEngineParams(scenario, wsn::common::kNoStatistics);
+  const auto outputs = run(scenario, 6, [&](std::int32_t t) {
+    std::vector<Observation> obs{observation(t, t, target.x(t), target.y(t), 0)};
+    if (t == 3) obs.push_back(observation(t, t, 10.0, 10.0, 1));
+    return obs;
+  });
+  REQUIRE(outputs[0].tracks.size() == 1);
+  CHECK(outputs[0].tracks[0].x == Approx(40.0));
+  CHECK(outputs[0].tracks[0].vx == 0.0);  // one report: no velocity yet, the prior's mean
+  const common::TrackId id = outputs[0].tracks[0].track;
+  for (std::size_t k : {1u, 3u, 4u, 5u}) {
+    REQUIRE(outputs[k].tracks.size() == 1);
+    CHECK(outputs[k].tracks[0].track == id);
+  }
+  REQUIRE(outputs[2].tracks.size() == 2);
+  CHECK(std::count_if(outputs[2].tracks.begin(), outputs[2].tracks.end(),
+                      [&](const auto& track) { return track.track != id && track.x == Approx(10.0); }) == 1);
+
+  const auto waited = run(mcmcdaScenario(), 3, [&](std::int32_t t) {
+    return std::vector<Observation>{observation(t, t, target.x(t), target.y(t), 0)};
+  });
+  CHECK(waited[0].tracks.empty());
+  CHECK(waited[1].tracks.empty());
+  CHECK(waited[2].tracks.size() == 1);
+}
+
+}  // namespace wsn::supernode::mcmcda
