@@ -52,6 +52,40 @@ METRIC_SOURCES.update({
     "settled_" + name: ("settled " + title, ("streams", "settled") + where,
                         ("streams", "settled") + defined if defined else None)
     for name, (title, where, defined) in list(METRIC_SOURCES.items())})
+
+
+def _network(key):
+    return lambda run_dir: json.loads((run_dir / "network.json").read_text(encoding="utf-8"))[key]
+
+
+def _received(run_dir):
+    network = json.loads((run_dir / "network.json").read_text(encoding="utf-8"))
+    return network["sent"] - network["lost"] - network["unreachable"]
+
+
+def _false_reports(run_dir):
+    with open(run_dir / "observations.csv", encoding="utf-8", newline="") as f:
+        return sum(1 for row in csv.DictReader(f) if row["target"] == "-1")
+
+
+# Counts of the run's reports, as Oh et al. §VII-E gives them ("a total of 1174 observations and 603
+# observations were false alarms", packets lost and received delayed): read from the run's
+# network.json and observations.csv (README.md, "Run directory") instead of metrics.json.
+METRIC_SOURCES.update({
+    "reports": ("reports", _network("sent"), None),
+    "false_reports": ("false reports", _false_reports, None),
+    "reports_lost": ("reports lost", _network("lost"), None),
+    "reports_received": ("reports received", _received, None),
+    "reports_delayed": ("received delayed", _network("delayed"), None),
+})
+
+
+def metric_value(metric, data, run_dir):
+    """One metric of a run: from its metrics.json (`data`) or, for the report counts, its other files."""
+    _, where, defined = METRIC_SOURCES[metric]
+    if callable(where):
+        return where(run_dir)
+    return None if defined and lookup(data, defined) is False else lookup(data, where)
 DEFAULT_METRICS = ("eps_k", "eps_x", "ospa")
 METRICS = DEFAULT_METRICS  # the tabulated ones, set from --metrics
 
@@ -216,11 +250,10 @@ def read_metrics(run):
     """The run's tabulated metrics; None for a metric the run leaves undefined."""
     with open(run.run_dir / "metrics.json", encoding="utf-8") as f:
         data = json.load(f)
-    values = {}
-    for metric in METRICS:
-        _, path, defined = METRIC_SOURCES[metric]
-        values[metric] = None if defined and lookup(data, defined) is False else lookup(data, path)
-    return values
+    try:
+        return {metric: metric_value(metric, data, run.run_dir) for metric in METRICS}
+    except (KeyError, TypeError, json.JSONDecodeError) as error:
+        raise ValueError(f"cannot read a metric from {run.run_dir} ({error!r})") from None
 
 
 def scenario_engine(wsntrack, scenario, fixed):
@@ -1001,10 +1034,14 @@ def metrics_of(path, metrics):
         raise ValueError("no 'metrics' object: not a complete metrics.json")
     values = {}
     for metric in metrics:
-        _, where, defined = METRIC_SOURCES[metric]
-        value = None if defined and lookup(data, defined) is False else lookup(data, where)
+        where = METRIC_SOURCES[metric][1]
+        try:
+            value = metric_value(metric, data, Path(path).parent)
+        except (OSError, KeyError, TypeError, json.JSONDecodeError) as error:
+            raise ValueError(f"{metric}: cannot read it from the run directory ({error!r})") from None
         if value is not None and (isinstance(value, bool) or not isinstance(value, (int, float))):
-            raise ValueError(f"{metric}: expected a number at {'.'.join(where)}, got {value!r}")
+            what = "the run's files" if callable(where) else ".".join(where)
+            raise ValueError(f"{metric}: expected a number at {what}, got {value!r}")
         values[metric] = value
     return values
 

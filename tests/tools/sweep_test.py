@@ -100,6 +100,31 @@ reference:
 """
 
 
+class ReportCounts(unittest.TestCase):
+    """The report counts of Oh et al. §VII-E come from each run's network.json and observations.csv."""
+
+    def test_counts_match_the_run_files(self):
+        out = fresh("counts")
+        spec = write(WORK / "counts.yaml", "scenario: scenarios/oh_quadrants.yaml\ngrid: {network.pte: [0.3]}\n"
+                     "engines: [gnn]\nseeds: 1\nset: {run.ticks: 10}\nin_process: true\n"
+                     "metrics: [reports, false_reports, reports_lost, reports_received, reports_delayed]\n")
+        result = run_sweep(spec, out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        [row] = rows(out / "results.csv")
+        run_dir = out / row["run_dir"]
+        network = json.loads((run_dir / "network.json").read_text())
+        with open(run_dir / "observations.csv", newline="") as f:
+            observations = list(csv.DictReader(f))
+        false_reports = sum(1 for o in observations if o["target"] == "-1")
+        self.assertGreater(false_reports, 0)  # oh_quadrants has clutter: the count is not trivially 0
+        self.assertEqual(float(row["reports"]), network["sent"])
+        self.assertEqual(float(row["reports"]), len(observations))
+        self.assertEqual(float(row["false_reports"]), false_reports)
+        self.assertEqual(float(row["reports_lost"]), network["lost"])
+        self.assertEqual(float(row["reports_received"]), network["sent"] - network["lost"] - network["unreachable"])
+        self.assertEqual(float(row["reports_delayed"]), network["delayed"])
+
+
 class MainSweep(unittest.TestCase):
     """One sweep, then invocations on its directory; the tests run in order (names sort)."""
 
