@@ -29,6 +29,9 @@ struct ObservationStatistics {
   Derived termination_probability;  ///< a live target ends (dies or leaves the region) at a tick
   Derived velocity_sigma;           ///< per-axis rms velocity of a new target (per tick)
   Derived max_speed;                ///< bound on a target's speed (per tick), drift over its life included
+  /// Sensors within the weakest target's sensing range, on average: sensor density x pi SR^2 (how
+  /// many raw detections its cluster holds, for engines that cluster detections).
+  Derived sensors_per_weakest_target;
 
   double region_area = 0.0;
   double sensor_spacing = 1.0;       ///< Ds (sensors.spacing), the rule-based engine's length unit

@@ -252,6 +252,24 @@ void deriveTargetStatistics(const common::Scenario& scenario, common::Observatio
                                                               " + 2 q sqrt(longest life " + shortNumber(longest_life) +
                                                               " ticks) = " + shortNumber(drift) + ")"};
 
+  // The weakest target: the smallest sensing range of a scripted target, or the sensor model's
+  // when any target takes it (drawn, born, or scripted without its own).
+  double weakest = INFINITY;
+  bool model_range = born > 0.0;
+  for (const auto& t : targets.scripted) {
+    if (t.sensing_range > 0.0)
+      weakest = std::min(weakest, t.sensing_range);
+    else
+      model_range = true;
+  }
+  if (model_range || !std::isfinite(weakest)) weakest = std::min(weakest, scenario.sensor_model.sensing_range);
+  const double density = scenario.sensors.kind == common::SensorLayoutConfig::Kind::kGrid
+                             ? 1.0 / (scenario.sensors.spacing * scenario.sensors.spacing)
+                             : scenario.sensors.count / area;
+  stats.sensors_per_weakest_target = {density * std::numbers::pi * weakest * weakest,
+                                      "sensor density " + shortNumber(density) + " x pi SR^2 at the weakest SR " +
+                                          shortNumber(weakest)};
+
   // Births: the Poisson rate per area, and scripted targets spread over the run.
   stats.birth_density = {targets.birth_rate + (scripted + drawn) / (area * ticks),
                          "targets.birth_rate + " + shortNumber(scripted + drawn) +

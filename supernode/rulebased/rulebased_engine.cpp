@@ -58,10 +58,23 @@ std::map<std::string, common::ParamDerivation> derivations() {
                     " births per tick, sighted on consecutive ticks at pd " + common::shortNumber(pd) +
                     "; at least 2 sightings, which give a velocity"};
       }};
+  // A cluster of the weakest target holds about k = density x pi SR^2 sensors, and often fewer.
+  // Clusters of up to 2 sensors are residual noise and a lone sensor never a new target when
+  // targets are heard by 4 or more (An et al. 2014's ranges at Ds = 25 m); a weaker target's own
+  // clusters would be thrown away, so both thresholds follow half of k, at most 2.
+  const auto half_cluster = [](double least, const std::string& what) {
+    return common::ParamDerivation{
+        "half the sensors that hear the weakest target (density x pi SR^2), at most 2",
+        [least, what](const common::StatisticsSource& stats, const Resolved&) -> common::Derived {
+          const common::Derived& k = stats().sensors_per_weakest_target;
+          return {std::clamp(std::floor(k.value / 2.0), least, 2.0),
+                  "half of " + common::shortNumber(k.value) + " sensors (" + k.how + "), " + what};
+        }};
+  };
+  d["noise_cluster_sensors"] = half_cluster(0.0, "at most 2: clusters of at most this many are residual noise");
+  d["birth_min_sensors"] = half_cluster(1.0, "1 to 2: a new target's cluster holds at least this many");
   return d;
 }
-
-
 
 }  // namespace
 
@@ -133,9 +146,9 @@ const config::FieldTable<RulebasedParams>& paramTable() {
               "jump_gate", &RulebasedParams::jump_gate, config::closed(0.0, 1000.0), "Ds",
               "denoise step 3 (eq. 15): a centroid farther than this from the track's previous one is discarded (Ds)"),
           integer<RulebasedParams>(
-              "noise_cluster_sensors", &RulebasedParams::noise_cluster_sensors, 1.0, 10000.0, "sensors",
+              "noise_cluster_sensors", &RulebasedParams::noise_cluster_sensors, 0.0, 10000.0, "sensors",
               "with denoise, Noise_find (2014 Algorithm 4.2.1 c): clusters of at most this many sensors that survive "
-              "the denoising steps are residual noise"),
+              "the denoising steps are residual noise; 0 keeps every cluster"),
           integer<RulebasedParams>("quick_solution", &RulebasedParams::quick_solution, 0.0, 1.0, "0/1",
                                    "1: An et al. 2013 §3.2: a cluster's measurement is its strongest sensor instead of "
                                    "the weighted centroid"),

@@ -128,3 +128,19 @@ TEST_CASE("a derivation that reads a parameter derived after it is a programming
                     Catch::Matchers::Contains("'tracker.params.a'") &&
                         Catch::Matchers::Contains("derived after it"));
 }
+
+TEST_CASE("the rule-based residual-noise and birth cluster sizes follow the weakest target's sensors") {
+  // An et al. 2013 at Ds = 25 m: a target of sensing range SR is heard by pi SR^2 / 625 sensors on
+  // average: 4.52 at SR 30 (the file), 2.01 at 20, 1.13 at 15. Half of that, at most 2: 2, 1, 0
+  // (Noise_find off), and a birth needs at least one sensor.
+  const Scenario shipped = resolved("an2013_noise3");
+  CHECK(param(shipped, "noise_cluster_sensors") == 2);
+  CHECK(param(shipped, "birth_min_sensors") == 2);
+  const Scenario sr20 = resolved("an2013_noise3", {"targets.scripted[0].sensing_range=20"});
+  CHECK(param(sr20, "noise_cluster_sensors") == 1);
+  CHECK(param(sr20, "birth_min_sensors") == 1);
+  const Scenario sr15 = resolved("an2013_noise3", {"targets.scripted[0].sensing_range=15"});
+  CHECK(param(sr15, "noise_cluster_sensors") == 0);
+  CHECK(param(sr15, "birth_min_sensors") == 1);
+  CHECK_THAT(common::resolvedScenarioYaml(sr15), Contains("at the weakest SR 15"));
+}
