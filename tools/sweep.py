@@ -68,6 +68,31 @@ def _false_reports(run_dir):
         return sum(1 for row in csv.DictReader(f) if row["target"] == "-1")
 
 
+def _false_tracks_per_tick(run_dir):
+    data = json.loads((run_dir / "metrics.json").read_text(encoding="utf-8"))
+    return data["clear_mot"]["false_positives"] / data["ticks"]
+
+
+# Tracks that match no target, per tick (CLEAR-MOT's false positives over the run's ticks), as An et
+# al. 2013 count them.
+METRIC_SOURCES["false_per_tick"] = ("false tracks/tick", _false_tracks_per_tick, None)
+
+def _of_target(target, key):
+    def value(run_dir):
+        data = json.loads((run_dir / "metrics.json").read_text(encoding="utf-8"))
+        for entry in data["track_quality"]["targets"]:
+            if entry["id"] == target:
+                return entry[key] if entry.get("errors_defined", True) or key == "tlr" else None
+        return None
+    return value
+
+
+# One target's <dx> and TLR (track_quality.targets[] in metrics.json), for figures that follow one
+# target (An et al. 2014 Fig. 15): position_error_0 is the target with id 0 (the first scripted).
+for _target in range(10):
+    METRIC_SOURCES[f"position_error_{_target}"] = (f"<dx> target {_target}", _of_target(_target, "mean_position_error"), None)
+    METRIC_SOURCES[f"tlr_{_target}"] = (f"TLR target {_target}", _of_target(_target, "tlr"), None)
+
 # Counts of the run's reports, as Oh et al. §VII-E gives them ("a total of 1174 observations and 603
 # observations were false alarms", packets lost and received delayed): read from the run's
 # network.json and observations.csv (README.md, "Run directory") instead of metrics.json.

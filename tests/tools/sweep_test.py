@@ -400,6 +400,16 @@ class Pieces(unittest.TestCase):
         data.pop("notes")
         self.assertEqual(yaml.safe_load(block), data)
 
+    def test_every_shipped_spec_loads(self):
+        """Each spec under sweeps/ parses, names metrics the tool knows and a scenario that exists."""
+        specs = sorted((SOURCE / "sweeps").glob("*.yaml"))
+        self.assertGreaterEqual(len(specs), 9)
+        for path in specs:
+            with self.subTest(spec=path.name):
+                spec = sweep.load_spec(path)
+                self.assertTrue(set(spec.metrics) <= set(sweep.METRIC_SOURCES), spec.metrics)
+                self.assertTrue(spec.grid)
+
     def test_flag_form_unchanged(self):
         out = fresh("flag")
         result = subprocess.run([PYTHON, str(SWEEP), "--scenario", str(SOURCE / "scenarios/oh_single_supernode.yaml"),
