@@ -45,6 +45,10 @@ void detectRun(benchmark::State& state, bool noise) {
   state.counters["s_per_20s_run"] =
       benchmark::Counter(1.0, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
   state.counters["detections_per_tick"] = static_cast<double>(detections) / scenario.run.ticks;
+  // The unit the magnetometer benchmark reports too.
+  state.counters["s_per_sensor_tick"] =
+      benchmark::Counter(static_cast<double>(layout.size()) * scenario.run.ticks,
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 void BM_AcousticDetection(benchmark::State& state) { detectRun(state, false); }

@@ -26,6 +26,8 @@ enum class Purpose : std::uint64_t {
   kEnvironmentalNoise = 14,    ///< per (sensor, component, episode): noisy or not, and its power
   kDerivationProbe = 15,       ///< per generation: the probe targets that measure a sensor model (observation_model/)
   kTruthDrawn = 16,            ///< per drawn target (targets.count): its lifetime, appear tick, velocity and start
+  kMagnetometerOffset = 17,    ///< per sensor: a magnetometer's constant offset per axis
+  kMagnetometerSample = 18,    ///< per (sensor, sample): its read noise, bias drift and bias jump
 };
 
 /// SplitMix64 finaliser: a bijective 64-bit mix with full avalanche.

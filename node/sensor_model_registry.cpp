@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "node/acoustic/plugin.hpp"
+#include "node/magnetometer/plugin.hpp"
 #include "node/signal_strength/plugin.hpp"
 
 namespace wsn::node {
@@ -11,6 +12,7 @@ const common::Registry<SensorModelSpec>& sensorModelRegistry() {
   static const common::Registry<SensorModelSpec> registry("sensor model", {
       signal_strength::sensorModelSpec(),
       acoustic::sensorModelSpec(),
+      magnetometer::sensorModelSpec(),
       // A new model: its folder, and one line here.
   });
   return registry;

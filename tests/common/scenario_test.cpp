@@ -538,7 +538,11 @@ TEST_CASE("acoustic keys are rejected where they do not apply or do not fit", "[
   CHECK(errorOf("sensor_model:\n  kind: acoustic_doppler\n  beta: 3\n") ==
         "s.yaml:3: 'sensor_model.beta' applies only with 'sensor_model.kind: signal_strength'");
   CHECK(errorOf("sensor_model:\n  kind: acoustic_doppler\n  noise_sigma: 0\n") ==
-        "s.yaml:3: 'sensor_model.noise_sigma' applies only with 'sensor_model.kind: signal_strength'");
+        "s.yaml:3: 'sensor_model.noise_sigma' applies only with 'sensor_model.kind: signal_strength' or "
+        "'sensor_model.kind: magnetometer'");
+  CHECK(errorOf("sensor_model:\n  kind: magnetometer\n  tick_s: 0.33\n") ==
+        "s.yaml:3: 'sensor_model.tick_s' 0.33 at 'sensor_model.sample_rate_hz' 10 gives 3.3 samples per tick; "
+        "expected a whole number from 1 to 1e5");
   CHECK(errorOf("sensor_model:\n  kind: acoustic_doppler\n  loudness: 3\n") ==
         "s.yaml:3: unknown key 'loudness' in 'sensor_model' of kind acoustic_doppler; expected one of: acoustic, "
         "alpha, environmental_noise, kind, sensing_range");
