@@ -570,7 +570,27 @@ def length_unit(scenario):
     return f"scenario units, Ds = {spacing:g}"
 
 
-def plot_tracks(mpl, scenario, sensors, truth, tracks, summary, out_path):
+# Reports drawn on the tracks map (as Oh et al. 2005 Fig. 11 draws the testbed's observations) only
+# when they are this few: beyond, they would hide the tracks. Checked on the file's size first so
+# that a large run's observations.csv is never read for it.
+MAX_DRAWN_OBSERVATIONS = 1000
+
+
+def few_observations(path):
+    """The (x, y) of every delivered report of observations.csv, or None when there are more than
+    MAX_DRAWN_OBSERVATIONS (or the file is absent)."""
+    try:
+        if path.stat().st_size > 120 * MAX_DRAWN_OBSERVATIONS:
+            return None
+    except OSError:
+        return None
+    rows = read_observations(path)
+    if len(rows) > MAX_DRAWN_OBSERVATIONS:
+        return None
+    return [(row[6], row[7]) for row in rows if row[9] == "delivered"]
+
+
+def plot_tracks(mpl, scenario, sensors, truth, tracks, summary, out_path, observations=None):
     from matplotlib.lines import Line2D
     from matplotlib.patches import Polygon, Patch
     from matplotlib.transforms import offset_copy
@@ -615,6 +635,10 @@ def plot_tracks(mpl, scenario, sensors, truth, tracks, summary, out_path):
                         ha="right" if right else "left", va="top" if top else "bottom",
                         bbox=dict(boxstyle="round,pad=0.15", facecolor="white", edgecolor="none", alpha=0.75))
 
+    if observations:
+        ax.plot([o[0] for o in observations], [o[1] for o in observations], linestyle="none", marker="o",
+                markersize=7, markerfacecolor="none", markeredgecolor="#555555", markeredgewidth=0.9, zorder=5)
+
     track_paths = paths_by_id(tracks, 1)
     order = sorted(track_paths, key=lambda i: (track_paths[i][2], i))
     for n, ident in enumerate(order):
@@ -655,6 +679,9 @@ def plot_tracks(mpl, scenario, sensors, truth, tracks, summary, out_path):
                markeredgecolor="black", label="supernode Sj"),
         Patch(facecolor=REGION_COLOURS[0], edgecolor="#999999", label="tracking group of one supernode"),
     ]
+    if observations:
+        handles.append(Line2D([], [], linestyle="none", marker="o", markersize=7, markerfacecolor="none",
+                              markeredgecolor="#555555", markeredgewidth=0.9, label="delivered report (observation)"))
     if edges:
         handles.append(Line2D([], [], color="#444444", linestyle=(0, (6, 4)), linewidth=1.3,
                               label="tracking-group boundary (nearest supernode)"))
@@ -1358,6 +1385,7 @@ def main(argv):
         sensors = read_sensors(run_dir, scenario)
         ticks, k_true, k, ospa, source = read_per_tick(run_dir, scenario, truth, tracks)
         summary = read_metrics_summary(run_dir)
+        observations = few_observations(run_dir / "observations.csv")
     except InputError as error:
         print(f"plot_run.py: {error}", file=sys.stderr)
         return EXIT_BAD_INPUT
@@ -1379,7 +1407,8 @@ def main(argv):
         return EXIT_BAD_INPUT
     written = []
     for name, draw in (
-            ("tracks", lambda path: plot_tracks(matplotlib, scenario, sensors, truth, tracks, summary, path)),
+            ("tracks", lambda path: plot_tracks(matplotlib, scenario, sensors, truth, tracks, summary, path,
+                                                observations)),
             ("cardinality", lambda path: plot_cardinality(matplotlib, scenario, ticks, k_true, k, summary, path)),
             ("ospa", lambda path: plot_ospa(matplotlib, scenario, ticks, ospa, source, path))):
         path = out_dir / f"{name}.{args.format}"
