@@ -96,6 +96,21 @@ int tileOfCell(std::span<const Tile> tiles, std::int32_t column, std::int32_t ro
   return -1;
 }
 
+std::vector<common::SensorId> tileSensorIds(const common::SensorLayout& layout, const Tile& tile, const char* who) {
+  if (tile.cell_col_begin < 0 || tile.cell_col_end > layout.cellColumns() || tile.cell_col_begin >= tile.cell_col_end ||
+      tile.cell_row_begin < 0 || tile.cell_row_end > layout.cellRows() || tile.cell_row_begin >= tile.cell_row_end)
+    throw std::invalid_argument(std::string(who) + ": tile " + std::to_string(tile.index) +
+                                " is empty or outside the sensor cell grid");
+  std::vector<common::SensorId> ids;
+  for (std::int32_t c = tile.cell_col_begin; c < tile.cell_col_end; ++c)
+    for (std::int32_t r = tile.cell_row_begin; r < tile.cell_row_end; ++r) {
+      const auto& in_cell = layout.sensorsInCell(r * layout.cellColumns() + c);
+      ids.insert(ids.end(), in_cell.begin(), in_cell.end());
+    }
+  std::sort(ids.begin(), ids.end());
+  return ids;
+}
+
 int tileOfCell(std::span<const Tile> tiles, const common::SensorLayout& layout, std::int32_t cell) {
   return tileOfCell(tiles, cell % layout.cellColumns(), cell / layout.cellColumns());
 }

@@ -45,6 +45,10 @@ struct Tile {
 /// count exceeds the number of cells (a tile would be empty).
 std::vector<Tile> makeTiles(const common::SensorLayout& layout, int count);
 
+/// The sensors of `tile`'s cells, sorted by id; throws std::invalid_argument ("`who`: tile N is
+/// empty or outside the sensor cell grid") for a tile that does not lie in the layout's cell grid.
+std::vector<common::SensorId> tileSensorIds(const common::SensorLayout& layout, const Tile& tile, const char* who);
+
 /// Index of the tile owning cell (column, row), or -1 when no tile does.
 int tileOfCell(std::span<const Tile> tiles, std::int32_t column, std::int32_t row);
 

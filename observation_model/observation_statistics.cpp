@@ -218,7 +218,8 @@ void deriveTargetStatistics(const common::Scenario& scenario, common::Observatio
   const double drawn = targets.count;
   const double drawn_longest = std::min<double>(targets.lifetime_max, ticks);
   const double drawn_life = 0.5 * (std::min<double>(targets.lifetime_min, drawn_longest) + drawn_longest);
-  const double born = targets.birth_rate * area * ticks + drawn;
+  const double random_born = targets.birth_rate * area * ticks;
+  const double born = random_born + drawn;
   const auto scripted = static_cast<double>(targets.scripted.size());
   const double all = born + scripted;
 
@@ -280,7 +281,6 @@ void deriveTargetStatistics(const common::Scenario& scenario, common::Observatio
   const double perimeter = 2.0 * (region.width() + region.height());
   const double chord = std::numbers::pi * area / perimeter;
   const double exit = std::min(1.0, std::sqrt(2.0 * class_ms) * scenario.dynamics.delta / chord);
-  const double random_born = born - drawn;
   const double random_end = 1.0 - (1.0 - targets.death_probability) * (1.0 - exit);
   // A drawn target ends after its lifetime, or sooner when it crosses the region first.
   const double drawn_end = drawn > 0.0 ? std::max(1.0 / drawn_life, exit) : 0.0;

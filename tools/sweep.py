@@ -55,21 +55,20 @@ METRIC_SOURCES.update({
 
 
 def _network(key):
-    return lambda run_dir: json.loads((run_dir / "network.json").read_text(encoding="utf-8"))[key]
+    return lambda data, run_dir: json.loads((run_dir / "network.json").read_text(encoding="utf-8"))[key]
 
 
-def _received(run_dir):
+def _received(data, run_dir):
     network = json.loads((run_dir / "network.json").read_text(encoding="utf-8"))
     return network["sent"] - network["lost"] - network["unreachable"]
 
 
-def _false_reports(run_dir):
+def _false_reports(data, run_dir):
     with open(run_dir / "observations.csv", encoding="utf-8", newline="") as f:
         return sum(1 for row in csv.DictReader(f) if row["target"] == "-1")
 
 
-def _false_tracks_per_tick(run_dir):
-    data = json.loads((run_dir / "metrics.json").read_text(encoding="utf-8"))
+def _false_tracks_per_tick(data, run_dir):
     return data["clear_mot"]["false_positives"] / data["ticks"]
 
 
@@ -78,8 +77,7 @@ def _false_tracks_per_tick(run_dir):
 METRIC_SOURCES["false_per_tick"] = ("false tracks/tick", _false_tracks_per_tick, None)
 
 def _of_target(target, key):
-    def value(run_dir):
-        data = json.loads((run_dir / "metrics.json").read_text(encoding="utf-8"))
+    def value(data, run_dir):
         for entry in data["track_quality"]["targets"]:
             if entry["id"] == target:
                 return entry[key] if entry.get("errors_defined", True) or key == "tlr" else None
@@ -106,10 +104,11 @@ METRIC_SOURCES.update({
 
 
 def metric_value(metric, data, run_dir):
-    """One metric of a run: from its metrics.json (`data`) or, for the report counts, its other files."""
+    """One metric of a run: a path into its metrics.json (`data`), or a function of `data` and the
+    run directory (the report counts read its other files)."""
     _, where, defined = METRIC_SOURCES[metric]
     if callable(where):
-        return where(run_dir)
+        return where(data, run_dir)
     return None if defined and lookup(data, defined) is False else lookup(data, where)
 DEFAULT_METRICS = ("eps_k", "eps_x", "ospa")
 METRICS = DEFAULT_METRICS  # the tabulated ones, set from --metrics

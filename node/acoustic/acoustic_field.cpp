@@ -103,11 +103,8 @@ AcousticFieldConfig fieldConfigOf(const common::Scenario& scenario) {
 
 AcousticField::AcousticField(AcousticFieldConfig config, const common::SensorLayout& layout, const Tile& tile,
                              const common::Truth& truth)
-    : layout_(&layout), truth_(&truth), config_(std::move(config)), tile_(tile) {
-  if (tile.cell_col_begin < 0 || tile.cell_col_end > layout.cellColumns() || tile.cell_col_begin >= tile.cell_col_end ||
-      tile.cell_row_begin < 0 || tile.cell_row_end > layout.cellRows() || tile.cell_row_begin >= tile.cell_row_end)
-    throw std::invalid_argument("AcousticField: tile " + std::to_string(tile.index) +
-                                " is empty or outside the sensor cell grid");
+    : layout_(&layout), truth_(&truth), config_(std::move(config)), tile_(tile),
+      owned_(tileSensorIds(layout, tile, "AcousticField")) {
   const auto& ac = config_.settings.acoustic;
   const auto& components = config_.settings.environmental_noise.components;
   if (components.size() > kMaxNoiseComponents)
@@ -116,12 +113,6 @@ AcousticField::AcousticField(AcousticFieldConfig config, const common::SensorLay
   steps_per_tick_ = std::llround(ac.tick_s / ac.detection_step_s);
   for (const auto& c : components)
     noise_ticks_.push_back(std::max<std::int32_t>(1, static_cast<std::int32_t>(std::lround(c.duration_s / ac.tick_s))));
-  for (std::int32_t c = tile.cell_col_begin; c < tile.cell_col_end; ++c)
-    for (std::int32_t r = tile.cell_row_begin; r < tile.cell_row_end; ++r) {
-      const auto& ids = layout.sensorsInCell(r * layout.cellColumns() + c);
-      owned_.insert(owned_.end(), ids.begin(), ids.end());
-    }
-  std::sort(owned_.begin(), owned_.end());
 
   // Bounds over the whole run: the fastest target, the largest sensing range, every target.
   double fastest = 0.0;

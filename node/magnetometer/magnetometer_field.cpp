@@ -55,19 +55,8 @@ MagnetometerFieldConfig fieldConfigOf(const common::SensorModelConfig& sensor_mo
 MagnetometerField::MagnetometerField(MagnetometerFieldConfig config, const common::SensorLayout& layout,
                                      const Tile& tile, const common::Truth& truth)
     : config_(std::move(config)), layout_(&layout), truth_(&truth) {
-  if (tile.cell_col_begin < 0 || tile.cell_col_end > layout.cellColumns() || tile.cell_col_begin >= tile.cell_col_end ||
-      tile.cell_row_begin < 0 || tile.cell_row_end > layout.cellRows() || tile.cell_row_begin >= tile.cell_row_end)
-    throw std::invalid_argument("MagnetometerField: tile " + std::to_string(tile.index) +
-                                " is empty or outside the sensor cell grid");
-  std::vector<common::SensorId> owned;
-  for (std::int32_t c = tile.cell_col_begin; c < tile.cell_col_end; ++c)
-    for (std::int32_t r = tile.cell_row_begin; r < tile.cell_row_end; ++r) {
-      const auto& ids = layout.sensorsInCell(r * layout.cellColumns() + c);
-      owned.insert(owned.end(), ids.begin(), ids.end());
-    }
-  std::sort(owned.begin(), owned.end());
   const auto& s = config_.settings;
-  for (const common::SensorId id : owned) {
+  for (const common::SensorId id : tileSensorIds(layout, tile, "MagnetometerField")) {
     common::Stream draw(config_.seed, common::Purpose::kMagnetometerOffset, id, 0);
     const common::Vec2 offset{512.0 + draw.uniform(-s.offset_spread, s.offset_spread),
                               512.0 + draw.uniform(-s.offset_spread, s.offset_spread)};

@@ -384,8 +384,7 @@ Partition McmcdaEngine::startState(const WindowProblem& wp, std::vector<std::int
   };
   std::vector<Candidate> candidates;
   const double r2 = params_.model.measurement_sigma * params_.model.measurement_sigma;
-  std::int32_t newest_begin = problem.size();  // elements are sorted by tick: the newest are last
-  while (newest_begin > 0 && problem.tick(newest_begin - 1) == newest_tick_) --newest_begin;
+  const std::int32_t newest_begin = problem.newestBegin();
   for (std::size_t k = 0; k < lists.size(); ++k) {
     const auto& list = lists[k];
     if (list.empty() || problem.tick(list.back()) != newest_tick_ - 1) continue;
@@ -551,9 +550,7 @@ void McmcdaEngine::adoptBest(const ObservationWindow& window, const WindowProble
     std::vector<bool> in_track(static_cast<std::size_t>(problem.size()), false);
     for (const auto& track : best)
       for (const auto i : track) in_track[static_cast<std::size_t>(i)] = true;
-    std::int32_t newest_begin = problem.size();
-    while (newest_begin > 0 && problem.tick(newest_begin - 1) == newest_tick_) --newest_begin;
-    for (std::int32_t i = newest_begin; i < problem.size(); ++i) {
+    for (std::int32_t i = problem.newestBegin(); i < problem.size(); ++i) {
       if (in_track[static_cast<std::size_t>(i)] || problem.isAnchor(i)) continue;
       const std::int32_t lone[] = {i};
       LiveTrack track;

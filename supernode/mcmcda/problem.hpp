@@ -91,6 +91,13 @@ class Problem {
   std::int32_t tick(std::int32_t i) const { return observations_[static_cast<std::size_t>(i)].tick; }
   bool isAnchor(std::int32_t i) const { return observations_[static_cast<std::size_t>(i)].anchor; }
   std::int32_t lastTick() const { return last_tick_; }
+  /// The first element of lastTick() (elements are sorted by tick, so the newest are last);
+  /// size() when the newest tick has none.
+  std::int32_t newestBegin() const {
+    std::int32_t begin = size();
+    while (begin > 0 && tick(begin - 1) == last_tick_) --begin;
+    return begin;
+  }
 
   /// True when j may directly follow i in a track: 1 <= t_j - t_i <= d-bar, |y_j - y_i| <=
   /// v-bar (t_j - t_i), and j is not an anchor.

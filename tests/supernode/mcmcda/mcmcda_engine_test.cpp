@@ -384,3 +384,26 @@ TEST_CASE("confirmed at one report a lone newest report is a track at once and k
 }
 
 }  // namespace wsn::supernode::mcmcda
+
+namespace wsn::supernode::mcmcda {
+
+TEST_CASE("a newborn track is not handed over until its second report makes it a track") {
+  // Confirmation at one report without clutter: after tick 1 the target is a one-report newborn,
+  // reported but not offered to a neighbour (predictions() lists what a supernode may hand over);
+  // after tick 2 it is a track of omega-hat and is offered.
+  common::Scenario scenario = mcmcdaScenario();
+  scenario.tracker.params["confirm_observations"] = {1, 0};
+  scenario.tracker.params["false_alarm_density"] = {1e-9, 0};
+  resolveEngineParams(scenario, wsn::common::kNoStatistics);
+  auto tracker = test::trackerFor(scenario, 0);
+  const auto first = tracker.step(1, std::vector<Observation>{observation(1, 1, 40.0, 40.0, 0)}, {});
+  REQUIRE(first.tracks.size() == 1);
+  CHECK(tracker.engine().predictions().empty());
+  const auto second = tracker.step(2, std::vector<Observation>{observation(2, 2, 41.0, 40.5, 0)}, {});
+  REQUIRE(second.tracks.size() == 1);
+  const auto offered = tracker.engine().predictions();
+  REQUIRE(offered.size() == 1);
+  CHECK(offered[0].track == second.tracks[0].track);
+}
+
+}  // namespace wsn::supernode::mcmcda
