@@ -28,6 +28,8 @@ enum class Purpose : std::uint64_t {
   kTruthDrawn = 16,            ///< per drawn target (targets.count): its lifetime, appear tick, velocity and start
   kMagnetometerOffset = 17,    ///< per sensor: a magnetometer's constant offset per axis
   kMagnetometerSample = 18,    ///< per (sensor, sample): its read noise, bias drift and bias jump
+  kRssNoise = 19,              ///< per (sensor, tick): the noise v of an ADMAN reading (eq. 1)
+  kMlmcParticles = 20,         ///< per (attached sensor, tick x 16 + sweep): ADMAN's MLMC particles
 };
 
 /// SplitMix64 finaliser: a bijective 64-bit mix with full avalanche.

@@ -32,7 +32,7 @@ std::string observationRow(const ReportFate& fate) {
   return std::to_string(r.tick) + "," + (fate.tick_delivered < 0 ? std::string() : std::to_string(fate.tick_delivered)) +
          "," + std::to_string(r.sensor) + "," + std::to_string(fate.supernode) + "," + std::to_string(fate.hops) + "," +
          (fate.delay < 0 ? std::string() : std::to_string(fate.delay)) + "," + common::fixed6(r.x) + "," +
-         common::fixed6(r.y) + "," + std::to_string(r.target) + "," + what;
+         common::fixed6(r.y) + "," + std::to_string(r.target) + "," + what + "," + std::to_string(r.power_level);
 }
 
 NetworkReport networkReport(const Topology& topology, const Router& router) {

@@ -11,9 +11,11 @@
 
 namespace wsn::network_model {
 
-/// The header of observations.csv: one row per report, in the order the router decided them.
+/// The header of observations.csv: one row per report, in the order the router decided them;
+/// `level` is the report's power_level (An eq. 4's ws, ADMAN's 3 inside or 1 in between, the
+/// magnetometer's floor D; 0 for a fused report of eq. 6).
 inline constexpr const char* kObservationsHeader =
-    "tick_generated,tick_delivered,sensor,supernode,hops,delay,x,y,target,fate";
+    "tick_generated,tick_delivered,sensor,supernode,hops,delay,x,y,target,fate,level";
 
 /// One observations.csv row; its fate reads delivered, lost, unreachable or after_end.
 std::string observationRow(const ReportFate& fate);

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "node/acoustic/plugin.hpp"
+#include "node/adman/plugin.hpp"
 #include "node/magnetometer/plugin.hpp"
 #include "node/signal_strength/plugin.hpp"
 
@@ -13,6 +14,7 @@ const common::Registry<SensorModelSpec>& sensorModelRegistry() {
       signal_strength::sensorModelSpec(),
       acoustic::sensorModelSpec(),
       magnetometer::sensorModelSpec(),
+      adman::sensorModelSpec(),
       // A new model: its folder, and one line here.
   });
   return registry;

@@ -111,6 +111,14 @@ std::vector<common::SensorId> tileSensorIds(const common::SensorLayout& layout, 
   return ids;
 }
 
+bool nearSharedSide(const common::SensorLayout& layout, const Tile& tile, common::Vec2 p, double reach) {
+  const common::Rect& b = tile.bounds;
+  return (tile.cell_col_begin > 0 && p.x - b.x_min <= reach) ||
+         (tile.cell_col_end < layout.cellColumns() && b.x_max - p.x <= reach) ||
+         (tile.cell_row_begin > 0 && p.y - b.y_min <= reach) ||
+         (tile.cell_row_end < layout.cellRows() && b.y_max - p.y <= reach);
+}
+
 int tileOfCell(std::span<const Tile> tiles, const common::SensorLayout& layout, std::int32_t cell) {
   return tileOfCell(tiles, cell % layout.cellColumns(), cell / layout.cellColumns());
 }

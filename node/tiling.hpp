@@ -49,6 +49,10 @@ std::vector<Tile> makeTiles(const common::SensorLayout& layout, int count);
 /// empty or outside the sensor cell grid") for a tile that does not lie in the layout's cell grid.
 std::vector<common::SensorId> tileSensorIds(const common::SensorLayout& layout, const Tile& tile, const char* who);
 
+/// True when p lies within `reach` of a side of `tile` that it shares with another tile (a side
+/// not on the edge of the layout's cell grid): a sensor there may be heard across the edge.
+bool nearSharedSide(const common::SensorLayout& layout, const Tile& tile, common::Vec2 p, double reach);
+
 /// Index of the tile owning cell (column, row), or -1 when no tile does.
 int tileOfCell(std::span<const Tile> tiles, std::int32_t column, std::int32_t row);
 

@@ -39,6 +39,9 @@ Draws the plots of a wsntrack run directory (what 'wsntrack run' does after ever
   cardinality.FORMAT  K, the number of tracks, and K*, the number of targets, at every tick
                       (the terms of eps_K, Oh eq. 9)
   ospa.FORMAT         OSPA at every tick, with its cut-off c
+  detections.FORMAT   (ADMAN sensors only) the number of targets the sensors detect at every
+                      tick, inside r0 and in between, against the true number (the ADMAN
+                      paper's Fig. 9), and the reports' localisation error (observations.csv)
 
 With --animate it writes instead an animation of the run, one frame per tick (what 'wsntrack
 replay RUN_DIR [OPTION]...' does): the sensor field with the supernodes and their tracking groups,
@@ -355,6 +358,7 @@ def read_scenario(run_dir):
         "ticks": get("run", "ticks", kind=int),
         "seed": get("run", "seed", kind=str, default="?"),
         "engine": get("tracker", "engine", kind=str, default="?"),
+        "sensor_kind": get("sensor_model", "kind", kind=str, default="signal_strength"),
         "ospa_c": get("metrics", "ospa_c", default=math.nan),
         "ospa_p": get("metrics", "ospa_p", default=math.nan),
     }
@@ -702,24 +706,84 @@ def _integer_axis(ax):
     ax.yaxis.set_major_locator(MaxNLocator(integer=True))
 
 
+def _count_axes(ax, scenario, counts, ylabel):
+    """The axes of a count per tick: ticks 1..T, integer counts from 0 to a little above the largest."""
+    ax.set_xlim(0.5, scenario["ticks"] + 0.5)
+    ax.set_ylim(0, max([1] + counts) * 1.05 + 0.5)
+    _integer_axis(ax)
+    ax.set_xlabel("tick", fontsize=11)
+    ax.set_ylabel(ylabel, fontsize=11)
+    ax.grid(True, color="#dddddd", linewidth=0.6)
+
+
 def plot_cardinality(mpl, scenario, ticks, k_true, k, summary, out_path):
     fig, ax = new_figure(mpl, 10, 4.4, left=0.75, right=0.2, bottom=0.6, top=0.85)
     ax.fill_between(ticks, k_true, k, step="mid", color="#D55E00", alpha=0.18, linewidth=0,
                     label="|K − K*| (error counted by εK)")
     ax.step(ticks, k_true, where="mid", color="black", linewidth=2.4, label="K*: targets (truth)")
     ax.step(ticks, k, where="mid", color="#0072B2", linewidth=1.6, linestyle="--", label="K: tracks (estimate)")
-    ax.set_xlim(0.5, scenario["ticks"] + 0.5)
-    ax.set_ylim(0, max([1] + k_true + k) * 1.05 + 0.5)
-    _integer_axis(ax)
-    ax.set_xlabel("tick", fontsize=11)
-    ax.set_ylabel("number of targets / tracks", fontsize=11)
-    ax.grid(True, color="#dddddd", linewidth=0.6)
+    _count_axes(ax, scenario, k_true + k, "number of targets / tracks")
     title = "Number of targets K* and of tracks K (Oh et al. eq. 9)"
     if "eps_k" in summary:
         title += f": εK = {summary['eps_k']:.3f}"
     # Legend between title and axes: it can then never hide a curve.
     ax.set_title(title, fontsize=12, pad=30)
     ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncol=3, fontsize=10, frameon=False)
+    fig.savefig(out_path)
+
+
+# observations.csv's `level` of an ADMAN report: a target inside r0, or in between.
+ADMAN_INSIDE = 3
+ADMAN_BETWEEN = 1
+
+
+def read_detections(run_dir, scenario, truth):
+    """Per tick of the run: (inside, between, true count) of the targets the ADMAN sensors detected
+    (every report generated, whatever became of it on the network), and the localisation error of
+    each labelled report against its target at the tick it was made."""
+    path = run_dir / "observations.csv"
+    rows, present = read_table(path, [("tick_generated", int), ("x", float), ("y", float), ("target", int)],
+                               optional=[("level", int, 0)])
+    if "level" not in present:
+        raise InputError(f"{path}:1: no column 'level' (a run from before ADMAN); cannot tell inside from in between")
+    ticks = scenario["ticks"]
+    inside, between, true_count = [0] * ticks, [0] * ticks, [0] * ticks
+    at = {}
+    for t, target, x, y, _, _ in truth:
+        if 1 <= t <= ticks:
+            true_count[t - 1] += 1
+            at[(t, target)] = (x, y)
+    errors = []
+    for t, x, y, target, level in rows:
+        if not 1 <= t <= ticks:
+            continue
+        if level == ADMAN_INSIDE:
+            inside[t - 1] += 1
+        elif level == ADMAN_BETWEEN:
+            between[t - 1] += 1
+        if (t, target) in at:
+            tx, ty = at[(t, target)]
+            errors.append(math.hypot(x - tx, y - ty))
+    return inside, between, true_count, errors
+
+
+def plot_detections(mpl, scenario, detections, out_path):
+    inside, between, true_count, errors = detections
+    ticks = list(range(1, scenario["ticks"] + 1))
+    total = [a + b for a, b in zip(inside, between)]
+    fig, ax = new_figure(mpl, 10, 4.4, left=0.75, right=0.2, bottom=0.6, top=0.85)
+    ax.step(ticks, true_count, where="mid", color="black", linewidth=2.4, label="true total number")
+    ax.step(ticks, total, where="mid", color="#0072B2", linewidth=1.6, linestyle="--", label="estimated total number")
+    ax.step(ticks, inside, where="mid", color="#D55E00", linewidth=1.2, label="inside range (r0)")
+    ax.step(ticks, between, where="mid", color="#009E73", linewidth=1.2, linestyle=":", label="in-between area")
+    _count_axes(ax, scenario, true_count + total, "number of targets")
+    same = sum(1 for a, b in zip(total, true_count) if a == b)
+    title = f"Targets detected by ADMAN (its Fig. 9): the count is right at {same} of {len(ticks)} ticks"
+    if errors:
+        rms = math.sqrt(sum(e * e for e in errors) / len(errors))
+        title += f"; localisation error rms {rms:.2f}, median {sorted(errors)[len(errors) // 2]:.2f}"
+    ax.set_title(title, fontsize=11, pad=30)
+    ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), ncol=4, fontsize=10, frameon=False)
     fig.savefig(out_path)
 
 
@@ -1386,6 +1450,7 @@ def main(argv):
         ticks, k_true, k, ospa, source = read_per_tick(run_dir, scenario, truth, tracks)
         summary = read_metrics_summary(run_dir)
         observations = few_observations(run_dir / "observations.csv")
+        detections = read_detections(run_dir, scenario, truth) if scenario["sensor_kind"] == "adman" else None
     except InputError as error:
         print(f"plot_run.py: {error}", file=sys.stderr)
         return EXIT_BAD_INPUT
@@ -1406,11 +1471,13 @@ def main(argv):
         print(f"plot_run.py: {out_dir}: cannot create ({error.strerror})", file=sys.stderr)
         return EXIT_BAD_INPUT
     written = []
-    for name, draw in (
-            ("tracks", lambda path: plot_tracks(matplotlib, scenario, sensors, truth, tracks, summary, path,
-                                                observations)),
-            ("cardinality", lambda path: plot_cardinality(matplotlib, scenario, ticks, k_true, k, summary, path)),
-            ("ospa", lambda path: plot_ospa(matplotlib, scenario, ticks, ospa, source, path))):
+    plots = [("tracks", lambda path: plot_tracks(matplotlib, scenario, sensors, truth, tracks, summary, path,
+                                                 observations)),
+             ("cardinality", lambda path: plot_cardinality(matplotlib, scenario, ticks, k_true, k, summary, path)),
+             ("ospa", lambda path: plot_ospa(matplotlib, scenario, ticks, ospa, source, path))]
+    if detections is not None:
+        plots.append(("detections", lambda path: plot_detections(matplotlib, scenario, detections, path)))
+    for name, draw in plots:
         path = out_dir / f"{name}.{args.format}"
         try:
             draw(path)

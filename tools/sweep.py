@@ -103,6 +103,60 @@ METRIC_SOURCES.update({
 })
 
 
+def _report_detection(data, run_dir):
+    """(share of ticks whose number of reports made equals the number of targets, the localisation
+    errors of the labelled reports against their target at the tick made, the same errors at the
+    ticks whose count is right), from observations.csv and truth.csv; read once per run directory."""
+    cached = _DETECTION_CACHE.get(run_dir)
+    if cached is None:
+        at, surplus = {}, {}  # surplus[t]: reports made at t minus targets at t
+        with open(run_dir / "truth.csv", encoding="utf-8", newline="") as f:
+            for row in csv.DictReader(f):
+                tick = int(row["tick"])
+                at[(tick, row["target"])] = (float(row["x"]), float(row["y"]))
+                surplus[tick] = surplus.get(tick, 0) - 1
+        errors = []  # (tick, distance)
+        with open(run_dir / "observations.csv", encoding="utf-8", newline="") as f:
+            for row in csv.DictReader(f):
+                tick = int(row["tick_generated"])
+                surplus[tick] = surplus.get(tick, 0) + 1
+                if (tick, row["target"]) in at:
+                    x, y = at[(tick, row["target"])]
+                    errors.append((tick, math.hypot(float(row["x"]) - x, float(row["y"]) - y)))
+        ticks = data["ticks"]
+        same = sum(1 for t in range(1, ticks + 1) if surplus.get(t, 0) == 0)
+        cached = (same / ticks, [e for _, e in errors], [e for t, e in errors if surplus.get(t, 0) == 0])
+        _DETECTION_CACHE.clear()  # one run at a time: the metrics of a run are asked together
+        _DETECTION_CACHE[run_dir] = cached
+    return cached
+
+
+_DETECTION_CACHE = {}
+
+
+def _rms(errors):
+    return math.sqrt(sum(e * e for e in errors) / len(errors)) if errors else None
+
+
+def _median(errors):
+    return sorted(errors)[len(errors) // 2] if errors else None
+
+
+# What the sensors detect, before any tracker (ADMAN's "estimated total number" and localisation
+# error): the share of ticks with as many reports as targets, and the rms and median distance of a
+# labelled report from its target (false alarms left out), over every report and over the ticks
+# whose count is right. Meaningful where a model reports each target once a tick (ADMAN, the fused
+# reports of Oh eq. 6).
+METRIC_SOURCES.update({
+    "count_match": ("count right", lambda data, run_dir: _report_detection(data, run_dir)[0], None),
+    "report_error": ("report err rms", lambda data, run_dir: _rms(_report_detection(data, run_dir)[1]), None),
+    "report_error_median": ("report err median", lambda data, run_dir: _median(_report_detection(data, run_dir)[1]),
+                            None),
+    "report_error_count_right": ("report err rms, count right",
+                                 lambda data, run_dir: _rms(_report_detection(data, run_dir)[2]), None),
+})
+
+
 def metric_value(metric, data, run_dir):
     """One metric of a run: a path into its metrics.json (`data`), or a function of `data` and the
     run directory (the report counts read its other files)."""

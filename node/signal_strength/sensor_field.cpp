@@ -53,10 +53,6 @@ SensorField::SensorField(const signal_strength::SignalStrengthSettings& model, d
       tile.cell_row_begin < 0 || tile.cell_row_end > layout.cellRows() || tile.cell_row_begin >= tile.cell_row_end)
     throw std::invalid_argument("SensorField: tile " + std::to_string(tile.index) +
                                 " is empty or outside the sensor cell grid");
-  inner_left_ = tile.cell_col_begin > 0;
-  inner_right_ = tile.cell_col_end < layout.cellColumns();
-  inner_bottom_ = tile.cell_row_begin > 0;
-  inner_top_ = tile.cell_row_end < layout.cellRows();
 }
 
 bool SensorField::ownsSensor(common::SensorId id) const {
@@ -148,11 +144,7 @@ std::vector<common::SensorReading> SensorField::detect(std::int32_t tick, std::s
 
 bool SensorField::isBoundarySensor(common::SensorId id) const {
   if (id >= layout_->size()) return false;
-  const common::Vec2 p = layout_->truePosition(id);
-  const double reach = boundaryReach(sensing_range_);
-  const common::Rect& b = tile_.bounds;
-  return (inner_left_ && p.x - b.x_min <= reach) || (inner_right_ && b.x_max - p.x <= reach) ||
-         (inner_bottom_ && p.y - b.y_min <= reach) || (inner_top_ && b.y_max - p.y <= reach);
+  return nearSharedSide(*layout_, tile_, layout_->truePosition(id), boundaryReach(sensing_range_));
 }
 
 std::vector<common::SensorReading> SensorField::boundaryReadings(std::span<const common::SensorReading> own) const {

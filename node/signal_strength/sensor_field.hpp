@@ -77,11 +77,6 @@ class SensorField {
   Tile tile_;
   double q_ = 0.0;
   GeometricSkips skips_;
-  /// Which sides of the tile border another tile (left, right, bottom, top).
-  bool inner_left_ = false;
-  bool inner_right_ = false;
-  bool inner_bottom_ = false;
-  bool inner_top_ = false;
 };
 
 }  // namespace wsn::node

@@ -100,14 +100,16 @@ TEST_CASE("an observations row names the fate of its report", "[network_model][r
   fate.hops = 2;
   fate.delay = 1;
   fate.tick_delivered = 6;
-  CHECK(nm::observationRow(fate) == "5,6,17,1,2,1,1.500000,-2.250000,3,delivered");
+  CHECK(nm::observationRow(fate) == "5,6,17,1,2,1,1.500000,-2.250000,3,delivered,0");
   fate.tick_delivered = -1;
-  CHECK(nm::observationRow(fate) == "5,,17,1,2,1,1.500000,-2.250000,3,after_end");
+  CHECK(nm::observationRow(fate) == "5,,17,1,2,1,1.500000,-2.250000,3,after_end,0");
   fate.lost = true;
   fate.delay = -1;
-  CHECK(nm::observationRow(fate) == "5,,17,1,2,,1.500000,-2.250000,3,lost");
+  CHECK(nm::observationRow(fate) == "5,,17,1,2,,1.500000,-2.250000,3,lost,0");
   fate.hops = -1;
-  CHECK(nm::observationRow(fate) == "5,,17,1,-1,,1.500000,-2.250000,3,unreachable");
+  CHECK(nm::observationRow(fate) == "5,,17,1,-1,,1.500000,-2.250000,3,unreachable,0");
+  fate.report.power_level = 3;  // an ADMAN inside target
+  CHECK(nm::observationRow(fate) == "5,,17,1,-1,,1.500000,-2.250000,3,unreachable,3");
 }
 
 TEST_CASE("the network report records the range, rates and counts the topology and router ran with",
