@@ -21,6 +21,9 @@ struct ObservationStatistics {
   Derived position_sigma;        ///< per-axis rms error of a target's report (region units)
   Derived sensing_probability;   ///< a live target gives at least one report at a tick
   Derived false_report_density;  ///< reports that are not a target's one report, per area per tick
+  /// Same-tick reports closer than this are one target's (0: the model reports a target once a
+  /// tick); position_sigma is the error of the merged report then.
+  Derived report_merge_radius;
   // From the network model (Oh §V, eq. 7 over the topology's hop histogram).
   Derived delivery_probability;  ///< a report reaches its supernode's window (delay < ws)
   Derived on_time_probability;   ///< a report reaches its supernode at the tick it was made (no delay)

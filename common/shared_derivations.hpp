@@ -17,6 +17,22 @@ inline ParamDerivation reportErrorDerivation() {
       [](const StatisticsSource& stats, const std::map<std::string, EngineParam>&) { return stats().position_sigma; }};
 }
 
+/// What merge_radius means, in every engine that has it.
+inline constexpr const char* kMergeRadiusMeaning =
+    "reports of one tick within this of a stronger one join it, merged into one at their power-weighted centre of "
+    "mass before association: for sensor models that report every detecting sensor (Oh §VIII's magnetometers). "
+    "0: none";
+
+/// How close two reports of one tick must lie to be merged into one before tracking: 0 (none)
+/// when the sensor model reports a target once a tick, else the reach that joins one target's
+/// reports (measured on the model by the probe).
+inline ParamDerivation mergeRadiusDerivation() {
+  return {"0 when the sensor model reports a target once a tick, else the distance that joins one target's reports",
+          [](const StatisticsSource& stats, const std::map<std::string, EngineParam>&) {
+            return stats().report_merge_radius;
+          }};
+}
+
 /// The prior std. deviation of a new track's velocity per axis: the rms velocity of new targets,
 /// widened by one tick of process noise (so that it is never 0 for targets that start at rest).
 inline ParamDerivation newTrackVelocityDerivation() {

@@ -6,6 +6,8 @@
 #include <tuple>
 #include <utility>
 
+#include "common/report_merging.hpp"
+
 namespace wsn::supernode {
 namespace {
 
@@ -48,6 +50,16 @@ bool ObservationWindow::insert(common::Observation observation) {
   const auto at = std::upper_bound(slot.begin(), slot.end(), observation, canonicalLess);
   slot.insert(at, std::move(observation));
   return true;
+}
+
+ObservationWindow ObservationWindow::merged(double radius) const {
+  ObservationWindow out(*this);
+  if (radius > 0.0)
+    for (auto& slot : out.slots_) {
+      slot = common::mergeNearby(std::span<const common::Observation>(slot), radius);
+      std::stable_sort(slot.begin(), slot.end(), canonicalLess);
+    }
+  return out;
 }
 
 std::span<const common::Observation> ObservationWindow::slot(std::int32_t tick) const {

@@ -29,6 +29,10 @@ class ObservationWindow {
   std::span<const common::Observation> slot(std::int32_t tick) const;
   std::size_t size() const;
   std::uint64_t droppedStale() const { return dropped_stale_; }
+  /// This window with each slot's observations within `radius` of one another merged into one
+  /// (common::mergeNearby): what an engine assuming at most one report per target and tick sees of
+  /// a sensor model that reports every detecting sensor. radius <= 0: an unchanged copy.
+  ObservationWindow merged(double radius) const;
 
  private:
   std::int32_t window_size_;

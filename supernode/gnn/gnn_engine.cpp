@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -80,6 +81,7 @@ std::string confirmationHow(const Statistics& s) {
 std::map<std::string, common::ParamDerivation> derivations() {
   std::map<std::string, common::ParamDerivation> d;
   d["measurement_sigma"] = common::reportErrorDerivation();
+  d["merge_radius"] = common::mergeRadiusDerivation();
   d["initial_velocity_sigma"] = common::newTrackVelocityDerivation();
   d["confirm_hits"] = {"hits that balance confirmed tracks of clutter against the wait of every new target",
                        [](const common::StatisticsSource& stats, const Resolved& r) {
@@ -130,6 +132,8 @@ const config::FieldTable<GnnParams>& paramTable() {
                              "M of M-of-N confirmation: hits needed within the first confirm_window ticks of a track"),
           integer<GnnParams>("confirm_window", &GnnParams::confirm_window, 1.0, 50.0, "ticks",
                              "N of M-of-N confirmation (ticks); a value below confirm_hits acts as confirm_hits"),
+          real<GnnParams>("merge_radius", &GnnParams::merge_radius, config::closed(0.0, 1e6), "separations",
+                          common::kMergeRadiusMeaning),
       }};
   return table;
 }
@@ -358,15 +362,19 @@ void GnnEngine::step(const ObservationWindow& window) {
 
   foldAnchorTo(oldest - 1);
 
-  // Replay the window from the anchor: a late observation now sits in its own slot.
+  // Replay the window from the anchor: a late observation now sits in its own slot. A model that
+  // reports every detecting sensor has each tick's reports merged first (merge_radius).
+  std::optional<ObservationWindow> merged;
+  if (params_.merge_radius > 0.0) merged = window.merged(params_.merge_radius);
+  const ObservationWindow& replayed = merged ? *merged : window;
   current_ = anchor_;
-  for (std::int32_t t = oldest; t <= newest; ++t) processTick(current_, t, window.slot(t));
+  for (std::int32_t t = oldest; t <= newest; ++t) processTick(current_, t, replayed.slot(t));
   current_tick_ = newest;
 
   cached_oldest_tick_ = oldest;
   cached_slots_.clear();
   for (std::int32_t t = oldest; t <= newest; ++t) {
-    const auto slot = window.slot(t);
+    const auto slot = replayed.slot(t);
     cached_slots_.emplace_back(slot.begin(), slot.end());
   }
 }

@@ -23,6 +23,7 @@ struct GnnParams {
   std::int32_t confirm_window = 5;
   std::int32_t max_misses = 3;
   double initial_velocity_sigma = 2.0;
+  double merge_radius = 0.0;  ///< same-tick reports this close are merged first (0: none)
 
   /// From the engine context's resolved params (paramTable() decodes them).
   static GnnParams fromContext(const EngineContext& context);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <span>
 #include <stdexcept>
@@ -85,6 +86,7 @@ std::map<std::string, common::ParamDerivation> derivations() {
                                                   shortNumber(s.delivery_probability.value) + " delivered"};
       }};
   d["measurement_sigma"] = common::reportErrorDerivation();
+  d["merge_radius"] = common::mergeRadiusDerivation();
   d["initial_velocity_sigma"] = common::newTrackVelocityDerivation();
   d["max_speed"] = common::linkSpeedDerivation();
   d["max_gap"] = {"ticks until a run of misses at the newest tick (sensed and not delayed) is rarer than 1 %, at "
@@ -176,6 +178,8 @@ const config::FieldTable<McmcdaParams>& paramTable() {
           integer<McmcdaParams>(
               "confirm_observations", &McmcdaParams::confirm_observations, 1.0, 1000.0, "observations",
               "observations a track needs (in all, before the window included) before it is reported"),
+          real<McmcdaParams>("merge_radius", &McmcdaParams::merge_radius, config::closed(0.0, 1e6), "separations",
+                             common::kMergeRadiusMeaning),
       }};
   return table;
 }
@@ -257,6 +261,14 @@ void McmcdaEngine::step(const ObservationWindow& window) {
   newest_tick_ = newest;
   oldest_tick_ = window.oldestTick();
   commitLeavingObservations(oldest_tick_);
+  // Eq. (3) allows a target one report a tick: a model that reports every detecting sensor has its
+  // reports of a tick merged first (merge_radius), and the chain sees one per cluster.
+  std::optional<ObservationWindow> merged;
+  if (params_.merge_radius > 0.0) merged = window.merged(params_.merge_radius);
+  associate(merged ? *merged : window, newest);
+}
+
+void McmcdaEngine::associate(const ObservationWindow& window, std::int32_t newest) {
   const WindowProblem wp = buildProblem(window);
   std::vector<std::int32_t> owner;
   const Partition start = startState(wp, owner);

@@ -23,6 +23,7 @@ struct McmcdaParams {
   std::int64_t iterations = 1000;        ///< nmc per tick
   double greedy_gate_chi2 = 9.21;        ///< gate of the greedy start for the newest tick
   std::int32_t confirm_observations = 3;  ///< observations (all time) before a track is reported
+  double merge_radius = 0.0;             ///< same-tick reports this close are merged first (0: none)
 
   /// From the engine context's resolved params (paramTable() decodes them) and its dynamics.
   static McmcdaParams fromContext(const EngineContext& context);
@@ -134,6 +135,8 @@ class McmcdaEngine final : public Engine {
   /// Step 1: observations older than the window become anchors; tracks that cannot go on end.
   void commitLeavingObservations(std::int32_t oldest);
   /// Step 2: anchors and the window's reports as a Problem.
+  /// Algorithm 1 on the window (merged when merge_radius > 0), at its newest tick.
+  void associate(const ObservationWindow& window, std::int32_t newest);
   WindowProblem buildProblem(const ObservationWindow& window) const;
   /// Step 3: the previous ω̂ restricted to the window plus the greedy join of the newest tick;
   /// `owner` receives each element's previous track (or -1).

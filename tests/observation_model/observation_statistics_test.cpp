@@ -127,3 +127,26 @@ TEST_CASE("scripted targets give their own velocities, lifetimes and birth rate"
   CHECK(stats.birth_density.value == Approx(2.0 / (1e4 * 50.0)));
   CHECK(stats.termination_probability.value == Approx(2.0 / 60.0));
 }
+
+TEST_CASE("a model that reports every detecting sensor is merged at the reach of one target's reports") {
+  // oh_testbed: a car excites about two magnetometers a tick (unfused, Oh §VIII). Its reports are
+  // the sensors of a unit grid around it, so the reach from the strongest to the others is 1 (a
+  // side neighbour) or sqrt 2 (a diagonal one): the 95th percentile is sqrt 2.
+  const auto stats = observation_model::observationStatistics(shipped("oh_testbed"));
+  CHECK(stats.report_merge_radius.value == Approx(std::sqrt(2.0)));
+  CHECK_THAT(stats.report_merge_radius.how, Catch::Matchers::Contains("reports per heard target and tick"));
+  CHECK_THAT(stats.position_sigma.how, Catch::Matchers::Contains("merged report"));
+  // A merged report lies within about a pitch of its car.
+  CHECK(stats.position_sigma.value > 0.1);
+  CHECK(stats.position_sigma.value < 0.6);
+}
+
+TEST_CASE("a model that fuses its readings has nothing to merge") {
+  // Oh eq. 6 elects one sensor per target: about one report per heard target and tick.
+  for (const std::string name : {"oh_single_supernode", "adman_three_targets"}) {
+    INFO(name);
+    const auto stats = observation_model::observationStatistics(shipped(name));
+    CHECK(stats.report_merge_radius.value == 0.0);
+    CHECK_THAT(stats.report_merge_radius.how, Catch::Matchers::Contains("none to merge"));
+  }
+}

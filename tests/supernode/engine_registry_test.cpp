@@ -37,7 +37,7 @@ TEST_CASE("resolving fills in every default with line 0 and keeps given values",
   s.tracker.params["gate_chi2"] = {5.99, 12};
   resolveEngineParams(s, wsn::common::kNoStatistics);
   const auto& params = s.tracker.params;
-  REQUIRE(params.size() == 6);
+  REQUIRE(params.size() == 7);
   CHECK(params.at("gate_chi2").value == 5.99);
   CHECK(params.at("gate_chi2").line == 12);
   CHECK(params.at("measurement_sigma").value == 0.5);
@@ -46,6 +46,7 @@ TEST_CASE("resolving fills in every default with line 0 and keeps given values",
   CHECK(params.at("confirm_window").value == 5.0);
   CHECK(params.at("max_misses").value == 3.0);
   CHECK(params.at("initial_velocity_sigma").value == 2.0);
+  CHECK(params.at("merge_radius").value == 0.0);
 
   auto again = s;  // resolving a resolved scenario changes nothing
   resolveEngineParams(again, wsn::common::kNoStatistics);
@@ -68,7 +69,7 @@ TEST_CASE("an unknown parameter is reported with its line and the engine's param
   REQUIRE_THROWS_MATCHES(
       resolveEngineParams(s, wsn::common::kNoStatistics), common::ScenarioError,
       Catch::Message("runs/s.yaml:9: unknown parameter 'gate' for engine 'gnn'; expected one of: measurement_sigma, "
-                     "initial_velocity_sigma, gate_chi2, max_misses, confirm_hits, confirm_window"));
+                     "initial_velocity_sigma, gate_chi2, max_misses, confirm_hits, confirm_window, merge_radius"));
 }
 
 TEST_CASE("a parameter out of range is reported with the admissible range", "[registry]") {

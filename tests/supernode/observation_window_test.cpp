@@ -126,5 +126,30 @@ TEST_CASE("a window of fewer than one tick is rejected", "[window]") {
   CHECK_THROWS_AS(ObservationWindow(0), std::invalid_argument);
 }
 
+TEST_CASE("a merged window merges each slot and keeps the canonical order", "[window]") {
+  ObservationWindow window(3);
+  window.advanceTo(2);
+  // Tick 1: two reports 0.5 apart (one cluster) and one 10 away; tick 2: one report.
+  window.insert(withSensor(1, 7, 10.0, 10.0));
+  window.insert(withSensor(1, 3, 10.5, 10.0));
+  window.insert(withSensor(1, 9, 20.0, 10.0));
+  window.insert(withSensor(2, 4, 30.0, 30.0));
+  const ObservationWindow merged = window.merged(1.0);
+  REQUIRE(merged.slot(1).size() == 2);
+  // Equal levels: the first in canonical order (sensor 3) is the strongest; the mean is 10.25.
+  CHECK(merged.slot(1)[0].sensor == 3);
+  CHECK(merged.slot(1)[0].x == 10.25);
+  CHECK(merged.slot(1)[1].sensor == 9);
+  REQUIRE(merged.slot(2).size() == 1);
+  CHECK(merged.slot(2)[0] == window.slot(2)[0]);
+  CHECK(merged.newestTick() == 2);
+  CHECK(merged.oldestTick() == window.oldestTick());
+  // Radius 0: the same window.
+  const ObservationWindow same = window.merged(0.0);
+  for (std::int32_t t = 1; t <= 2; ++t)
+    CHECK(std::vector<common::Observation>(same.slot(t).begin(), same.slot(t).end()) ==
+          std::vector<common::Observation>(window.slot(t).begin(), window.slot(t).end()));
+}
+
 }  // namespace
 }  // namespace wsn::supernode
