@@ -1,0 +1,225 @@
+#include "supernode/sbmht/measurement_models.hpp"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <Eigen/Cholesky>
+
+namespace wsn::supernode::sbmht {
+namespace {
+
+using common::kVx;
+using common::kVy;
+using common::kX;
+using common::kY;
+using common::MeasurementKind;
+using common::StateMatrix;
+using common::StateVector;
+
+using GainMatrix = Eigen::Matrix<double, common::kStateDim, Eigen::Dynamic, 0, common::kStateDim, kMaxModelDimension>;
+
+/// Where the target is as the sensor sees it: offset, ground range and range rate.
+struct Relative {
+  double dx = 0.0;
+  double dy = 0.0;
+  double rho = 0.0;
+  double rho_dot = 0.0;
+};
+
+Relative relative(const common::SensorPose& sensor, const StateVector& x) {
+  Relative r;
+  r.dx = x(kX) - sensor.x;
+  r.dy = x(kY) - sensor.y;
+  r.rho = std::hypot(r.dx, r.dy);
+  r.rho_dot = r.rho > 0.0 ? (r.dx * x(kVx) + r.dy * x(kVy)) / r.rho : 0.0;
+  return r;
+}
+
+double fieldBearingFromSensor(const common::SensorPose& sensor, const Relative& r) {
+  return wrapAngle(std::atan2(r.dy, r.dx) - sensor.heading);
+}
+
+/// d theta / d(x, y) of theta = atan2(dy, dx); the heading is a constant offset.
+void bearingRow(MeasurementJacobian& H, int row, const Relative& r) {
+  const double rho2 = r.rho * r.rho;
+  H(row, kX) = -r.dy / rho2;
+  H(row, kY) = r.dx / rho2;
+}
+
+}  // namespace
+
+double wrapAngle(double angle) {
+  // remainder() lands in [-pi, pi]; -pi is the same direction as pi, and (-pi, pi] keeps pi.
+  const double wrapped = std::remainder(angle, 2.0 * std::numbers::pi);
+  return wrapped <= -std::numbers::pi ? wrapped + 2.0 * std::numbers::pi : wrapped;
+}
+
+double gateThreshold(int dimension) {
+  // The 0.99 quantiles of chi^2 with 1, 2 and 3 degrees of freedom (2: -2 ln 0.01 exactly).
+  switch (dimension) {
+    case 1: return 6.6348966010212145;
+    case 2: return 9.210340371976182;
+    case 3: return 11.344866730144373;
+    default: return std::numeric_limits<double>::infinity();
+  }
+}
+
+int MeasurementModel::dimension() const {
+  switch (kind) {
+    case MeasurementKind::bearing: return 1;
+    case MeasurementKind::range_bearing_rate: return 3;
+    case MeasurementKind::position:
+    case MeasurementKind::azimuth_elevation: return 2;
+    default: return 0;
+  }
+}
+
+bool MeasurementModel::linearisableAt(const StateVector& x) const {
+  if (!x.allFinite() || dimension() == 0) return false;
+  if (kind == MeasurementKind::position) return true;
+  return relative(sensor, x).rho >= kMinimumRange;
+}
+
+MeasurementVector MeasurementModel::predict(const StateVector& x) const {
+  MeasurementVector h(dimension());
+  const Relative r = relative(sensor, x);
+  switch (kind) {
+    case MeasurementKind::position:
+      h << x(kX), x(kY);
+      break;
+    case MeasurementKind::bearing:
+      h << fieldBearingFromSensor(sensor, r);
+      break;
+    case MeasurementKind::range_bearing_rate:
+      h << r.rho, fieldBearingFromSensor(sensor, r), r.rho_dot;
+      break;
+    case MeasurementKind::azimuth_elevation:
+      h << fieldBearingFromSensor(sensor, r), std::atan2(-mast_height, r.rho);
+      break;
+    default:
+      break;
+  }
+  return h;
+}
+
+MeasurementJacobian MeasurementModel::jacobian(const StateVector& x) const {
+  MeasurementJacobian H = MeasurementJacobian::Zero(dimension(), common::kStateDim);
+  const Relative r = relative(sensor, x);
+  switch (kind) {
+    case MeasurementKind::position:
+      H(0, kX) = 1.0;
+      H(1, kY) = 1.0;
+      break;
+    case MeasurementKind::bearing:
+      bearingRow(H, 0, r);
+      break;
+    case MeasurementKind::range_bearing_rate:
+      H(0, kX) = r.dx / r.rho;
+      H(0, kY) = r.dy / r.rho;
+      bearingRow(H, 1, r);
+      // rho_dot = (dx vx + dy vy) / rho: d/dx = (vx - rho_dot dx / rho) / rho, d/dvx = dx / rho.
+      H(2, kX) = (x(kVx) - r.rho_dot * r.dx / r.rho) / r.rho;
+      H(2, kY) = (x(kVy) - r.rho_dot * r.dy / r.rho) / r.rho;
+      H(2, kVx) = r.dx / r.rho;
+      H(2, kVy) = r.dy / r.rho;
+      break;
+    case MeasurementKind::azimuth_elevation: {
+      bearingRow(H, 0, r);
+      // phi = atan2(-h, rho): d phi / d rho = h / (rho^2 + h^2), and d rho / d(x, y) = (dx, dy) / rho.
+      const double dphi_drho = mast_height / (r.rho * r.rho + mast_height * mast_height);
+      H(1, kX) = dphi_drho * r.dx / r.rho;
+      H(1, kY) = dphi_drho * r.dy / r.rho;
+      break;
+    }
+    default:
+      break;
+  }
+  return H;
+}
+
+MeasurementVector MeasurementModel::innovation(const MeasurementVector& z, const StateVector& x) const {
+  MeasurementVector nu = z - predict(x);
+  switch (kind) {
+    case MeasurementKind::bearing:
+      nu(0) = wrapAngle(nu(0));
+      break;
+    case MeasurementKind::azimuth_elevation:
+      nu(0) = wrapAngle(nu(0));
+      nu(1) = wrapAngle(nu(1));
+      break;
+    case MeasurementKind::range_bearing_rate:
+      nu(1) = wrapAngle(nu(1));
+      break;
+    default:
+      break;
+  }
+  return nu;
+}
+
+std::optional<MeasurementModel> modelOf(const common::Measurement& m, double mast_height) {
+  MeasurementModel model;
+  model.kind = m.kind;
+  model.mast_height = mast_height;
+  if (model.dimension() == 0 || static_cast<int>(m.values.size()) != model.dimension()) return std::nullopt;
+  if (m.kind != MeasurementKind::position) {
+    if (!m.sensor) return std::nullopt;
+    model.sensor = *m.sensor;
+  }
+  return model;
+}
+
+MeasurementVector valuesOf(const common::Measurement& m) {
+  MeasurementVector z(static_cast<Eigen::Index>(m.values.size()));
+  for (std::size_t i = 0; i < m.values.size(); ++i) z(static_cast<Eigen::Index>(i)) = m.values[i];
+  return z;
+}
+
+std::optional<MeasurementCovariance> noiseOf(const common::Measurement& m) {
+  const auto n = static_cast<Eigen::Index>(m.values.size());
+  if (!m.hasNoise() || m.noise.size() != m.values.size() * m.values.size() || n > kMaxModelDimension)
+    return std::nullopt;
+  MeasurementCovariance R(n, n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = 0; j < n; ++j) R(i, j) = m.noise[static_cast<std::size_t>(i * n + j)];
+  return R;
+}
+
+std::optional<EkfUpdate> update(const common::GaussianState& predicted, const MeasurementModel& model,
+                                const MeasurementVector& z, const MeasurementCovariance& R) {
+  const int m = model.dimension();
+  if (m == 0 || z.size() != m || R.rows() != m || R.cols() != m) return std::nullopt;
+  if (!z.allFinite() || !R.allFinite() || !predicted.P.allFinite() || !model.linearisableAt(predicted.x))
+    return std::nullopt;
+
+  const MeasurementJacobian H = model.jacobian(predicted.x);
+  EkfUpdate out;
+  out.innovation = model.innovation(z, predicted.x);
+  const MeasurementCovariance S = H * predicted.P * H.transpose() + R;
+  out.S = 0.5 * (S + S.transpose());
+  const Eigen::LDLT<MeasurementCovariance> ldlt(out.S);
+  if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().array() > 0.0).all()) return std::nullopt;
+
+  out.mahalanobis_squared = out.innovation.dot(ldlt.solve(out.innovation));
+  const double log_det_S = ldlt.vectorD().array().log().sum();
+  out.log_likelihood = -0.5 * (out.mahalanobis_squared + log_det_S + m * std::log(2.0 * std::numbers::pi));
+  out.likelihood = std::exp(out.log_likelihood);
+
+  // S symmetric: K' = S^-1 (H P).
+  const GainMatrix K = ldlt.solve(H * predicted.P).transpose();
+  const StateMatrix I_KH = StateMatrix::Identity() - K * H;
+  out.state.x = predicted.x + K * out.innovation;
+  const StateMatrix P = I_KH * predicted.P * I_KH.transpose() + K * R * K.transpose();
+  out.state.P = 0.5 * (P + P.transpose());
+  if (!out.state.x.allFinite() || !out.state.P.allFinite()) return std::nullopt;
+  return out;
+}
+
+std::optional<EkfUpdate> update(const common::GaussianState& predicted, const common::Measurement& m,
+                                const MeasurementCovariance& R, double mast_height) {
+  const auto model = modelOf(m, mast_height);
+  if (!model) return std::nullopt;
+  return update(predicted, *model, valuesOf(m), R);
+}
+
+}  // namespace wsn::supernode::sbmht

@@ -1,0 +1,54 @@
+// Roads as polylines for the road-constrained tracker (ONERA §III-B): the nearest point of a road
+// to a position, the direction there, and the projection of a track's state onto the road.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "common/geometry.hpp"
+#include "common/kalman.hpp"
+
+namespace wsn::supernode::sbmht {
+
+/// A road as its centre line: a polyline through at least two distinct points.
+struct Road {
+  std::vector<common::Vec2> points;
+};
+
+/// Where a position meets a road: the foot of the perpendicular on the nearest segment.
+struct RoadFoot {
+  /// Segment from points[segment] to points[segment + 1].
+  std::size_t segment = 0;
+  common::Vec2 point;
+  /// Unit vector along the segment, in the polyline's order.
+  common::Vec2 direction;
+  /// From the position to the foot point.
+  double distance = 0.0;
+
+  /// The segment's direction in radians counter-clockwise from +x (roadModel's road_direction).
+  double heading() const;
+};
+
+/// The foot point of `position` on the road's nearest segment; on a tie (outside a bend both
+/// segments are nearest at their shared vertex) the first segment in the polyline's order.
+/// Zero-length segments are skipped; nullopt when no segment is left.
+std::optional<RoadFoot> footPoint(const Road& road, common::Vec2 position);
+
+/// The state moved onto the road at `foot` (docs/ONERA.md, check C8): the position to the foot point and the
+/// velocity to its component along the segment, |v| cos(angle off the road), which reverses
+/// the segment's direction for a target driving the other way.
+///
+/// Covariance: both moves are the linear map T = diag(u u', u u') (u the segment's direction)
+/// about the foot point, so P becomes T P T', what Simon and Chia's estimate projection with
+/// W = I gives, and nothing across the road is left. Then the road's own location error
+/// (road_location_sigma, e.g. the GIS's metric precision) is added across the road on the position,
+/// since the road is only known that well; the velocity stays exactly along the road.
+common::GaussianState projectOntoRoad(const common::GaussianState& state, const RoadFoot& foot,
+                                      double road_location_sigma);
+
+/// The same at the state's own foot point on `road`; nullopt when the road has no segment.
+std::optional<common::GaussianState> projectOntoRoad(const common::GaussianState& state, const Road& road,
+                                                     double road_location_sigma);
+
+}  // namespace wsn::supernode::sbmht

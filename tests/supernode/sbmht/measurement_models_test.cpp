@@ -1,0 +1,239 @@
+#include "supernode/sbmht/measurement_models.hpp"
+
+#include <array>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <numbers>
+
+namespace wsn::supernode::sbmht {
+namespace {
+
+using common::GaussianState;
+using common::kVx;
+using common::kVy;
+using common::kX;
+using common::kY;
+using common::MeasurementKind;
+using common::SensorPose;
+using common::StateMatrix;
+using common::StateVector;
+
+constexpr double kPi = std::numbers::pi;
+
+StateVector state(double x, double y, double vx, double vy) {
+  StateVector s;
+  s << x, y, vx, vy;
+  return s;
+}
+
+MeasurementModel modelOfKind(MeasurementKind kind, SensorPose sensor = {}, double mast_height = 0.0) {
+  MeasurementModel m;
+  m.kind = kind;
+  m.sensor = sensor;
+  m.mast_height = mast_height;
+  return m;
+}
+
+TEST_CASE("wrapAngle brings angles into the half-open interval from -pi to pi", "[sbmht]") {
+  CHECK(wrapAngle(0.0) == 0.0);
+  CHECK(wrapAngle(kPi) == Approx(kPi));
+  // -pi is the same direction as pi, and the interval keeps pi.
+  CHECK(wrapAngle(-kPi) == Approx(kPi));
+  CHECK(wrapAngle(3.0 * kPi) == Approx(kPi));
+  CHECK(wrapAngle(kPi + 0.1) == Approx(-kPi + 0.1));
+  CHECK(wrapAngle(-kPi - 0.1) == Approx(kPi - 0.1));
+  CHECK(wrapAngle(2.0 * kPi + 0.25) == Approx(0.25));
+  CHECK(wrapAngle(-7.0 * kPi + 0.5) == Approx(-kPi + 0.5));
+}
+
+TEST_CASE("h of every field kind gives the hand-computed values", "[sbmht]") {
+  // Position is already in the field frame: the pose plays no part.
+  const auto position = modelOfKind(MeasurementKind::position, {5.0, 5.0, 1.0}).predict(state(3.0, -4.0, 1.0, 2.0));
+  CHECK(position(0) == 3.0);
+  CHECK(position(1) == -4.0);
+
+  // A sensor at (10, 20) facing north (heading pi/2). A target due north is at theta = 0, one due
+  // west at field bearing pi, i.e. pi/2 counter-clockwise from the heading.
+  const SensorPose north{10.0, 20.0, kPi / 2};
+  const auto bearing = modelOfKind(MeasurementKind::bearing, north);
+  CHECK(bearing.predict(state(10.0, 120.0, 0.0, 0.0))(0) == Approx(0.0).margin(1e-12));
+  CHECK(bearing.predict(state(0.0, 20.0, 0.0, 0.0))(0) == Approx(kPi / 2));
+  // Due south is field bearing -pi/2, -pi from the heading: reported as +pi.
+  CHECK(bearing.predict(state(10.0, 10.0, 0.0, 0.0))(0) == Approx(kPi));
+
+  // Radar at the origin facing east; target at (3, 4): rho = 5, theta = atan2(4, 3) = 0.927295.
+  // Its velocity is 2 m/s away, (1.2, 1.6), plus (-4, 3) across the line of sight, so
+  // v = (-2.8, 4.6) and rho_dot = (3 * -2.8 + 4 * 4.6) / 5 = (-8.4 + 18.4) / 5 = 2.
+  const auto radar = modelOfKind(MeasurementKind::range_bearing_rate, {0.0, 0.0, 0.0});
+  const auto rbr = radar.predict(state(3.0, 4.0, -2.8, 4.6));
+  CHECK(rbr(0) == Approx(5.0));
+  CHECK(rbr(1) == Approx(std::atan2(4.0, 3.0)));
+  CHECK(rbr(1) == Approx(0.927295218));
+  CHECK(rbr(2) == Approx(2.0));
+
+  // Camera on a 3 m mast at (1, 1) facing east; target 4 m east: theta = 0, phi = atan2(-3, 4)
+  // = -0.643501 (looking down a 3-4-5 triangle).
+  const auto camera = modelOfKind(MeasurementKind::azimuth_elevation, {1.0, 1.0, 0.0}, 3.0);
+  const auto ae = camera.predict(state(5.0, 1.0, 0.0, 0.0));
+  CHECK(ae(0) == Approx(0.0).margin(1e-12));
+  CHECK(ae(1) == Approx(-0.643501109));
+}
+
+TEST_CASE("each Jacobian matches a central finite difference at several states", "[sbmht]") {
+  const std::array<MeasurementModel, 4> models{
+      modelOfKind(MeasurementKind::position),
+      modelOfKind(MeasurementKind::bearing, {10.0, -20.0, 0.7}),
+      modelOfKind(MeasurementKind::range_bearing_rate, {-5.0, 3.0, -2.0}),
+      modelOfKind(MeasurementKind::azimuth_elevation, {2.0, 2.0, 3.0}, 3.0),
+  };
+  // Near the sensors, far away, and (for the first sensors) behind them, where the field bearing
+  // crosses +-pi: the difference is wrapped so that it measures the change, not the jump.
+  const std::array<StateVector, 5> states{state(40.0, 25.0, 3.0, -1.0), state(-300.0, 0.5, -10.0, 2.0),
+                                          state(-300.0, -0.5, 0.0, 0.0), state(12.0, -19.0, 0.3, 0.4),
+                                          state(-5.0, -2.0, -1.5, 6.0)};
+  for (const auto& model : models) {
+    for (const auto& x : states) {
+      CAPTURE(static_cast<int>(model.kind), x.transpose());
+      REQUIRE(model.linearisableAt(x));
+      const MeasurementJacobian H = model.jacobian(x);
+      REQUIRE(H.rows() == model.dimension());
+      for (int j = 0; j < common::kStateDim; ++j) {
+        const double step = 1e-5 * std::max(1.0, std::abs(x(j)));
+        StateVector up = x;
+        StateVector down = x;
+        up(j) += step;
+        down(j) -= step;
+        const MeasurementVector difference = model.innovation(model.predict(up), down);
+        for (int i = 0; i < model.dimension(); ++i) {
+          CAPTURE(i, j);
+          CHECK(H(i, j) == Approx(difference(i) / (2.0 * step)).margin(1e-7).epsilon(1e-5));
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("the innovation of a bearing just across pi is small", "[sbmht]") {
+  // Sensor at the origin facing east, target at (-100, 0.5): h = atan2(0.5, -100) = pi - 0.005
+  // (to 4e-8). A report of -pi + 0.003 lies 0.008 further counter-clockwise, not 2 pi - 0.008 back.
+  const auto bearing = modelOfKind(MeasurementKind::bearing);
+  const StateVector x = state(-100.0, 0.5, 0.0, 0.0);
+  const double h = std::atan2(0.5, -100.0);
+  CHECK(bearing.predict(x)(0) == Approx(h));
+  MeasurementVector z(1);
+  z << -kPi + 0.003;
+  CHECK(bearing.innovation(z, x)(0) == Approx(0.003 + (kPi - h)));
+  CHECK(bearing.innovation(z, x)(0) == Approx(0.008).margin(1e-6));
+
+  // The same across the radar's theta; range and range rate are not wrapped.
+  const auto radar = modelOfKind(MeasurementKind::range_bearing_rate);
+  MeasurementVector z3(3);
+  z3 << 100.0, -kPi + 0.003, -7.0;
+  const MeasurementVector nu = radar.innovation(z3, x);
+  CHECK(nu(0) == Approx(100.0 - std::hypot(100.0, 0.5)));
+  CHECK(nu(1) == Approx(0.008).margin(1e-6));
+  CHECK(nu(2) == Approx(-7.0));
+}
+
+TEST_CASE("a bearing EKF update gives the hand-computed state and likelihood", "[sbmht]") {
+  // Sensor at (10, 20) facing north; predicted target due north at (10, 120), P = diag(100, 100,
+  // 1, 1); report theta = 0.02 rad (west of north), R = (0.01 rad)^2.
+  // h = 0, rho = 100, H = [-dy / rho^2, dx / rho^2, 0, 0] = [-0.01, 0, 0, 0].
+  // S = 0.01^2 * 100 + 1e-4 = 0.0101. K = P H' / S = (-1 / 0.0101, 0, 0, 0) = (-99.0099, 0, 0, 0).
+  // x+ = 10 + K nu = 10 - 99.0099 * 0.02 = 8.019802 (moved west); y, velocity untouched.
+  // P_xx+ = (1 - K H)^2 P_xx + K^2 R = (0.009901)^2 * 100 + 9803.0 * 1e-4 = 0.990099.
+  // d^2 = 0.02^2 / 0.0101 = 0.039604; N = exp(-d^2 / 2) / sqrt(2 pi S) = 3.891791.
+  GaussianState predicted;
+  predicted.x = state(10.0, 120.0, 0.0, 0.0);
+  predicted.P = StateVector(100.0, 100.0, 1.0, 1.0).asDiagonal();
+  common::Measurement m;
+  m.kind = MeasurementKind::bearing;
+  m.values = {0.02};
+  m.sensor = SensorPose{10.0, 20.0, kPi / 2};
+  MeasurementCovariance R(1, 1);
+  R << 1e-4;
+
+  const auto result = update(predicted, m, R);
+  REQUIRE(result);
+  CHECK(result->innovation(0) == Approx(0.02));
+  CHECK(result->S(0, 0) == Approx(0.0101));
+  CHECK(result->state.x(kX) == Approx(8.019802));
+  CHECK(result->state.x(kY) == Approx(120.0));
+  CHECK(result->state.x(kVx) == Approx(0.0).margin(1e-12));
+  CHECK(result->state.P(kX, kX) == Approx(0.990099));
+  CHECK(result->state.P(kY, kY) == Approx(100.0));
+  CHECK(result->state.P(kVx, kVx) == Approx(1.0));
+  CHECK(result->mahalanobis_squared == Approx(0.039604));
+  CHECK(result->likelihood == Approx(3.891791));
+  CHECK(result->log_likelihood == Approx(std::log(3.891791)));
+}
+
+TEST_CASE("the EKF refuses a target on top of a bearing sensor", "[sbmht]") {
+  GaussianState predicted;
+  predicted.x = state(10.0, 20.0, 1.0, 0.0);
+  predicted.P = StateMatrix::Identity();
+  const auto bearing = modelOfKind(MeasurementKind::bearing, {10.0, 20.0, 0.0});
+  CHECK_FALSE(bearing.linearisableAt(predicted.x));
+  MeasurementVector z(1);
+  z << 0.0;
+  CHECK_FALSE(update(predicted, bearing, z, MeasurementCovariance::Identity(1, 1)));
+  // A position report has no such point.
+  CHECK(modelOfKind(MeasurementKind::position, {10.0, 20.0, 0.0}).linearisableAt(predicted.x));
+}
+
+TEST_CASE("C6 the gate is chi2 at 0.99 and a 2-D report at d2 9.3 is rejected", "[sbmht]") {
+  // chi^2_1(0.99) = 6.6349, chi^2_2(0.99) = -2 ln 0.01 = 9.2103, chi^2_3(0.99) = 11.3449 (bisection
+  // on the closed-form CDFs: erf(sqrt(x/2)), 1 - e^{-x/2}, erf(sqrt(x/2)) - sqrt(2x/pi) e^{-x/2}).
+  CHECK(gateThreshold(1) == Approx(6.635).margin(5e-4));
+  CHECK(gateThreshold(2) == Approx(9.210).margin(5e-4));
+  CHECK(gateThreshold(2) == Approx(-2.0 * std::log(0.01)));
+  CHECK(gateThreshold(3) == Approx(11.345).margin(5e-4));
+  CHECK(std::isinf(gateThreshold(4)));
+
+  // P = 0 and R = I make S = I, so nu = (sqrt 9.3, 0) sits at d^2 = 9.3 > 9.2103.
+  GaussianState predicted;
+  const MeasurementModel position = modelOfKind(MeasurementKind::position);
+  MeasurementVector z(2);
+  z << std::sqrt(9.3), 0.0;
+  const auto outside = update(predicted, position, z, MeasurementCovariance::Identity(2, 2));
+  REQUIRE(outside);
+  CHECK(outside->mahalanobis_squared == Approx(9.3));
+  CHECK(outside->mahalanobis_squared > gateThreshold(2));
+  z << std::sqrt(9.2), 0.0;
+  const auto inside = update(predicted, position, z, MeasurementCovariance::Identity(2, 2));
+  REQUIRE(inside);
+  CHECK(inside->mahalanobis_squared <= gateThreshold(2));
+}
+
+TEST_CASE("modelOf takes the kind and pose of a measurement and its noise when given", "[sbmht]") {
+  const auto plain = modelOf(common::Measurement::position(1.0, 2.0));
+  REQUIRE(plain);
+  CHECK(plain->dimension() == 2);
+  CHECK_FALSE(noiseOf(common::Measurement::position(1.0, 2.0)));
+
+  common::Measurement camera;
+  camera.kind = MeasurementKind::azimuth_elevation;
+  camera.values = {0.1, -0.05};
+  camera.noise = {1e-6, 0.0, 0.0, 4e-6};
+  camera.sensor = SensorPose{3.0, 4.0, 0.5};
+  const auto model = modelOf(camera, 3.0);
+  REQUIRE(model);
+  CHECK(model->sensor == SensorPose{3.0, 4.0, 0.5});
+  CHECK(model->mast_height == 3.0);
+  const auto R = noiseOf(camera);
+  REQUIRE(R);
+  CHECK((*R)(0, 0) == 1e-6);
+  CHECK((*R)(1, 1) == 4e-6);
+  CHECK(valuesOf(camera)(1) == -0.05);
+
+  // Every kind but position needs the pose; presence and signal strength have no h(x) here.
+  camera.sensor.reset();
+  CHECK_FALSE(modelOf(camera, 3.0));
+  common::Measurement presence;
+  presence.kind = MeasurementKind::presence;
+  presence.sensor = SensorPose{};
+  CHECK_FALSE(modelOf(presence));
+}
+
+}  // namespace
+}  // namespace wsn::supernode::sbmht
