@@ -180,7 +180,9 @@ SensorMeasurement measureSensorModel(const common::Scenario& scenario, const com
   m.reports_per_target = per_target;
   if (per_target > kOneReportPerTarget && !joining.empty()) {
     std::sort(joining.begin(), joining.end());
-    m.merge_radius = joining[std::min(joining.size() - 1, static_cast<std::size_t>(0.95 * static_cast<double>(joining.size())))];
+    // The nearest-rank 95th percentile.
+    const auto rank = static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(joining.size())));
+    m.merge_radius = joining[std::clamp<std::size_t>(rank, 1, joining.size()) - 1];
   }
 
   for (const auto& tick : scored) {

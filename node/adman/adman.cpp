@@ -15,6 +15,11 @@ namespace {
 
 constexpr double kFloorDb = -300.0;
 constexpr double kFloorLinear = 1e-30;  // 10^(kFloorDb / 10)
+/// Particle streams per tick: one per factorised sweep (1..kMaxSweeps) and one for the joint search.
+constexpr std::int64_t kStreamsPerTick = 16;
+constexpr std::int32_t kJointStream = 15;
+static_assert(kMaxSweeps < kJointStream, "a factorised sweep's stream must not be the joint search's");
+
 /// Slack on the grid-neighbour radii, so that a grid's rounding never drops a neighbour.
 constexpr double kNeighbourSlack = 1.01;
 
@@ -63,6 +68,13 @@ double samplingRadius(Kind kind, double inside_radius) {
   return kind == Kind::inside ? inside_radius : std::numbers::sqrt2 * inside_radius;
 }
 
+/// The variance per axis of a uniform disc's share per particle: P particles over pi R^2 leave each
+/// a cell of area pi R^2 / P, whose uniform spread per axis is that area / 12.
+double cloudResolution(Kind kind, const MlmcSettings& settings) {
+  const double radius = samplingRadius(kind, settings.inside_radius);
+  return std::numbers::pi * radius * radius / static_cast<double>(settings.particles) / 12.0;
+}
+
 common::Vec2 uniformInDisc(common::Stream& draw, common::Vec2 centre, double radius) {
   const double r = radius * std::sqrt(draw.uniform());
   const double phi = 2.0 * std::numbers::pi * draw.uniform();
@@ -86,16 +98,20 @@ double blockLogLikelihood(std::span<const Reading> view, std::span<const std::si
 }
 
 /// The best of `candidates` (log-likelihoods `scores`) and the likelihood-weighted covariance of
-/// component `k` of the candidates.
+/// component `k` of the candidates, floored at `resolution` (the variance per axis the particle
+/// cloud cannot resolve: one particle often takes all the weight).
 struct Best {
   std::size_t index = 0;
   double cov_xx = 0.0, cov_xy = 0.0, cov_yy = 0.0;
 };
-Best bestOf(const std::vector<std::vector<common::Vec2>>& candidates, const std::vector<double>& scores, std::size_t k) {
+Best bestOf(const std::vector<std::vector<common::Vec2>>& candidates, const std::vector<double>& scores, std::size_t k,
+            double resolution) {
   Best best;
   for (std::size_t i = 1; i < scores.size(); ++i)
     if (scores[i] > scores[best.index]) best.index = i;
+  best.cov_xx = best.cov_yy = resolution;
   const double top = scores[best.index];
+  if (!std::isfinite(top)) return best;  // no particle explains the readings: only the floor is known
   double w_sum = 0.0, mx = 0.0, my = 0.0;
   for (std::size_t i = 0; i < scores.size(); ++i) {
     const double w = std::exp(scores[i] - top);
@@ -251,7 +267,8 @@ double viewReach(const MlmcSettings& settings) {
 std::vector<Placement> place(std::span<const Reading> view, std::span<const Attachment> attachments,
                              std::span<const std::size_t> attached, std::int32_t tick, const MlmcSettings& settings) {
   if (settings.particles < 1) throw std::invalid_argument("adman place: particles must be >= 1");
-  if (settings.sweeps < 1) throw std::invalid_argument("adman place: sweeps must be >= 1");
+  if (settings.sweeps < 1 || settings.sweeps > kMaxSweeps)
+    throw std::invalid_argument("adman place: sweeps must be in [1, " + std::to_string(kMaxSweeps) + "]");
   const ViewIndex index(view, settings.neighbours.n8());
   const std::size_t count = attachments.size();
   std::vector<common::Vec2> sensor_at(count);
@@ -274,7 +291,7 @@ std::vector<Placement> place(std::span<const Reading> view, std::span<const Atta
       if (b != a && common::squaredDistance(sensor_at[a], sensor_at[b]) <= r2) others.push_back(b);
     return others;
   };
-  const auto streamKey = [tick](std::int32_t sweep) { return static_cast<std::int64_t>(tick) * 16 + sweep; };
+  const auto streamKey = [tick](std::int32_t sweep) { return static_cast<std::int64_t>(tick) * kStreamsPerTick + sweep; };
 
   std::vector<Placement> out;
   if (settings.joint) {
@@ -290,7 +307,7 @@ std::vector<Placement> place(std::span<const Reading> view, std::span<const Atta
       std::sort(block.begin(), block.end());
       block.erase(std::unique(block.begin(), block.end()), block.end());
       const std::vector<double> nothing(block.size(), 0.0);
-      common::Stream draw(settings.seed, common::Purpose::kMlmcParticles, attachments[a].sensor, streamKey(15));
+      common::Stream draw(settings.seed, common::Purpose::kMlmcParticles, attachments[a].sensor, streamKey(kJointStream));
       std::vector<std::vector<common::Vec2>> candidates(static_cast<std::size_t>(settings.particles));
       std::vector<double> scores(candidates.size());
       for (std::size_t p = 0; p < candidates.size(); ++p) {
@@ -299,7 +316,7 @@ std::vector<Placement> place(std::span<const Reading> view, std::span<const Atta
               uniformInDisc(draw, sensor_at[g], samplingRadius(attachments[g].kind, settings.inside_radius)));
         scores[p] = blockLogLikelihood(view, block, nothing, candidates[p], settings.power, settings.sigma_db);
       }
-      const Best best = bestOf(candidates, scores, 0);
+      const Best best = bestOf(candidates, scores, 0, cloudResolution(attachments[a].kind, settings));
       out.push_back({attachments[a], candidates[best.index][0], best.cov_xx, best.cov_xy, best.cov_yy,
                      scores[best.index]});
     }
@@ -363,7 +380,7 @@ std::vector<Placement> place(std::span<const Reading> view, std::span<const Atta
       std::vector<double> scores(candidates.size());
       for (std::size_t p = 0; p < candidates.size(); ++p)
         scores[p] = blockLogLikelihood(view, block, fixed, candidates[p], settings.power, settings.sigma_db);
-      const Best best = bestOf(candidates, scores, 0);
+      const Best best = bestOf(candidates, scores, 0, cloudResolution(attachments[a].kind, settings));
       current[a] = {attachments[a], candidates[best.index][0], best.cov_xx, best.cov_xy, best.cov_yy,
                     scores[best.index]};
     }

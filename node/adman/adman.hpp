@@ -76,8 +76,10 @@ struct Attachment {
   friend bool operator==(const Attachment&, const Attachment&) = default;
 };
 
-/// The sensors of a grid of pitch p: N4 = those within 1.01 p, N8 = within 1.01 sqrt2 p (the same
-/// sets on a random layout of mean spacing p).
+/// The sensors of a grid of pitch p: N4 = those within 1.01 p, N8 = within 1.01 sqrt2 p. On a random
+/// layout of mean spacing p the same radii are used, but the sets vary from sensor to sensor and
+/// the duplicate rule's argument (a diagonal neighbour's inside target is below Delta2 here) holds
+/// only on a grid.
 struct Neighbourhood {
   double pitch = 1.0;
   double n4() const;
@@ -102,6 +104,9 @@ std::vector<Attachment> attach(std::span<const Reading> view, const Thresholds& 
 /// sensor (radius r0 inside, sqrt2 r0 in between), scored by the Gaussian log-likelihood of the
 /// readings of the sensor's block (itself and its N8) with theta from eq. (1) over this target and
 /// the others held fixed; the estimate is the best particle.
+/// The most factorised sweeps (each has its own particle stream; see adman.cpp).
+inline constexpr std::int32_t kMaxSweeps = 14;
+
 struct MlmcSettings {
   PowerModel power;
   double sigma_db = 0.17321;
@@ -117,8 +122,9 @@ struct MlmcSettings {
   std::uint64_t seed = 1;
 };
 
-/// A target placed by MLMC: where, how sure (the likelihood-weighted spread of the particles) and
-/// the log-likelihood of the best particle.
+/// A target placed by MLMC: where, how sure (the likelihood-weighted spread of the particles, at
+/// least the spread one particle's share of the disc leaves) and the log-likelihood of the best
+/// particle.
 struct Placement {
   Attachment attachment;
   common::Vec2 at;

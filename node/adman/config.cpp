@@ -7,6 +7,12 @@
 #include "common/config/yaml_writer.hpp"
 
 namespace wsn::node::adman {
+namespace {
+
+/// The lowest Delta2 the model accepts: 10 dB above the floor of its dB arithmetic.
+constexpr double kLowestThresholdDb = -290.0;
+
+}  // namespace
 
 Thresholds AdmanSettings::glrtThresholds() const {
   return thresholds(power(), inside_radius, noise_sigma_db, false_alarm_probability);
@@ -37,9 +43,9 @@ const common::config::FieldTable<AdmanSettings>& settingsTable() {
                   "need 40"),
           real<C>("reference_distance", &C::reference_distance, openClosed(0.0, 1e9), "length", "d0 of eq. (1)"),
           real<C>("attenuation", &C::attenuation, closed(1.0, 10.0), "", "α ≥ 1: power falls as d^−α (eq. 1)"),
-          real<C>("noise_sigma_db", &C::noise_sigma_db, openClosed(0.0, 100.0), "dB",
+          real<C>("noise_sigma_db", &C::noise_sigma_db, closed(1e-6, 100.0), "dB",
                   "σ of the reading noise v (eq. 3). ADMAN §V: variance 0.03, σ = 0.17321"),
-          real<C>("false_alarm_probability", &C::false_alarm_probability, Range{0.0, 1.0, true, true}, "",
+          real<C>("false_alarm_probability", &C::false_alarm_probability, closed(1e-12, 0.5), "",
                   "P_FA of each GLRT stage: τ32 = Δ1 + σ Q⁻¹(P_FA), τ10 = Δ2 + σ Q⁻¹(P_FA)"),
           derivedDefault(
               real<C>("sensor_pitch", &C::sensor_pitch, openClosed(0.0, 1e9), "length",
@@ -58,7 +64,7 @@ const common::config::FieldTable<AdmanSettings>& settingsTable() {
           choice<C>("localisation", &C::localisation, {"factorised", "joint"},
                     "MLMC: factorised places each target on its own 3 × 3 block with the others at their last "
                     "estimate; joint draws every target of a group at once (eq. 15 as written)"),
-          integer<C>("sweeps", &C::sweeps, 1, 16, "", "factorised MLMC's sweeps: sweep 1 scores each target on the block sensors nearer its own sensor than any other attached one; each later sweep scores the whole block with the others at the last sweep's estimates"),
+          integer<C>("sweeps", &C::sweeps, 1, kMaxSweeps, "", "factorised MLMC's sweeps: sweep 1 scores each target on the block sensors nearer its own sensor than any other attached one; each later sweep scores the whole block with the others at the last sweep's estimates"),
           derivedDefault(real<C>("interaction_range", &C::interaction_range, openClosed(0.0, 1e9), "length",
                                  "the targets attached within it of a target's sensor enter its likelihood"),
                          "4 sensor_pitch", [](const C& m, const common::Scenario&) { return 4.0 * m.sensor_pitch; }),
@@ -73,6 +79,18 @@ SensorModelSettingsSpec settingsSpec() {
     auto settings = std::make_shared<AdmanSettings>();
     if (given != nullptr) r.fields(*given, settingsTable(), *settings);
     common::config::deriveLeftOut(r, given, settingsTable(), *settings, s);
+    // Eq. (1) is evaluated in dB down to a floor of -300 dB: a power that puts Delta2 (a target at
+    // sqrt2 r0) near it leaves no in-between band and turns noise into inside detections.
+    const Thresholds t = settings->glrtThresholds();
+    if (!(t.delta2 > kLowestThresholdDb)) {
+      const common::config::Entry* at = given != nullptr ? given->find("power_db") : nullptr;
+      r.fail(at != nullptr ? common::config::Reader::lineOf(*at) : (given != nullptr ? given->line : 1),
+             "'sensor_model.power_db' " + common::config::compactNumber(settings->power_db) + " dB with attenuation " +
+                 common::config::compactNumber(settings->attenuation) + " and inside_radius " +
+                 common::config::compactNumber(settings->inside_radius) + " gives Delta2 = " +
+                 common::config::compactNumber(t.delta2) + " dB at sqrt2 r0; expected above " +
+                 common::config::compactNumber(kLowestThresholdDb) + " dB (the model's floor is -300 dB)");
+    }
     return std::shared_ptr<const common::SensorModelSettings>(std::move(settings));
   };
   spec.write = [](std::ostream& out, const common::Scenario& s) {

@@ -372,7 +372,9 @@ Partition McmcdaEngine::startState(const WindowProblem& wp, std::vector<std::int
     if (wp.anchor_index[k] >= 0) list.push_back(wp.anchor_index[k]);
     for (const auto& key : tracks_[k].observations) {
       const std::int32_t i = lookup(key);
-      if (i < 0) continue;  // only when an identical report arrived twice
+      // Gone from the window: an identical report arrived twice, or (merge_radius > 0) a late report
+      // joined the cluster and moved its centre; the chain places what is left out.
+      if (i < 0) continue;
       claimed[static_cast<std::size_t>(i)] = true;
       owner[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(k);
       if (!list.empty() && !problem.linked(list.back(), i)) continue;

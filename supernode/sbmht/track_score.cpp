@@ -61,9 +61,12 @@ ClassVector initialClassProbabilities(const ClassVector& likelihoods) {
 ClassUpdate updateClass(const ClassVector& probabilities, const ClassVector& likelihoods,
                         const ClassVector& extraneous_probabilities) {
   ClassUpdate out{probabilities, 0.0};
-  if (likelihoods.size() == 0 || !(likelihoods.sum() > 0.0)) return out;
+  if (likelihoods.size() == 0) return out;  // the sensor does not classify
   if (likelihoods.size() != probabilities.size() || likelihoods.size() != extraneous_probabilities.size())
     throw std::invalid_argument("updateClass: c, beta and beta_e must have one entry per class");
+  if (!(likelihoods.sum() > 0.0)) return out;
+  if (!(likelihoods.dot(extraneous_probabilities) > 0.0))
+    throw std::invalid_argument("updateClass: beta_e gives the report's class likelihoods no weight");
   const double track_evidence = likelihoods.dot(probabilities);
   if (!(track_evidence > 0.0)) {
     out.score_increment = -std::numeric_limits<double>::infinity();

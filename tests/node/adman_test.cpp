@@ -2,6 +2,9 @@
 // the attach rules and MLMC, each expected number derived in a comment, and the locality viewReach promises.
 #include "node/adman/adman.hpp"
 
+#include "common/scenario.hpp"
+#include "common/scenario_error.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -350,6 +353,20 @@ TEST_CASE("A6.5 duplicate rule an N4 neighbour between tau10 and tau32 of an ins
   CHECK(view[16].y == Approx(thetaOne(13.997967844775408)).margin(1e-9));  // 17.0787 dB
   CHECK(view[17].y == Approx(13.7045).margin(1e-3));
   CHECK(attach(view, t, Neighbourhood{kPitch}) == std::vector<Attachment>{{16, Kind::inside}});
+}
+
+TEST_CASE("A reading an inside target explains does not shadow a second in-between target", "[adman]") {
+  // Sensors 0, 1, 2 in a row at pitch s. Sensor 2 reads 16.0 (> tau32 15.63: inside). Sensor 1
+  // reads 14.5 and sensor 0 14.0, both in the in-between band. Sensor 1 is an N4 neighbour of the
+  // inside sensor, so its reading is that target seen from the side and it is no candidate; sensor
+  // 0, the only candidate left in its N8, holds a second (in-between) target. Had the N8 comparison
+  // come first (the order the specification writes), sensor 1 would have suppressed sensor 0 and
+  // then been removed itself, leaving the second target with no attachment.
+  const Thresholds t = thresholds(paperModel(), kR0, kSigma, kFalseAlarm);
+  const double s = kPitch;
+  const std::vector<Reading> view{{0, {0.0, 0.0}, 14.0}, {1, {s, 0.0}, 14.5}, {2, {2.0 * s, 0.0}, 16.0}};
+  CHECK(attach(view, t, Neighbourhood{kPitch}) ==
+        std::vector<Attachment>{{0, Kind::between}, {2, Kind::inside}});
 }
 
 TEST_CASE("A6.5 hand-built views the in-between tie goes to the lower id and only N4 inside sensors veto",
@@ -730,6 +747,26 @@ TEST_CASE("place with the joint switch gives a finite placement near the truth f
     CHECK(p.attachment == attachments[0]);
     CHECK(common::distance(p.at, truth) < 2.0);
   }
+}
+
+TEST_CASE("settings that leave no in-between band or no noise are rejected with their line", "[adman]") {
+  const auto parse = [](const std::string& extra) {
+    return common::parseScenario("region: {x_min: -17.3205, y_min: -17.3205, x_max: 225.1665, y_max: 225.1665}\n"
+                                 "sensors: {layout: grid, spacing: 34.641}\n"
+                                 "sensor_model:\n  kind: adman\n  sensing_range: 24.4949\n" +
+                                     extra + "run: {ticks: 5}\n",
+                                 "adman_test.yaml");
+  };
+  // Psi = -300 dB: Delta2 = -300 - 10 log10(2 r0^2) = -324.8 dB, under the -300 dB floor of the dB
+  // arithmetic, where noise alone would read as inside targets.
+  CHECK_THROWS_WITH(parse("  power_db: -300\n"),
+                    Catch::Matchers::Contains("adman_test.yaml:6:") &&
+                        Catch::Matchers::Contains("'sensor_model.power_db' -300 dB"));
+  // sigma -> 0 makes the likelihood's 1 / (2 sigma^2) overflow: the range starts at 1e-6 dB.
+  CHECK_THROWS_WITH(parse("  noise_sigma_db: 1e-200\n"), Catch::Matchers::Contains("noise_sigma_db"));
+  // A false-alarm probability beyond Q^-1's accuracy is refused rather than turned into NaN thresholds.
+  CHECK_THROWS_WITH(parse("  false_alarm_probability: 1e-320\n"), Catch::Matchers::Contains("false_alarm_probability"));
+  CHECK_NOTHROW(parse("  power_db: 40\n"));
 }
 
 }  // namespace

@@ -179,7 +179,7 @@ TEST_CASE("C1 with the PROP Pi a stopped track loses 0.0498 per scan and is drop
   // only: the first misses cost more (-2.044, -1.082, -.253, -.073, ...; -3.50 after five), so
   // the confirmed track's score falls 10 below its best (the last detection) at the 136th miss
   // (sum after 135 misses: -9.979, after 136: -10.029). With the third PROP model (CV 1.5 m/s^2,
-  // tau 10 s) it is the 135th.
+  // tau 10 s) it is the 135th from mode probabilities (0, .5, .5), the 122nd from (0, 1, 0).
   const std::array<double, 2> taus{20.0, 30.0};
   const Imm imm({stopModel(1.0), constantVelocityModel(1.0, 0.3)}, transitionMatrix(1.0, taus));
   const Detectability seen = Detectability::uniform(0.9, 1.0);
