@@ -181,7 +181,8 @@ const FieldTable<TrackerConfig>& tracker() {
       {
           withNotes(text<C>("engine", &C::engine,
                             "the engine every supernode runs: `mcmcda` (sliding-window MCMCDA), `gnn` (the "
-                            "baseline) or `rulebased` (An et al.'s centroid tracker, `docs/RULEBASED.md`)"),
+                            "baseline), `rulebased` (An et al.'s centroid tracker, `docs/RULEBASED.md`) or `sbmht` (the ONERA "
+                            "structured-branching MHT, `docs/ONERA.md`)"),
                     "a registered engine (`wsntrack components`)"),
           integer<C>("window_size", &C::window_size, 1, 1000, "ticks",
                      "ws, the sliding window of delivered observations (§VI–VII). A report delayed by ws ticks or "

@@ -7,6 +7,7 @@
 #include "supernode/gnn/gnn_engine.hpp"
 #include "supernode/mcmcda/mcmcda_engine.hpp"
 #include "supernode/rulebased/rulebased_engine.hpp"
+#include "supernode/sbmht/sbmht_engine.hpp"
 
 namespace wsn::supernode {
 namespace {
@@ -22,6 +23,7 @@ const common::Registry<EngineSpec>& engineRegistry() {
       gnn::engineSpec(),
       mcmcda::engineSpec(),
       rulebased::engineSpec(),
+      sbmht::engineSpec(),
       // A new engine is a sibling folder plus one line here.
   });
   return registry;

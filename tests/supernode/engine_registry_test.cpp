@@ -60,7 +60,7 @@ TEST_CASE("resolving fills in every default with line 0 and keeps given values",
 TEST_CASE("an unknown engine is reported with file, line and the known engines", "[registry]") {
   auto s = scenarioFrom("kalman", 7);
   REQUIRE_THROWS_MATCHES(resolveEngineParams(s, wsn::common::kNoStatistics), common::ScenarioError,
-                         Catch::Message("runs/s.yaml:7: unknown tracker engine 'kalman'; expected one of: gnn, mcmcda, rulebased"));
+                         Catch::Message("runs/s.yaml:7: unknown tracker engine 'kalman'; expected one of: gnn, mcmcda, rulebased, sbmht"));
 }
 
 TEST_CASE("an unknown parameter is reported with its line and the engine's parameters", "[registry]") {

@@ -188,7 +188,7 @@ TEST_CASE("every position engine handed a bearing observation fails naming itsel
   REQUIRE(common::wellFormed(measured));  // well formed, only of the wrong kind
   common::Observation bearing{3, 3, test::sensorAt(20.0, 30.0), 20.0, 30.0, 0, 0, common::MeasurementRef(measured)};
 
-  for (const char* engine : {"gnn", "mcmcda", "rulebased"}) {
+  for (const char* engine : {"gnn", "mcmcda", "rulebased", "sbmht"}) {
     INFO(engine);
     auto s = test::gnnScenario();
     s.tracker.engine = engine;

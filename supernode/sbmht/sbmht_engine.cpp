@@ -1,0 +1,647 @@
+#include "supernode/sbmht/sbmht_engine.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <utility>
+
+#include "common/shared_derivations.hpp"
+#include "common/track_confirmation.hpp"
+#include "common/track_id.hpp"
+#include "supernode/sbmht/measurement_models.hpp"
+
+namespace wsn::supernode::sbmht {
+namespace {
+
+using common::GaussianState;
+using common::kVx;
+using common::kVy;
+using common::kX;
+using common::kY;
+using Leaf = SbmhtEngine::Leaf;
+
+using common::Derived;
+using common::shortNumber;
+using Statistics = common::ObservationStatistics;
+using Resolved = std::map<std::string, common::EngineParam>;
+
+/// Leaves with a posterior below this are pruned (docs/ONERA.md §3, B&P ch. 16).
+constexpr double kMinTrackProbability = 1e-3;
+/// Nodes the k-best search of one cluster may visit; beyond it the k best found so far are used
+/// (counted in truncatedSearches()).
+constexpr std::uint64_t kSearchBudget = 200000;
+/// A floor on the false-alarm density: one false report per this many ticks over the region, so
+/// that ln(Lambda / lambda_fa) stays finite for a sensor model without false alarms (docs/ONERA.md §7).
+constexpr double kFalseAlarmFloorTicks = 100.0;
+
+bool leafOrder(const Leaf& a, const Leaf& b) {
+  if (a.tree != b.tree) return a.tree < b.tree;
+  return a.history < b.history;
+}
+
+std::map<std::string, common::ParamDerivation> derivations() {
+  std::map<std::string, common::ParamDerivation> d;
+  d["measurement_sigma"] = common::reportErrorDerivation();
+  d["merge_radius"] = common::mergeRadiusDerivation();
+  d["initial_velocity_sigma"] = common::newTrackVelocityDerivation();
+  d["birth_density"] = common::birthDensityDerivation();
+  d["detection_probability"] = {
+      "the sensor model's sensing probability x the network's delivery into the window",
+      [](const common::StatisticsSource& stats, const Resolved&) {
+        const Statistics& s = stats();
+        return Derived{s.detectionProbability(), "sensing " + shortNumber(s.sensing_probability.value) +
+                                                     " x delivery " + shortNumber(s.delivery_probability.value)};
+      }};
+  d["false_alarm_density"] = {
+      "the sensor model's false reports x the network's delivery, at least one per 100 ticks over the region",
+      [](const common::StatisticsSource& stats, const Resolved&) {
+        const Statistics& s = stats();
+        const double floor = 1.0 / (kFalseAlarmFloorTicks * std::max(s.region_area, 1e-12));
+        return Derived{std::max(s.falseAlarmDensity(), floor),
+                       "max(" + shortNumber(s.falseAlarmDensity()) + ", 1 / (100 x area " + shortNumber(s.region_area) +
+                           "))"};
+      }};
+  d["max_misses"] = {"consecutive misses rarer than 1 % at the scenario's pd (sensed and delivered in the window), "
+                     "at least 2",
+                     [](const common::StatisticsSource& stats, const Resolved&) {
+                       // At least 2: one target's report hides another's where they cross (one report for
+                       // two targets), and the miss branch must outlive that tick to bridge it.
+                       const double pd = stats().detectionProbability();
+                       return Derived{static_cast<double>(std::max(2, common::rareMissRun(pd, 0.01, 1000))),
+                                      "max(2, smallest k with (1 - pd)^k <= 0.01 at pd " + shortNumber(pd) + ")"};
+                     }};
+  d["cv_slow_sigma"] = {"the targets' process noise q (dynamics.process_noise_sigma)",
+                        [](const common::StatisticsSource& stats, const Resolved&) {
+                          return Derived{stats().process_noise_sigma, "q"};
+                        }};
+  d["cv_fast_sigma"] = {"5 x the targets' process noise q (docs/ONERA.md §2: 1.5 against 0.3 m/s^2)",
+                        [](const common::StatisticsSource& stats, const Resolved&) {
+                          return Derived{5.0 * stats().process_noise_sigma, "5 q"};
+                        }};
+  return d;
+}
+
+/// The k best global hypotheses of one cluster: one leaf or none per tree, no report used twice,
+/// the largest sums of leaf scores. Exact depth-first branch and bound (the bound: every later tree
+/// adds at most its best positive score), within kSearchBudget nodes.
+class HypothesisSearch {
+ public:
+  struct Hypothesis {
+    double score = 0.0;
+    std::vector<int> chosen;  ///< per tree: the cluster leaf, or -1 (the tree is absent)
+  };
+
+  HypothesisSearch(const std::vector<std::vector<int>>& options, const std::vector<double>& scores,
+                   const std::vector<std::vector<int>>& reports, std::size_t report_count, std::size_t k)
+      : options_(options), scores_(scores), reports_(reports), used_(report_count, 0), k_(k) {
+    bound_.assign(options_.size() + 1, 0.0);
+    for (std::size_t t = options_.size(); t-- > 0;) {
+      double best = 0.0;
+      for (int leaf : options_[t]) best = std::max(best, scores_[static_cast<std::size_t>(leaf)]);
+      bound_[t] = bound_[t + 1] + best;
+    }
+    chosen_.assign(options_.size(), -1);
+  }
+
+  void run() { search(0, 0.0); }
+  const std::vector<Hypothesis>& results() const { return results_; }
+  bool truncated() const { return truncated_; }
+
+ private:
+  void search(std::size_t t, double score) {
+    if (++nodes_ > kSearchBudget) {
+      truncated_ = true;
+      return;
+    }
+    if (results_.size() == k_ && score + bound_[t] <= results_.back().score) return;
+    if (t == options_.size()) {
+      // Insert after equal scores: the first found (better-ordered options) ranks first.
+      const auto at = std::upper_bound(results_.begin(), results_.end(), score,
+                                       [](double s, const Hypothesis& h) { return s > h.score; });
+      results_.insert(at, Hypothesis{score, chosen_});
+      if (results_.size() > k_) results_.pop_back();
+      return;
+    }
+    // Options in order of score (sorted by the caller), the tree's absence where 0 falls.
+    bool absent_tried = false;
+    for (int leaf : options_[t]) {
+      const double s = scores_[static_cast<std::size_t>(leaf)];
+      if (!absent_tried && s <= 0.0) {
+        absent_tried = true;
+        chosen_[t] = -1;
+        search(t + 1, score);
+      }
+      const auto& used = reports_[static_cast<std::size_t>(leaf)];
+      if (std::any_of(used.begin(), used.end(), [&](int r) { return used_[static_cast<std::size_t>(r)] != 0; }))
+        continue;
+      for (int r : used) used_[static_cast<std::size_t>(r)] = 1;
+      chosen_[t] = leaf;
+      search(t + 1, score + s);
+      for (int r : used) used_[static_cast<std::size_t>(r)] = 0;
+    }
+    if (!absent_tried) {
+      chosen_[t] = -1;
+      search(t + 1, score);
+    }
+    chosen_[t] = -1;
+  }
+
+  const std::vector<std::vector<int>>& options_;
+  const std::vector<double>& scores_;
+  const std::vector<std::vector<int>>& reports_;
+  std::vector<char> used_;
+  std::size_t k_;
+  std::vector<double> bound_;
+  std::vector<int> chosen_;
+  std::vector<Hypothesis> results_;
+  std::uint64_t nodes_ = 0;
+  bool truncated_ = false;
+};
+
+/// Keeps the leaves whose flag is set, in order.
+void keepMarked(std::vector<Leaf>& leaves, const std::vector<char>& keep) {
+  std::vector<Leaf> kept;
+  kept.reserve(leaves.size());
+  for (std::size_t k = 0; k < leaves.size(); ++k)
+    if (keep[k]) kept.push_back(std::move(leaves[k]));
+  leaves = std::move(kept);
+}
+
+std::size_t findRoot(std::vector<std::size_t>& parent, std::size_t k) {
+  while (parent[k] != k) k = parent[k] = parent[parent[k]];
+  return k;
+}
+
+void unite(std::vector<std::size_t>& parent, std::size_t a, std::size_t b) {
+  a = findRoot(parent, a);
+  b = findRoot(parent, b);
+  if (a != b) parent[std::max(a, b)] = std::min(a, b);
+}
+
+}  // namespace
+
+const config::FieldTable<SbmhtParams>& paramTable() {
+  using config::integer;
+  using config::real;
+  using P = SbmhtParams;
+  static const config::FieldTable<SbmhtParams> table{
+      "tracker.params (sbmht)",
+      {
+          real<P>("detection_probability", &P::detection_probability, config::closed(0.001, 0.999), "",
+                  "PD: probability that a live target's report reaches the window at a tick (detection times delivery)"),
+          real<P>("false_alarm_density", &P::false_alarm_density, config::closed(1e-12, 1.0), "1/(separation² tick)",
+                  "lambda_fa of eq. (17): delivered false reports per unit area per tick"),
+          real<P>("birth_density", &P::birth_density, config::closed(1e-12, 1.0), "1/(separation² tick)",
+                  "lambda_nt of eq. (18): new targets per unit area per tick"),
+          real<P>("measurement_sigma", &P::measurement_sigma, config::closed(1e-3, 100.0), "separations",
+                  "std. deviation of a position report's error per axis, R = sigma^2 I"),
+          real<P>("initial_velocity_sigma", &P::initial_velocity_sigma, config::closed(1e-3, 100.0), "separations/tick",
+                  "prior std. deviation of a new track's velocity per axis (the track starts at rest)"),
+          real<P>("gate_chi2", &P::gate_chi2, config::closed(0.1, 1000.0), "",
+                  "gate on a report's squared Mahalanobis distance under the best moving model (9.21: chi^2, 2 dof, 99%)"),
+          real<P>("sprt_alpha", &P::sprt_alpha, config::closed(1e-9, 0.5), "",
+                  "SPRT alpha, P(confirming a false track): confirm at L >= ln((1 - beta) / alpha)"),
+          real<P>("sprt_beta", &P::sprt_beta, config::closed(1e-9, 0.5), "",
+                  "SPRT beta, P(deleting a true track): delete a tentative track at L <= ln(beta / (1 - alpha))"),
+          real<P>("drop_score", &P::drop_score, config::closed(0.1, 1e6), "",
+                  "T_drop: a confirmed track whose score falls this far below its best is deleted"),
+          integer<P>("max_misses", &P::max_misses, 1.0, 1000.0, "ticks",
+                     "a leaf that missed this many consecutive scans is deleted (the stop model makes coasting cheap, "
+                     "so T_drop alone keeps a vanished target's track for about 100 scans)"),
+          integer<P>("n_scan", &P::n_scan, 0.0, 50.0, "scans",
+                     "N of N-scan pruning: a tree keeps only the branches that agree with the best hypothesis N scans "
+                     "back; leaves whose last N reports are equal are merged"),
+          integer<P>("hypotheses", &P::hypotheses, 1.0, 1000.0, "",
+                     "N_Hypo: global hypotheses kept per cluster (the k best), over which track posteriors are computed"),
+          integer<P>("initial_score", &P::initial_score, 0.0, 1.0, "",
+                     "a new track's score: 0 blackman, ln(PD lambda_nt / lambda_fa); 1 paper, eq. (18) "
+                     "ln(lambda_fa / (lambda_fa + lambda_nt))"),
+          real<P>("stop_sigma", &P::stop_sigma, config::closed(1e-6, 100.0), "separations",
+                  "stop model: the position wanders by this std. deviation per tick"),
+          real<P>("cv_slow_sigma", &P::cv_slow_sigma, config::closed(1e-3, 100.0), "separations/tick²",
+                  "acceleration std. deviation of the quiet constant-velocity model"),
+          real<P>("cv_fast_sigma", &P::cv_fast_sigma, config::closed(1e-3, 100.0), "separations/tick²",
+                  "acceleration std. deviation of the manoeuvring constant-velocity model"),
+          real<P>("stop_time_constant", &P::stop_time_constant, config::closed(1e-3, 1e6), "ticks",
+                  "mean sojourn in the stop model: p_00 = exp(-delta / tau)"),
+          real<P>("slow_time_constant", &P::slow_time_constant, config::closed(1e-3, 1e6), "ticks",
+                  "mean sojourn in the quiet constant-velocity model"),
+          real<P>("fast_time_constant", &P::fast_time_constant, config::closed(1e-3, 1e6), "ticks",
+                  "mean sojourn in the manoeuvring constant-velocity model"),
+          real<P>("merge_radius", &P::merge_radius, config::closed(0.0, 1e6), "separations",
+                  common::kMergeRadiusMeaning),
+      }};
+  return table;
+}
+
+EngineSpec engineSpec() {
+  EngineSpec spec;
+  spec.name = "sbmht";
+  spec.description =
+      "ONERA structured-branching MHT (Pannetier et al. 2014): IMM (stop + two CV models), track trees with a "
+      "miss branch, LLR scores and SPRT, k best hypotheses per cluster, N-scan pruning; replays the window";
+  spec.params = common::paramSpecs(paramTable(), derivations());
+  spec.create = [](const EngineContext& context) -> std::unique_ptr<Engine> {
+    return std::make_unique<SbmhtEngine>(context);
+  };
+  spec.accepts = {"position"};
+  return spec;
+}
+
+SbmhtParams SbmhtParams::fromContext(const EngineContext& context) {
+  return common::decodeParams(paramTable(), context.params);
+}
+
+namespace {
+
+Imm makeImm(const SbmhtParams& p, double delta) {
+  const std::array<double, 3> taus{p.stop_time_constant, p.slow_time_constant, p.fast_time_constant};
+  return Imm({stopModel(delta, p.stop_sigma), constantVelocityModel(delta, p.cv_slow_sigma),
+              constantVelocityModel(delta, p.cv_fast_sigma)},
+             transitionMatrix(delta, taus));
+}
+
+}  // namespace
+
+SbmhtEngine::SbmhtEngine(const EngineContext& context)
+    : supernode_(context.supernode),
+      region_(context.region),
+      params_(SbmhtParams::fromContext(context)),
+      delta_(context.dynamics.delta),
+      imm_(makeImm(params_, context.dynamics.delta)),
+      sprt_(SprtThresholds::fromErrorRates(params_.sprt_alpha, params_.sprt_beta, params_.drop_score)),
+      initial_score_(initialScore(params_.initial_score == 1 ? InitialScore::paper : InitialScore::blackman,
+                                  params_.detection_probability, params_.false_alarm_density,
+                                  params_.birth_density)) {
+  // A report rules out the stop model (eq. 9): a new track moves, model unknown.
+  initial_probabilities_ = ModeVector(3);
+  initial_probabilities_ << 0.0, 0.5, 0.5;
+}
+
+void SbmhtEngine::inject(std::vector<Leaf>& leaves, const Leaf& leaf) {
+  std::erase_if(leaves, [&](const Leaf& l) { return l.tree == leaf.tree; });
+  leaves.insert(std::upper_bound(leaves.begin(), leaves.end(), leaf, leafOrder), leaf);
+}
+
+const Leaf* SbmhtEngine::representative(const std::vector<Leaf>& leaves, common::TrackId tree) {
+  const Leaf* chosen = nullptr;
+  for (const auto& leaf : leaves) {
+    if (leaf.tree != tree) continue;
+    if (leaf.best) return &leaf;
+    if (!chosen || leaf.probability > chosen->probability ||
+        (leaf.probability == chosen->probability && leaf.score.score > chosen->score.score))
+      chosen = &leaf;
+  }
+  return chosen;
+}
+
+void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot) {
+  for (const auto& adoption : adoptions_)
+    if (adoption.tick == tick) inject(leaves, adoption.leaf);
+
+  const double r2 = params_.measurement_sigma * params_.measurement_sigma;
+  const MeasurementModel position;  // kind position: h(x) = (x, y)
+  const MeasurementCovariance R = MeasurementCovariance::Identity(2, 2) * r2;
+  const Detectability detectability = Detectability::uniform(params_.detection_probability);
+  const double lambda_fa = params_.false_alarm_density;
+  const std::size_t cols = slot.size();
+  std::vector<MeasurementVector> z(cols, MeasurementVector(2));
+  for (std::size_t j = 0; j < cols; ++j) z[j] << slot[j].x, slot[j].y;
+
+  // 1. Branching: every leaf gets a miss child and one child per gated report.
+  std::vector<Leaf> next;
+  next.reserve(leaves.size() * 2 + cols);
+  for (const Leaf& leaf : leaves) {
+    const ImmPrediction prediction = imm_.predict(leaf.imm);
+    {
+      ImmUpdate miss = imm_.miss(prediction, detectability);
+      Leaf child;
+      child.tree = leaf.tree;
+      child.first_tick = leaf.first_tick;
+      child.history = leaf.history;
+      child.history.push_back(-1);
+      child.imm = std::move(miss.state);
+      child.score = leaf.score.after(missScoreIncrement(miss.likelihood), sprt_);
+      child.last_seen_tick = leaf.last_seen_tick;
+      child.hits = leaf.hits;
+      child.misses = leaf.misses + 1;
+      const GaussianState c = child.imm.combined();
+      // A leaf that coasted out of the region followed a target that left: no sensor sees it again.
+      if (child.score.status != TrackStatus::deleted && child.misses < params_.max_misses &&
+          region_.contains({c.x(kX), c.x(kY)}))
+        next.push_back(std::move(child));
+    }
+    for (std::size_t j = 0; j < cols; ++j) {
+      // d^2 >= |nu|^2 / trace(S) for each moving model: skip the EKFs of a report far from all.
+      bool near = false;
+      for (std::size_t i = 0; i < imm_.size() && !near; ++i) {
+        if (!imm_.models()[i].moving()) continue;
+        const auto& m = prediction.modes[i];
+        const double dx = z[j](0) - m.x(kX);
+        const double dy = z[j](1) - m.x(kY);
+        near = dx * dx + dy * dy <= params_.gate_chi2 * (m.P(kX, kX) + m.P(kY, kY) + 2.0 * r2);
+      }
+      if (!near) continue;
+      ImmUpdate hit = imm_.report(prediction, position, z[j], R, detectability);
+      if (!(hit.likelihood > 0.0) || !(hit.gate_distance <= params_.gate_chi2)) continue;
+      Leaf child;
+      child.tree = leaf.tree;
+      child.first_tick = leaf.first_tick;
+      child.history = leaf.history;
+      child.history.push_back(static_cast<std::int32_t>(j));
+      child.imm = std::move(hit.state);
+      child.score = leaf.score.after(reportScoreIncrement(hit.likelihood, lambda_fa), sprt_);
+      child.last_seen_tick = tick;
+      child.hits = leaf.hits + 1;
+      child.misses = 0;
+      if (child.score.status != TrackStatus::deleted) next.push_back(std::move(child));
+    }
+  }
+
+  // 2. Every report also starts a new tentative tree, at rest at the report.
+  std::vector<common::TrackId> born;
+  for (std::size_t j = 0; j < cols; ++j) {
+    const common::TrackId id = common::track_id::birth(supernode_, tick, slot[j].sensor);
+    // Two reports of one sensor in one tick would share an id: the first (canonical order) wins.
+    if (std::find(born.begin(), born.end(), id) != born.end()) continue;
+    if (std::any_of(next.begin(), next.end(), [&](const Leaf& l) { return l.tree == id; })) continue;
+    born.push_back(id);
+    GaussianState start;
+    start.x << slot[j].x, slot[j].y, 0.0, 0.0;
+    start.P.setZero();
+    start.P(kX, kX) = r2;
+    start.P(kY, kY) = r2;
+    start.P(kVx, kVx) = params_.initial_velocity_sigma * params_.initial_velocity_sigma;
+    start.P(kVy, kVy) = start.P(kVx, kVx);
+    Leaf leaf;
+    leaf.tree = id;
+    leaf.first_tick = tick;
+    leaf.history = {static_cast<std::int32_t>(j)};
+    leaf.imm = ImmState::startAt(start, initial_probabilities_);
+    leaf.score = TrackScore::start(initial_score_);
+    leaf.last_seen_tick = tick;
+    leaf.hits = 1;
+    next.push_back(std::move(leaf));
+  }
+
+  // 3. Merging: of leaves whose last N entries are the same N reports, the best-scoring one stays.
+  const auto n = static_cast<std::size_t>(params_.n_scan);
+  if (n >= 1) {
+    std::vector<std::size_t> candidates;
+    const auto tail = [&](std::size_t k) { return std::span(next[k].history).last(n); };
+    for (std::size_t k = 0; k < next.size(); ++k) {
+      if (next[k].history.size() < n) continue;
+      const auto last = tail(k);
+      if (std::all_of(last.begin(), last.end(), [](std::int32_t e) { return e >= 0; })) candidates.push_back(k);
+    }
+    std::sort(candidates.begin(), candidates.end(), [&](std::size_t a, std::size_t b) {
+      const auto ta = tail(a);
+      const auto tb = tail(b);
+      if (!std::equal(ta.begin(), ta.end(), tb.begin()))
+        return std::lexicographical_compare(ta.begin(), ta.end(), tb.begin(), tb.end());
+      if (next[a].score.score != next[b].score.score) return next[a].score.score > next[b].score.score;
+      return leafOrder(next[a], next[b]);
+    });
+    std::vector<char> keep(next.size(), 1);
+    for (std::size_t c = 1; c < candidates.size(); ++c) {
+      const auto prev = tail(candidates[c - 1]);
+      const auto here = tail(candidates[c]);
+      if (std::equal(prev.begin(), prev.end(), here.begin())) keep[candidates[c]] = 0;
+    }
+    keepMarked(next, keep);
+  }
+
+  std::sort(next.begin(), next.end(), leafOrder);
+  manageHypotheses(next, tick);
+
+  for (const auto& release : releases_)
+    if (release.tick == tick) std::erase_if(next, [&](const Leaf& l) { return l.tree == release.id; });
+  leaves = std::move(next);
+}
+
+void SbmhtEngine::manageHypotheses(std::vector<Leaf>& leaves, std::int32_t tick) {
+  const std::size_t count = leaves.size();
+  if (count == 0) return;
+
+  // Clusters: a tree's leaves exclude one another, and so do leaves that share a report.
+  std::vector<std::size_t> parent(count);
+  for (std::size_t k = 0; k < count; ++k) parent[k] = k;
+  for (std::size_t k = 1; k < count; ++k)
+    if (leaves[k].tree == leaves[k - 1].tree) unite(parent, k, k - 1);
+  struct Entry {
+    std::int32_t tick;
+    std::int32_t report;
+    std::size_t leaf;
+  };
+  std::vector<Entry> entries;
+  for (std::size_t k = 0; k < count; ++k)
+    for (std::size_t e = 0; e < leaves[k].history.size(); ++e)
+      if (leaves[k].history[e] >= 0)
+        entries.push_back({leaves[k].first_tick + static_cast<std::int32_t>(e), leaves[k].history[e], k});
+  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+    return std::tie(a.tick, a.report, a.leaf) < std::tie(b.tick, b.report, b.leaf);
+  });
+  std::vector<std::vector<int>> reports(count);  // each leaf's reports as compact ids
+  int report_id = -1;
+  for (std::size_t e = 0; e < entries.size(); ++e) {
+    const bool same = e > 0 && entries[e].tick == entries[e - 1].tick && entries[e].report == entries[e - 1].report;
+    if (same)
+      unite(parent, entries[e].leaf, entries[e - 1].leaf);
+    else
+      ++report_id;
+    reports[entries[e].leaf].push_back(report_id);
+  }
+  const auto report_count = static_cast<std::size_t>(report_id + 1);
+
+  std::vector<std::vector<std::size_t>> clusters(count);
+  for (std::size_t k = 0; k < count; ++k) clusters[findRoot(parent, k)].push_back(k);
+
+  std::vector<double> scores(count);
+  for (std::size_t k = 0; k < count; ++k) {
+    scores[k] = leaves[k].score.score;
+    leaves[k].probability = 0.0;
+    leaves[k].best = false;
+  }
+  for (const auto& members : clusters) {
+    if (members.empty()) continue;
+    // Trees in order, each tree's leaves by score (ties: leaf order): the search tries good options first.
+    std::vector<std::vector<int>> options;
+    for (std::size_t m = 0; m < members.size(); ++m) {
+      if (m == 0 || leaves[members[m]].tree != leaves[members[m - 1]].tree) options.emplace_back();
+      options.back().push_back(static_cast<int>(members[m]));
+    }
+    for (auto& tree : options)
+      std::stable_sort(tree.begin(), tree.end(), [&](int a, int b) {
+        return scores[static_cast<std::size_t>(a)] > scores[static_cast<std::size_t>(b)];
+      });
+    HypothesisSearch search(options, scores, reports, report_count, static_cast<std::size_t>(params_.hypotheses));
+    search.run();
+    if (search.truncated()) ++truncated_searches_;
+    const auto& found = search.results();
+    if (found.empty()) continue;
+    // P(T) = sum over the k best H containing T of e^{L_H}, normalised.
+    double total = 0.0;
+    for (const auto& h : found) total += std::exp(h.score - found.front().score);
+    for (const auto& h : found) {
+      const double weight = std::exp(h.score - found.front().score) / total;
+      for (int leaf : h.chosen)
+        if (leaf >= 0) leaves[static_cast<std::size_t>(leaf)].probability += weight;
+    }
+    for (int leaf : found.front().chosen)
+      if (leaf >= 0) leaves[static_cast<std::size_t>(leaf)].best = true;
+  }
+
+  // Hypothesis pruning (P(T) below 1e-3), then N-scan pruning: a tree keeps the branches that agree,
+  // N scans back, with its leaf in the best hypothesis (or its most probable leaf when it has none).
+  // The leaves of a tree already agree on every older scan, so one entry decides.
+  std::erase_if(leaves, [](const Leaf& l) { return !l.best && l.probability < kMinTrackProbability; });
+  std::vector<char> keep(leaves.size(), 1);
+  for (std::size_t begin = 0; begin < leaves.size();) {
+    std::size_t end = begin;
+    while (end < leaves.size() && leaves[end].tree == leaves[begin].tree) ++end;
+    std::size_t ref = begin;
+    for (std::size_t k = begin; k < end; ++k) {
+      if (leaves[k].best) {
+        ref = k;
+        break;
+      }
+      if (leaves[k].probability > leaves[ref].probability ||
+          (leaves[k].probability == leaves[ref].probability && leaves[k].score.score > leaves[ref].score.score))
+        ref = k;
+    }
+    const std::int64_t e = std::int64_t{tick} - params_.n_scan - leaves[ref].first_tick;
+    if (e >= 0 && e < static_cast<std::int64_t>(leaves[ref].history.size()))
+      for (std::size_t k = begin; k < end; ++k)
+        keep[k] = leaves[k].history[static_cast<std::size_t>(e)] == leaves[ref].history[static_cast<std::size_t>(e)];
+    begin = end;
+  }
+  keepMarked(leaves, keep);
+}
+
+void SbmhtEngine::foldAnchorTo(std::int32_t tick) {
+  for (std::int32_t t = anchor_tick_ + 1; t <= tick; ++t) {
+    std::span<const common::Observation> slot;
+    const std::int64_t index = std::int64_t{t} - cached_oldest_tick_;
+    if (index >= 0 && index < static_cast<std::int64_t>(cached_slots_.size()))
+      slot = cached_slots_[static_cast<std::size_t>(index)];
+    processTick(anchor_, t, slot);
+    anchor_tick_ = t;
+  }
+  std::erase_if(adoptions_, [&](const Adoption& a) { return a.tick <= anchor_tick_; });
+  std::erase_if(releases_, [&](const Release& r) { return r.tick <= anchor_tick_; });
+}
+
+void SbmhtEngine::step(const ObservationWindow& window) {
+  const std::int32_t newest = window.newestTick();
+  if (newest < 1) return;
+  const std::int32_t oldest = window.oldestTick();
+  if (!started_) {
+    started_ = true;
+    anchor_tick_ = oldest - 1;
+    cached_oldest_tick_ = oldest;
+  }
+
+  // A handoff too old to enter at its own tick enters the anchor, predicted up to it.
+  for (const auto& adoption : adoptions_) {
+    if (adoption.tick > anchor_tick_) continue;
+    Leaf leaf = adoption.leaf;
+    for (std::int32_t t = adoption.tick; t <= anchor_tick_; ++t) {
+      const ImmPrediction p = imm_.predict(leaf.imm);
+      leaf.imm.modes = p.modes;
+      leaf.imm.probabilities = p.probabilities;
+    }
+    leaf.first_tick = anchor_tick_ + 1;
+    inject(anchor_, leaf);
+  }
+  std::erase_if(adoptions_, [&](const Adoption& a) { return a.tick <= anchor_tick_; });
+
+  foldAnchorTo(oldest - 1);
+
+  std::optional<ObservationWindow> merged;
+  if (params_.merge_radius > 0.0) merged = window.merged(params_.merge_radius);
+  const ObservationWindow& replayed = merged ? *merged : window;
+  current_ = anchor_;
+  for (std::int32_t t = oldest; t <= newest; ++t) processTick(current_, t, replayed.slot(t));
+  current_tick_ = newest;
+
+  cached_oldest_tick_ = oldest;
+  cached_slots_.clear();
+  for (std::int32_t t = oldest; t <= newest; ++t) {
+    const auto slot = replayed.slot(t);
+    cached_slots_.emplace_back(slot.begin(), slot.end());
+  }
+}
+
+void SbmhtEngine::adopt(const common::TrackHandoff& handoff) {
+  GaussianState state;
+  state.x = common::StateVector(handoff.state.data());
+  state.P = common::fromRowMajor(handoff.covariance);
+  state.P = 0.5 * (state.P + state.P.transpose());
+  if (!state.x.allFinite() || !state.P.allFinite()) {
+    ++rejected_handoffs_;
+    return;
+  }
+  Leaf leaf;
+  leaf.tree = handoff.track;
+  leaf.first_tick = handoff.last_tick + 1;
+  leaf.imm = ImmState::startAt(state, initial_probabilities_);
+  // A confirmed track arrives confirmed, T_drop above the confirmation threshold; a tentative one
+  // starts over at L(1).
+  if (handoff.confirmed) {
+    const double high = sprt_.confirm + sprt_.drop_confirmed;
+    leaf.score = TrackScore{high, high, TrackStatus::confirmed};
+  } else {
+    leaf.score = TrackScore::start(initial_score_);
+  }
+  leaf.hits = handoff.hits;
+  leaf.misses = handoff.misses;
+  leaf.last_seen_tick = handoff.last_tick - handoff.misses;
+  adoptions_.push_back(Adoption{handoff.last_tick + 1, std::move(leaf)});
+}
+
+std::vector<common::TrackEstimate> SbmhtEngine::confirmedTracks() const {
+  std::vector<common::TrackEstimate> out;
+  for (const auto& leaf : current_) {
+    if (!leaf.best || leaf.score.status != TrackStatus::confirmed) continue;
+    const GaussianState s = leaf.imm.combined();
+    out.push_back({leaf.tree, s.x(kX), s.x(kY), s.x(kVx), s.x(kVy), common::toRowMajor(s.P), leaf.last_seen_tick});
+  }
+  return out;
+}
+
+std::vector<TrackPrediction> SbmhtEngine::predictions() const {
+  std::vector<TrackPrediction> out;
+  for (std::size_t k = 0; k < current_.size(); ++k) {
+    if (k > 0 && current_[k].tree == current_[k - 1].tree) continue;
+    const Leaf* leaf = representative(current_, current_[k].tree);
+    const GaussianState s = leaf->imm.combined();
+    out.push_back({leaf->tree, {s.x(kX) + delta_ * s.x(kVx), s.x(kY) + delta_ * s.x(kVy)}});
+  }
+  return out;
+}
+
+common::TrackHandoff SbmhtEngine::release(common::TrackId track_id, std::uint32_t to_supernode) {
+  const Leaf* leaf = representative(current_, track_id);
+  if (!leaf) throw std::invalid_argument("sbmht: release of unknown track " + std::to_string(track_id));
+  const GaussianState s = leaf->imm.combined();
+  common::TrackHandoff handoff;
+  handoff.track = track_id;
+  handoff.to_supernode = to_supernode;
+  handoff.last_tick = current_tick_;
+  for (int r = 0; r < common::kStateDim; ++r) handoff.state[static_cast<std::size_t>(r)] = s.x(r);
+  handoff.covariance = common::toRowMajor(s.P);
+  handoff.hits = leaf->hits;
+  handoff.misses = leaf->misses;
+  handoff.confirmed = leaf->score.status == TrackStatus::confirmed;
+  releases_.push_back(Release{current_tick_, track_id});
+  std::erase_if(current_, [&](const Leaf& l) { return l.tree == track_id; });
+  return handoff;
+}
+
+}  // namespace wsn::supernode::sbmht

@@ -1,0 +1,130 @@
+// The ONERA supernode engine "sbmht" (Pannetier, Dezert, Sella, FUSION 2014, §IV-A, Fig. 2; Blackman &
+// Popoli 1999 ch. 16): a track-oriented multiple-hypothesis tracker with structured branching. Each
+// track tree branches on every gated report and on a miss; its leaves are scored by the IMM's
+// likelihood ratio (track_score.hpp), judged by Wald's SPRT, clustered when they share reports, and
+// combined into the k best global hypotheses per cluster; the tracks' posteriors prune the leaves,
+// N-scan pruning keeps the branches that agree with the best hypothesis N scans back, and duplicate
+// leaves are merged. Position reports only in this step (docs/ONERA.md §3 and §8).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "supernode/engine.hpp"
+#include "supernode/sbmht/imm.hpp"
+#include "supernode/sbmht/track_score.hpp"
+
+namespace wsn::supernode::sbmht {
+
+/// The engine's registration: name "sbmht", its parameters with defaults and ranges, factory.
+EngineSpec engineSpec();
+
+/// Resolved parameters (see paramTable() for meaning, defaults and ranges).
+struct SbmhtParams {
+  double detection_probability = 0.9;
+  double false_alarm_density = 1e-4;
+  double birth_density = 1e-5;
+  double measurement_sigma = 0.5;
+  double initial_velocity_sigma = 2.0;
+  double gate_chi2 = 9.21;
+  double sprt_alpha = 1e-3;
+  double sprt_beta = 0.1;
+  double drop_score = 10.0;
+  std::int32_t max_misses = 3;
+  std::int32_t n_scan = 3;
+  std::int32_t hypotheses = 20;
+  std::int32_t initial_score = 0;  ///< 0: blackman, 1: paper (InitialScore)
+  double stop_sigma = 0.1;
+  double cv_slow_sigma = 0.15;
+  double cv_fast_sigma = 0.75;
+  double stop_time_constant = 20.0;
+  double slow_time_constant = 30.0;
+  double fast_time_constant = 10.0;
+  double merge_radius = 0.0;
+
+  static SbmhtParams fromContext(const EngineContext& context);
+};
+
+/// The parameters' one description: key, member, unit, range, default (SbmhtParams{}) and meaning.
+const config::FieldTable<SbmhtParams>& paramTable();
+
+/// Track-oriented MHT with window replay (as GNN): the engine keeps an anchor (its track trees after
+/// every tick that already left the window) and replays the window's ticks from it at every step, so
+/// a delayed report is processed at its generation tick as if it had been on time. Handoffs are events
+/// in that timeline (an adopted track enters at the tick after its last_tick, a released tree leaves
+/// after the tick it was released at).
+class SbmhtEngine final : public Engine {
+ public:
+  explicit SbmhtEngine(const EngineContext& context);
+
+  void adopt(const common::TrackHandoff& handoff) override;
+  void step(const ObservationWindow& window) override;
+  std::vector<common::TrackEstimate> confirmedTracks() const override;
+  std::vector<TrackPrediction> predictions() const override;
+  common::TrackHandoff release(common::TrackId track, std::uint32_t to_supernode) override;
+
+  /// A track hypothesis: one leaf of a track tree.
+  struct Leaf {
+    common::TrackId tree = 0;        ///< the tree's id, the track id it reports under
+    std::int32_t first_tick = 0;     ///< tick of history[0]
+    /// One entry per scan since first_tick: the index of the report it took in that tick's slot
+    /// (canonical order), or -1 for a miss. Two leaves of one tree differ only in their last
+    /// n_scan entries (N-scan pruning).
+    std::vector<std::int32_t> history;
+    ImmState imm;
+    TrackScore score;
+    std::int32_t last_seen_tick = 0;
+    std::int32_t hits = 0;
+    std::int32_t misses = 0;         ///< consecutive misses
+    double probability = 1.0;        ///< P(T) over the cluster's k best hypotheses
+    bool best = false;               ///< in the best global hypothesis
+  };
+
+  /// Leaves at the newest tick, sorted by (tree, history).
+  const std::vector<Leaf>& leaves() const { return current_; }
+  /// Clusters whose hypothesis search hit its node budget (the k best found so far were used).
+  std::uint64_t truncatedSearches() const { return truncated_searches_; }
+  std::uint64_t rejectedHandoffs() const { return rejected_handoffs_; }
+
+ private:
+  struct Adoption {
+    std::int32_t tick = 0;  // first tick at which the tree takes part (handoff.last_tick + 1)
+    Leaf leaf;
+  };
+  struct Release {
+    std::int32_t tick = 0;  // the tree is gone after this tick
+    common::TrackId id = 0;
+  };
+
+  /// One MHT scan at `tick` on leaves whose state is at tick - 1.
+  void processTick(std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot);
+  /// Clusters, k best hypotheses, P(T), hypothesis pruning and N-scan pruning of the scan at `tick`.
+  void manageHypotheses(std::vector<Leaf>& leaves, std::int32_t tick);
+  void foldAnchorTo(std::int32_t tick);
+  static void inject(std::vector<Leaf>& leaves, const Leaf& leaf);
+  /// The leaf that speaks for tree `tree` in leaves (best hypothesis, else most probable).
+  static const Leaf* representative(const std::vector<Leaf>& leaves, common::TrackId tree);
+
+  std::uint32_t supernode_;
+  common::Rect region_;
+  SbmhtParams params_;
+  double delta_ = 1.0;
+  Imm imm_;
+  SprtThresholds sprt_;
+  double initial_score_ = 0.0;
+  ModeVector initial_probabilities_;
+  bool started_ = false;
+  std::int32_t anchor_tick_ = 0;
+  std::vector<Leaf> anchor_;
+  std::int32_t current_tick_ = 0;
+  std::vector<Leaf> current_;
+  std::vector<Adoption> adoptions_;
+  std::vector<Release> releases_;
+  std::int32_t cached_oldest_tick_ = 0;
+  std::vector<std::vector<common::Observation>> cached_slots_;
+  std::uint64_t truncated_searches_ = 0;
+  std::uint64_t rejected_handoffs_ = 0;
+};
+
+}  // namespace wsn::supernode::sbmht
