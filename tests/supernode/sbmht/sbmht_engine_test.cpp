@@ -151,7 +151,7 @@ TEST_CASE("sbmht N-scan pruning collapses branches that differ only N scans back
   auto truth = [](std::int32_t t) { return common::Vec2{20.0 + t, 30.0}; };
   const common::TrackId id = common::track_id::birth(0, 1, sensorAt(truth(1).x, truth(1).y));
   const std::int32_t fork = 10;
-  const std::int32_t n = h.engine.leaves().empty() ? 3 : 3;
+  const std::int32_t n = 3;  // n_scan, the default
   for (std::int32_t t = 1; t <= fork + n; ++t) {
     const auto p = truth(t);
     std::vector<common::Observation> reports{observation(t, t, p.x, p.y)};
