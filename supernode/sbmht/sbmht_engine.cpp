@@ -76,6 +76,31 @@ std::map<std::string, common::ParamDerivation> derivations() {
                        return Derived{static_cast<double>(std::max(2, common::rareMissRun(pd, 0.01, 1000))),
                                       "max(2, smallest k with (1 - pd)^k <= 0.01 at pd " + shortNumber(pd) + ")"};
                      }};
+  d["confirm_reports"] = {
+      "reports that balance chains of clutter against the wait of every new target (as MCMCDA's "
+      "confirm_observations)",
+      [](const common::StatisticsSource& stats, const Resolved& r) {
+        // The SPRT's alpha is a design value: with alpha = 1e-3 a clutter-free scenario would wait
+        // for a second report though a single one is decisive there. The count is derived from
+        // the same false-track economics as the other engines' confirmation.
+        const Statistics& s = stats();
+        const double lambda_fa = r.at("false_alarm_density").value;
+        const double pd = r.at("detection_probability").value;
+        const double births = common::birthsPerTick(r.at("birth_density").value, s.region_area, s.run_ticks);
+        const auto gates = common::newTrackGates(r.at("gate_chi2").value, r.at("measurement_sigma").value,
+                                                 r.at("initial_velocity_sigma").value, s.process_noise_sigma, s.delta);
+        const double chain_life = r.at("max_misses").value;
+        const auto n = common::leastCostConfirmation(
+            [&](std::int32_t k) {
+              return common::falseTrackRate(k, lambda_fa, s.region_area, gates.first, gates.later) *
+                     (k == 1 ? 1.0 : chain_life);
+            },
+            1.0, births, [&](std::int32_t k) { return common::ticksForReports(k, pd); }, 1, 10);
+        return Derived{static_cast<double>(n), "fewest wrong track-ticks: chains of clutter (lambda_fa " +
+                                                   shortNumber(lambda_fa) + " over " + shortNumber(s.region_area) +
+                                                   ", each kept max_misses ticks) against the wait of " +
+                                                   shortNumber(births) + " births per tick at PD " + shortNumber(pd)};
+      }};
   d["cv_slow_sigma"] = {"the targets' process noise q (dynamics.process_noise_sigma)",
                         [](const common::StatisticsSource& stats, const Resolved&) {
                           return Derived{stats().process_noise_sigma, "q"};
@@ -236,6 +261,9 @@ const config::FieldTable<SbmhtParams>& paramTable() {
                   "mean sojourn in the manoeuvring constant-velocity model"),
           real<P>("merge_radius", &P::merge_radius, config::closed(0.0, 1e6), "separations",
                   common::kMergeRadiusMeaning),
+          integer<P>("confirm_reports", &P::confirm_reports, 1.0, 1000.0, "reports",
+                     "a tentative track with this many reports is confirmed, even before its score reaches the "
+                     "SPRT's threshold: the evidence the scenario's clutter makes decisive (1 without clutter)"),
       }};
   return table;
 }
@@ -359,6 +387,7 @@ void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std:
       child.score = leaf.score.after(reportScoreIncrement(hit.likelihood, lambda_fa), sprt_);
       child.last_seen_tick = tick;
       child.hits = leaf.hits + 1;
+      confirmByCount(child);
       child.misses = 0;
       if (child.score.status != TrackStatus::deleted) next.push_back(std::move(child));
     }
@@ -387,6 +416,7 @@ void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std:
     leaf.score = TrackScore::start(initial_score_);
     leaf.last_seen_tick = tick;
     leaf.hits = 1;
+    confirmByCount(leaf);
     next.push_back(std::move(leaf));
   }
 
@@ -522,6 +552,11 @@ void SbmhtEngine::manageHypotheses(std::vector<Leaf>& leaves, std::int32_t tick)
     begin = end;
   }
   keepMarked(leaves, keep);
+}
+
+void SbmhtEngine::confirmByCount(Leaf& leaf) const {
+  if (leaf.score.status == TrackStatus::tentative && leaf.hits >= params_.confirm_reports)
+    leaf.score.status = TrackStatus::confirmed;
 }
 
 void SbmhtEngine::foldAnchorTo(std::int32_t tick) {

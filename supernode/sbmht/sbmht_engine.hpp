@@ -42,6 +42,7 @@ struct SbmhtParams {
   double slow_time_constant = 30.0;
   double fast_time_constant = 10.0;
   double merge_radius = 0.0;
+  std::int32_t confirm_reports = 3;  ///< a tentative track with this many reports is confirmed
 
   static SbmhtParams fromContext(const EngineContext& context);
 };
@@ -99,6 +100,8 @@ class SbmhtEngine final : public Engine {
 
   /// One MHT scan at `tick` on leaves whose state is at tick - 1.
   void processTick(std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot);
+  /// Confirms a tentative leaf that holds confirm_reports reports (the SPRT may confirm it sooner).
+  void confirmByCount(Leaf& leaf) const;
   /// Clusters, k best hypotheses, P(T), hypothesis pruning and N-scan pruning of the scan at `tick`.
   void manageHypotheses(std::vector<Leaf>& leaves, std::int32_t tick);
   void foldAnchorTo(std::int32_t tick);

@@ -127,9 +127,10 @@ TEST_CASE("sbmht bridges a missed detection with the miss branch", "[sbmht]") {
   }
 }
 
-TEST_CASE("sbmht confirms no track on clutter alone", "[sbmht]") {
-  // 5 false reports a tick over [0, 100]^2, and the engine told so.
-  Harness h(sbmhtScenario({{"false_alarm_density", 5e-4}}));
+TEST_CASE("sbmht's SPRT confirms no track on clutter alone", "[sbmht]") {
+  // 5 false reports a tick over [0, 100]^2, and the engine told so; confirmation by the SPRT alone
+  // (confirm_reports out of reach; the next test covers the count).
+  Harness h(sbmhtScenario({{"false_alarm_density", 5e-4}, {"confirm_reports", 1000}}));
   std::size_t confirmed_ticks = 0;
   for (std::int32_t t = 1; t <= 60; ++t) {
     common::Stream rng(42, common::Purpose::kNoiseExceedance, 0, t);
@@ -144,6 +145,19 @@ TEST_CASE("sbmht confirms no track on clutter alone", "[sbmht]") {
   }
   CHECK(confirmed_ticks == 0);
   CHECK(h.engine.truncatedSearches() == 0);
+}
+
+TEST_CASE("sbmht confirms a track at confirm_reports reports before the SPRT would", "[sbmht]") {
+  // One report, nearly no clutter (lambda_fa 1e-7): its tree scores L(1) = ln(PD lambda_nt /
+  // lambda_fa) = ln(.9 x 1e-5 / 1e-7) = 4.50 > 0, so the best hypothesis holds it, but below the
+  // SPRT's T1 = ln(.9 / 1e-3) = 6.80. With confirm_reports = 1 (what the statistics derive without
+  // clutter) it is reported at once; with the count out of reach it waits for the SPRT.
+  for (const double count : {1.0, 1000.0}) {
+    INFO("confirm_reports " << count);
+    Harness h(sbmhtScenario({{"confirm_reports", count}, {"false_alarm_density", 1e-7}}));
+    h.step(1, {observation(1, 1, 20.0, 50.0)});
+    CHECK(h.engine.confirmedTracks().size() == (count == 1.0 ? 1u : 0u));
+  }
 }
 
 TEST_CASE("sbmht N-scan pruning collapses branches that differ only N scans back (C7)", "[sbmht]") {
