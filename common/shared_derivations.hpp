@@ -7,6 +7,7 @@
 
 #include "common/observation_statistics.hpp"
 #include "common/param_spec.hpp"
+#include "common/track_confirmation.hpp"
 
 namespace wsn::common {
 
@@ -31,6 +32,33 @@ inline ParamDerivation mergeRadiusDerivation() {
           [](const StatisticsSource& stats, const std::map<std::string, EngineParam>&) {
             return stats().report_merge_radius;
           }};
+}
+
+/// The reports a new track needs before it is reported, with the fewest wrong track-ticks per tick
+/// (common/track_confirmation.hpp): chains of clutter that fit the gates of `gate_param`, each kept
+/// for `chain_param` ticks (a lone report: one), against the wait of every new target; at most
+/// max_n. Reads the resolved false_alarm_density, detection_probability, birth_density,
+/// measurement_sigma and initial_velocity_sigma: 1 without clutter.
+inline Derived clutterConfirmation(const ObservationStatistics& s, const std::map<std::string, EngineParam>& r,
+                                   const std::string& gate_param, const std::string& chain_param,
+                                   std::int32_t max_n) {
+  const double lambda_f = r.at("false_alarm_density").value;
+  const double pd = r.at("detection_probability").value;
+  const double births = birthsPerTick(r.at("birth_density").value, s.region_area, s.run_ticks);
+  const auto gates = newTrackGates(r.at(gate_param).value, r.at("measurement_sigma").value,
+                                   r.at("initial_velocity_sigma").value, s.process_noise_sigma, s.delta);
+  // A chain of clutter is reported until chain_param ticks pass without a continuation; a lone
+  // report (n = 1) only at the tick it arrives, unless the next one continues it.
+  const double chain_life = r.at(chain_param).value;
+  const auto n = leastCostConfirmation(
+      [&](std::int32_t k) {
+        return falseTrackRate(k, lambda_f, s.region_area, gates.first, gates.later) * (k == 1 ? 1.0 : chain_life);
+      },
+      1.0, births, [&](std::int32_t k) { return ticksForReports(k, pd); }, 1, max_n);
+  return Derived{static_cast<double>(n), "fewest wrong track-ticks: chains of clutter (lambda_f " +
+                                             shortNumber(lambda_f) + " over " + shortNumber(s.region_area) +
+                                             ", each kept " + chain_param + " ticks, a lone report 1) against the wait of " +
+                                             shortNumber(births) + " births per tick at pd " + shortNumber(pd)};
 }
 
 /// The prior std. deviation of a new track's velocity per axis: the rms velocity of new targets,

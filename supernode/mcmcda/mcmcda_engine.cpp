@@ -103,26 +103,7 @@ std::map<std::string, common::ParamDerivation> derivations() {
   d["confirm_observations"] = {
       "observations that balance reported chains of clutter against the wait of every new target",
       [](const common::StatisticsSource& stats, const Resolved& r) {
-        const Statistics& s = stats();
-        const double lambda_f = r.at("false_alarm_density").value;
-        const double pd = r.at("detection_probability").value;
-        const double births = common::birthsPerTick(r.at("birth_density").value, s.region_area, s.run_ticks);
-        const auto gates = common::newTrackGates(r.at("greedy_gate_chi2").value, r.at("measurement_sigma").value,
-                                                 r.at("initial_velocity_sigma").value, s.process_noise_sigma, s.delta);
-        // A chain of clutter is reported until max_gap ticks pass without a continuation; a lone
-        // report (n = 1) only at the tick it arrives, unless the next one continues it.
-        const double chain_life = r.at("max_gap").value;
-        const auto n = common::leastCostConfirmation(
-            [&](std::int32_t k) {
-              return common::falseTrackRate(k, lambda_f, s.region_area, gates.first, gates.later) *
-                     (k == 1 ? 1.0 : chain_life);
-            },
-            1.0, births, [&](std::int32_t k) { return common::ticksForReports(k, pd); }, 1,
-            std::max(2, s.window_size));
-        return Derived{static_cast<double>(n),
-                       "fewest wrong track-ticks: chains of clutter (lambda_f " + shortNumber(lambda_f) + " over " +
-                           shortNumber(s.region_area) + ", each kept max_gap ticks, a lone report 1) against the wait of " +
-                           shortNumber(births) + " births per tick at pd " + shortNumber(pd)};
+        return common::clutterConfirmation(stats(), r, "greedy_gate_chi2", "max_gap", std::max(2, stats().window_size));
       }};
   return d;
 }

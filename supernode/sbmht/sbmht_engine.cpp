@@ -83,23 +83,7 @@ std::map<std::string, common::ParamDerivation> derivations() {
         // The SPRT's alpha is a design value: with alpha = 1e-3 a clutter-free scenario would wait
         // for a second report though a single one is decisive there. The count is derived from
         // the same false-track economics as the other engines' confirmation.
-        const Statistics& s = stats();
-        const double lambda_fa = r.at("false_alarm_density").value;
-        const double pd = r.at("detection_probability").value;
-        const double births = common::birthsPerTick(r.at("birth_density").value, s.region_area, s.run_ticks);
-        const auto gates = common::newTrackGates(r.at("gate_chi2").value, r.at("measurement_sigma").value,
-                                                 r.at("initial_velocity_sigma").value, s.process_noise_sigma, s.delta);
-        const double chain_life = r.at("max_misses").value;
-        const auto n = common::leastCostConfirmation(
-            [&](std::int32_t k) {
-              return common::falseTrackRate(k, lambda_fa, s.region_area, gates.first, gates.later) *
-                     (k == 1 ? 1.0 : chain_life);
-            },
-            1.0, births, [&](std::int32_t k) { return common::ticksForReports(k, pd); }, 1, 10);
-        return Derived{static_cast<double>(n), "fewest wrong track-ticks: chains of clutter (lambda_fa " +
-                                                   shortNumber(lambda_fa) + " over " + shortNumber(s.region_area) +
-                                                   ", each kept max_misses ticks) against the wait of " +
-                                                   shortNumber(births) + " births per tick at PD " + shortNumber(pd)};
+        return common::clutterConfirmation(stats(), r, "gate_chi2", "max_misses", 10);
       }};
   d["cv_slow_sigma"] = {"the targets' process noise q (dynamics.process_noise_sigma)",
                         [](const common::StatisticsSource& stats, const Resolved&) {

@@ -438,6 +438,24 @@ TEST_CASE("A6.4 the log-likelihood of noise-free readings is 0 at the truth and 
   CHECK(logLikelihood(two, block, std::vector<Vec2>{truth}, paperModel(), kSigma) < -1.0);
 }
 
+TEST_CASE("place rejects settings outside its streams and a target with no reading", "[adman]") {
+  // Each factorised sweep draws from its own stream, and the joint search from another: at most
+  // kMaxSweeps sweeps. An attachment must be at a sensor whose reading the caller gave.
+  const std::vector<Reading> view = gridReadings({gridAt(24)});
+  const std::vector<Attachment> attached{{24, Kind::inside}};
+  const std::vector<std::size_t> which{0};
+  MlmcSettings settings = paperSettings();
+  settings.sweeps = kMaxSweeps + 1;
+  CHECK_THROWS_AS(place(view, attached, which, 1, settings), std::invalid_argument);
+  settings.sweeps = 0;
+  CHECK_THROWS_AS(place(view, attached, which, 1, settings), std::invalid_argument);
+  settings = paperSettings();
+  settings.particles = 0;
+  CHECK_THROWS_AS(place(view, attached, which, 1, settings), std::invalid_argument);
+  const std::vector<Attachment> nowhere{{99, Kind::inside}};
+  CHECK_THROWS_AS(place(view, nowhere, which, 1, paperSettings()), std::invalid_argument);
+}
+
 TEST_CASE("A6.4 place with 3000 particles puts a noise-free single target near the truth", "[adman]") {
   // Truths at offsets from sensor 24 (0-based, (103.92, 103.92)), 3.6 to 15.6 m away, all < 16.535 m
   // so noise-free y > tau32 and attach() gives an inside attachment at 24.

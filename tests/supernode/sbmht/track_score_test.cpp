@@ -149,6 +149,8 @@ TEST_CASE("the first class vector is the normalised likelihood and contradiction
   CHECK(u.probabilities == classes({1.0, 0.0}));
   CHECK_THROWS_AS(updateClass(classes({0.5, 0.5}), classes({1.0, 1.0, 1.0}), uniformClassProbabilities(2)),
                   std::invalid_argument);
+  // An extraneous-target prior that gives the report's classes no weight: ln(x / 0) has no value.
+  CHECK_THROWS_AS(updateClass(classes({0.5, 0.5}), classes({1.0, 0.0}), classes({0.0, 1.0})), std::invalid_argument);
   CHECK(mostProbableClass(ClassVector()) == -1);
 }
 
