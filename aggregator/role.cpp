@@ -60,7 +60,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
     // Every role reads the global batches: the tiles for back-pressure, all for the end of run.
     const int global_readers = context.shape.processes() - 1;
     waitForDiscovery(participant, {{&global_writer, global_readers}}, {{&track_reader, context.shape.supernodes}},
-                     context, std::chrono::seconds(30));
+                     context);
     status.ready();
 
     common::CsvFile supernode_csv(context.run_dir + "/tracks_supernode.csv", supernodeTracksCsvHeader());

@@ -47,7 +47,7 @@ po::options_description runOptions(RunArguments& a) {
       "in-process", "run every role as a thread of this process (still over DDS)")(
       "timeout", po::value(&a.timeout_s)->default_value(1800), "stop everything after this many seconds")(
       "stall-timeout", po::value(&a.stall_timeout_s)->default_value(60),
-      "a role gives up after this many seconds without input (a peer died)")(
+      "a role gives up after this many seconds without input (a peer died), or without its peers at start")(
       "tick-interval", po::value(&a.tick_interval_s)->default_value(0),
       "real-time pacing: at most one tick per this many seconds, to follow with 'wsntrack watch' "
       "(0: as fast as possible; outputs are the same either way)")(

@@ -31,7 +31,7 @@ void runNetworkRole(const dds::RoleContext& context) {
       });
     });
     waitForDiscovery(participant, {{&delivery_writer, context.shape.supernodes}},
-                     {{&report_reader, context.shape.tiles}, {&progress.reader(), 1}}, context, std::chrono::seconds(30));
+                     {{&report_reader, context.shape.tiles}, {&progress.reader(), 1}}, context);
     status.ready();
 
     common::CsvFile observations(context.run_dir + "/observations.csv", kObservationsHeader);

@@ -35,13 +35,11 @@ void runNodeRole(const dds::RoleContext& context) {
     });
 
     const int tiles_count = context.shape.tiles;
-    const int processes = context.shape.processes();
     waitForDiscovery(participant, {{&boundary_writer, tiles_count}, {&report_writer, 1}},
-                     {{&boundary_reader, tiles_count}, {&progress.reader(), 1}}, context, std::chrono::seconds(30));
+                     {{&boundary_reader, tiles_count}, {&progress.reader(), 1}}, context);
     status.ready();
     // Sources start only when every consumer is connected, so tick 1 reaches everybody.
-    waitForClusterReady(participant, topics, context, std::chrono::seconds(30));
-    (void)processes;
+    waitForClusterReady(participant, topics, context, context.stall_timeout);
 
     const std::int32_t ticks = scenario.run.ticks;
     const std::int32_t in_flight = scenario.run.max_ticks_in_flight;

@@ -38,8 +38,7 @@ void runSupernodeRole(const dds::RoleContext& context) {
     });
     const int s = context.shape.supernodes;
     waitForDiscovery(participant, {{&handoff_writer, s}, {&track_writer, 1}},
-                     {{&delivery_reader, 1}, {&handoff_reader, s}, {&progress.reader(), 1}}, context,
-                     std::chrono::seconds(30));
+                     {{&delivery_reader, 1}, {&handoff_reader, s}, {&progress.reader(), 1}}, context);
     status.ready();
 
     const std::int32_t ticks = scenario.run.ticks;

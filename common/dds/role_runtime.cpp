@@ -124,8 +124,7 @@ void RoleLoop::waitUntilTime(Clock::time_point deadline) {
 }
 
 void waitForDiscovery(const Participant& participant, const std::vector<std::pair<const WriterBase*, int>>& writers,
-                      const std::vector<std::pair<const ReaderBase*, int>>& readers, const RoleContext& context,
-                      std::chrono::milliseconds timeout) {
+                      const std::vector<std::pair<const ReaderBase*, int>>& readers, const RoleContext& context) {
   WaitSet waitset(participant);
   const StopCondition stop(participant, context.stop);
   waitset.attach(stop.handle(), kStopToken);
@@ -141,7 +140,7 @@ void waitForDiscovery(const Participant& participant, const std::vector<std::pai
         out << " reader " << reader->handle() << " has " << reader->matchedWriters() << "/" << expected << " writers;";
     return out.str();
   };
-  const auto deadline = Clock::now() + timeout;
+  const auto deadline = Clock::now() + context.stall_timeout;
   while (!missing().empty()) {
     throwIfStopped(context);
     if (Clock::now() > deadline)

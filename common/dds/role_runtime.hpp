@@ -215,10 +215,10 @@ class RoleLoop {
 
 /// Blocks until every writer matched `expected` role readers (viewers do not count: see
 /// Endpoint) and every reader matched `expected` writers, so that nothing published afterwards
-/// can miss a consumer. Throws on timeout.
+/// can miss a consumer. Throws when that takes longer than the stall timeout (--stall-timeout): how
+/// long a role waits for its peers, whether before the first tick or between two.
 void waitForDiscovery(const Participant& participant, const std::vector<std::pair<const WriterBase*, int>>& writers,
-                      const std::vector<std::pair<const ReaderBase*, int>>& readers, const RoleContext& context,
-                      std::chrono::milliseconds timeout);
+                      const std::vector<std::pair<const ReaderBase*, int>>& readers, const RoleContext& context);
 
 /// Blocks until every process of the cluster reported READY (or later) on the status topic.
 void waitForClusterReady(const Participant& participant, const RunTopics& topics, const RoleContext& context,
