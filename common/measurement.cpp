@@ -69,7 +69,9 @@ bool wellFormed(const Measurement& m) {
   if (m.kind != MeasurementKind::position) {
     if (!m.sensor) return false;
     if (!std::isfinite(m.sensor->x) || !std::isfinite(m.sensor->y) || !std::isfinite(m.sensor->heading)) return false;
+    if (!std::isfinite(m.sensor->height) || m.sensor->height < 0.0) return false;
   }
+  if (!std::isfinite(m.clutter_density) || m.clutter_density < 0.0) return false;
   return m.class_likelihoods.size() <= kMaxClasses &&
          std::all_of(m.class_likelihoods.begin(), m.class_likelihoods.end(),
                      [](double c) { return std::isfinite(c) && c >= 0.0; });

@@ -41,6 +41,9 @@ struct SensorPose {
   double x = 0.0;        ///< believed position
   double y = 0.0;
   double heading = 0.0;  ///< radians counter-clockwise from the field's +x axis
+  /// Height above the targets' ground (a camera's mast): an elevation phi is atan2(-height, range).
+  /// Carried with the report so that a supernode needs no sensor list to read it.
+  double height = 0.0;
   friend bool operator==(const SensorPose&, const SensorPose&) = default;
   friend auto operator<=>(const SensorPose&, const SensorPose&) = default;
 };
@@ -57,6 +60,11 @@ struct Measurement {
   std::optional<SensorPose> sensor;
   /// c_k over the scenario's classes (ONERA eq. 19–20); empty when the sensor does not classify.
   std::vector<double> class_likelihoods;
+  /// This sensor's false reports per unit volume of its measurement space per tick (per radian for
+  /// a bearing, per m x rad x m/s for a radar): the clutter term lambda_fa of a report's score
+  /// (ONERA eq. 17) in the space the report lives in. 0 when the sensor does not say; the engine's
+  /// own density (per area) applies, which only a position can use.
+  double clutter_density = 0.0;
 
   std::size_t dimension() const { return values.size(); }
   /// True when the sensor gave R (a non-zero one).
@@ -108,8 +116,8 @@ std::optional<MeasurementKind> measurementKindNamed(std::string_view name);
 std::optional<std::size_t> measurementDimension(MeasurementKind kind);
 
 /// True when an engine can use `m`: a known kind with its dimension, finite values, R empty or
-/// dimension x dimension and finite, a finite pose wherever the kind needs one, and at most
-/// kMaxClasses finite, non-negative class likelihoods.
+/// dimension x dimension and finite, a finite pose (height >= 0) wherever the kind needs one, at most
+/// kMaxClasses finite, non-negative class likelihoods, and a finite, non-negative clutter density.
 bool wellFormed(const Measurement& m);
 
 }  // namespace wsn::common

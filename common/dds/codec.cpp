@@ -73,11 +73,12 @@ wsn_msg_Measurement encodeMeasurement(const common::MeasurementRef& ref, Encoded
     throw std::invalid_argument("codec: a " + std::string(common::measurementKindName(m.kind)) +
                                 " measurement that is not well formed (wrong dimension, noise or pose)");
   w.kind = static_cast<wsn_msg_MeasurementKind>(m.kind);
+  w.clutter_density = m.clutter_density;
   w.values = appendDoubles(storage.doubles, m.values, common::kMaxMeasurementDimension, "values");
   w.noise = appendDoubles(storage.doubles, m.noise, kMaxNoise, "noise");
   w.class_likelihoods = appendDoubles(storage.doubles, m.class_likelihoods, common::kMaxClasses, "class likelihoods");
   if (m.sensor) {
-    storage.poses.push_back(wsn_msg_SensorPose{m.sensor->x, m.sensor->y, m.sensor->heading});
+    storage.poses.push_back(wsn_msg_SensorPose{m.sensor->x, m.sensor->y, m.sensor->heading, m.sensor->height});
     w.sensor._maximum = w.sensor._length = 1;
     w.sensor._buffer = &storage.poses.back();
     w.sensor._release = false;
@@ -92,7 +93,7 @@ std::vector<double> copyOut(const dds_sequence_double& seq) {
 common::MeasurementRef decodeMeasurement(const wsn_msg_Measurement& w) {
   const bool plain = w.kind == static_cast<wsn_msg_MeasurementKind>(common::MeasurementKind::position) &&
                      w.values._length == 0 && w.noise._length == 0 && w.sensor._length == 0 &&
-                     w.class_likelihoods._length == 0;
+                     w.class_likelihoods._length == 0 && w.clutter_density == 0.0;
   if (plain) return {};
   common::Measurement m;
   m.kind = static_cast<common::MeasurementKind>(w.kind);
@@ -100,9 +101,10 @@ common::MeasurementRef decodeMeasurement(const wsn_msg_Measurement& w) {
   m.noise = copyOut(w.noise);
   if (w.sensor._length > 0) {
     const wsn_msg_SensorPose& pose = w.sensor._buffer[0];
-    m.sensor = common::SensorPose{pose.x, pose.y, pose.heading};
+    m.sensor = common::SensorPose{pose.x, pose.y, pose.heading, pose.height};
   }
   m.class_likelihoods = copyOut(w.class_likelihoods);
+  m.clutter_density = w.clutter_density;
   return common::MeasurementRef(std::move(m));
 }
 

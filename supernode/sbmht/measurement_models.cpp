@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include <Eigen/Cholesky>
+#include <boost/math/distributions/chi_squared.hpp>
 
 namespace wsn::supernode::sbmht {
 namespace {
@@ -65,6 +66,14 @@ double gateThreshold(int dimension) {
   }
 }
 
+double gateOfSameProbability(double gate_2d, int dimension) {
+  if (dimension <= 0) return 0.0;
+  if (dimension == 2) return gate_2d;
+  const double probability = -std::expm1(-0.5 * gate_2d);
+  if (!(probability < 1.0)) return std::numeric_limits<double>::infinity();
+  return boost::math::quantile(boost::math::chi_squared(dimension), probability);
+}
+
 int MeasurementModel::dimension() const {
   switch (kind) {
     case MeasurementKind::bearing: return 1;
@@ -95,7 +104,7 @@ MeasurementVector MeasurementModel::predict(const StateVector& x) const {
       h << r.rho, fieldBearingFromSensor(sensor, r), r.rho_dot;
       break;
     case MeasurementKind::azimuth_elevation:
-      h << fieldBearingFromSensor(sensor, r), std::atan2(-mast_height, r.rho);
+      h << fieldBearingFromSensor(sensor, r), std::atan2(-sensor.height, r.rho);
       break;
     default:
       break;
@@ -127,7 +136,7 @@ MeasurementJacobian MeasurementModel::jacobian(const StateVector& x) const {
     case MeasurementKind::azimuth_elevation: {
       bearingRow(H, 0, r);
       // phi = atan2(-h, rho): d phi / d rho = h / (rho^2 + h^2), and d rho / d(x, y) = (dx, dy) / rho.
-      const double dphi_drho = mast_height / (r.rho * r.rho + mast_height * mast_height);
+      const double dphi_drho = sensor.height / (r.rho * r.rho + sensor.height * sensor.height);
       H(1, kX) = dphi_drho * r.dx / r.rho;
       H(1, kY) = dphi_drho * r.dy / r.rho;
       break;
@@ -157,16 +166,66 @@ MeasurementVector MeasurementModel::innovation(const MeasurementVector& z, const
   return nu;
 }
 
-std::optional<MeasurementModel> modelOf(const common::Measurement& m, double mast_height) {
+std::optional<MeasurementModel> modelOf(const common::Measurement& m) {
   MeasurementModel model;
   model.kind = m.kind;
-  model.mast_height = mast_height;
   if (model.dimension() == 0 || static_cast<int>(m.values.size()) != model.dimension()) return std::nullopt;
   if (m.kind != MeasurementKind::position) {
     if (!m.sensor) return std::nullopt;
     model.sensor = *m.sensor;
   }
   return model;
+}
+
+std::optional<PositionFix> positionFix(const MeasurementModel& model, const MeasurementVector& z,
+                                       const MeasurementCovariance& R) {
+  const int m = model.dimension();
+  if (m == 0 || z.size() != m || R.rows() != m || R.cols() != m || !z.allFinite() || !R.allFinite())
+    return std::nullopt;
+  PositionFix fix;
+  // p = s + rho (cos b, sin b), b = heading + theta: J = d p / d(rho, theta) or d(theta, phi).
+  const auto polar = [&](double rho, double theta, double drho_dsecond, bool second_is_rho) {
+    const double b = model.sensor.heading + theta;
+    const Eigen::Vector2d u(std::cos(b), std::sin(b));
+    const Eigen::Vector2d du(-std::sin(b), std::cos(b));
+    fix.position = Eigen::Vector2d(model.sensor.x, model.sensor.y) + rho * u;
+    Eigen::Matrix2d J;
+    if (second_is_rho)  // (rho, theta)
+      J << u, rho * du;
+    else  // (theta, phi), rho a function of phi
+      J << rho * du, drho_dsecond * u;
+    return std::pair{J, u};
+  };
+  switch (model.kind) {
+    case MeasurementKind::position:
+      fix.position = z.head<2>();
+      fix.covariance = R.topLeftCorner<2, 2>();
+      break;
+    case MeasurementKind::range_bearing_rate: {
+      const auto [J, u] = polar(z(0), z(1), 0.0, true);
+      fix.covariance = J * R.topLeftCorner<2, 2>() * J.transpose();
+      fix.line_of_sight = u;
+      fix.range_rate = z(2);
+      fix.range_rate_variance = R(2, 2);
+      break;
+    }
+    case MeasurementKind::azimuth_elevation: {
+      const double h = model.sensor.height;
+      const double phi = z(1);
+      if (!(h > 0.0) || !(phi < 0.0)) return std::nullopt;
+      // rho = h / tan(-phi) = -h / tan(phi); d rho / d phi = h / sin^2(phi).
+      const double rho = -h / std::tan(phi);
+      const double s = std::sin(phi);
+      const auto [J, u] = polar(rho, z(0), h / (s * s), false);
+      fix.covariance = J * R * J.transpose();
+      break;
+    }
+    default:
+      return std::nullopt;
+  }
+  fix.covariance = 0.5 * (fix.covariance + fix.covariance.transpose());
+  if (!fix.position.allFinite() || !fix.covariance.allFinite()) return std::nullopt;
+  return fix;
 }
 
 MeasurementVector valuesOf(const common::Measurement& m) {
@@ -216,8 +275,8 @@ std::optional<EkfUpdate> update(const common::GaussianState& predicted, const Me
 }
 
 std::optional<EkfUpdate> update(const common::GaussianState& predicted, const common::Measurement& m,
-                                const MeasurementCovariance& R, double mast_height) {
-  const auto model = modelOf(m, mast_height);
+                                const MeasurementCovariance& R) {
+  const auto model = modelOf(m);
   if (!model) return std::nullopt;
   return update(predicted, *model, valuesOf(m), R);
 }

@@ -32,19 +32,20 @@ double wrapAngle(double angle);
 /// M = 1, 2, 3 to four digits; +inf for any other M, which no report has.
 double gateThreshold(int dimension);
 
+/// The gate on d^2 of an M-dimensional report with the probability that gate_2d has for a 2-D one,
+/// P_G = 1 - exp(-gate_2d / 2) (the chi^2 CDF with 2 degrees of freedom): the chi^2_M quantile of
+/// P_G. gate_2d itself for M = 2, 0 for M = 0, +inf where P_G rounds to 1.
+double gateOfSameProbability(double gate_2d, int dimension);
+
 /// The measurement function of one report: its kind and the sensor that made it. The state is
 /// common/kalman.hpp's x = [x, y, vx, vy] (the paper's eq. 4 orders it [x, vx, y, vy]).
 ///
-/// Measurement carries the sensor's pose but not its height, so a camera's mast height h is a
-/// separate member: the engine looks it up by the reporting sensor (the scenario's sensor list,
-/// docs/ONERA.md §7) when it builds the model. The target is on the ground, so phi = atan2(-h, rho) < 0,
-/// and h = 0 would leave phi without any information on the range.
+/// A camera's mast height h is its pose's height, carried with the report. The target is on the
+/// ground, so phi = atan2(-h, rho) < 0, and h = 0 would leave phi without any information on the range.
 struct MeasurementModel {
   common::MeasurementKind kind = common::MeasurementKind::position;
-  /// Unused by position, which is already in the field frame.
+  /// Unused by position, which is already in the field frame; only azimuth_elevation reads height.
   common::SensorPose sensor;
-  /// Camera height above the target's ground (m); only azimuth_elevation reads it.
-  double mast_height = 0.0;
 
   /// M: 2 (position), 1 (bearing), 3 (range_bearing_rate), 2 (azimuth_elevation).
   int dimension() const;
@@ -60,10 +61,28 @@ struct MeasurementModel {
   MeasurementVector innovation(const MeasurementVector& z, const common::StateVector& x) const;
 };
 
-/// The model of measurement m: its kind and pose, plus the mast height that m cannot carry.
+/// Where one report alone puts a target, to start a track there: a position with its covariance
+/// (R carried through the inverse of h) and, from a radar, the velocity along the line of sight.
+struct PositionFix {
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
+  /// Unit vector from the sensor to the target, when the report measured the range rate along it.
+  std::optional<Eigen::Vector2d> line_of_sight;
+  double range_rate = 0.0;
+  double range_rate_variance = 0.0;
+};
+
+/// The fix of report z (noise R) under `model`: a position is its own; a radar's (rho, theta) and a
+/// camera's (theta, phi) from a mast (rho = h / tan(-phi)) are inverted, R carried through the
+/// inverse's Jacobian. Nullopt for a bearing (it gives a line, not a point), for a camera that looks
+/// level or up (phi >= 0: no ground range) or from h = 0, and for a non-finite result.
+std::optional<PositionFix> positionFix(const MeasurementModel& model, const MeasurementVector& z,
+                                       const MeasurementCovariance& R);
+
+/// The model of measurement m: its kind and pose (with the mast height).
 /// Nullopt for a kind no field sensor reports with a state-dependent h (signal_strength, presence),
 /// or when m lacks the pose its kind needs.
-std::optional<MeasurementModel> modelOf(const common::Measurement& m, double mast_height = 0.0);
+std::optional<MeasurementModel> modelOf(const common::Measurement& m);
 
 /// m's values as z.
 MeasurementVector valuesOf(const common::Measurement& m);
@@ -90,8 +109,8 @@ struct EkfUpdate {
 std::optional<EkfUpdate> update(const common::GaussianState& predicted, const MeasurementModel& model,
                                 const MeasurementVector& z, const MeasurementCovariance& R);
 
-/// The same for a common::Measurement: its pose from m.sensor, the mast height as modelOf takes it.
+/// The same for a common::Measurement: its kind and pose from m.
 std::optional<EkfUpdate> update(const common::GaussianState& predicted, const common::Measurement& m,
-                                const MeasurementCovariance& R, double mast_height = 0.0);
+                                const MeasurementCovariance& R);
 
 }  // namespace wsn::supernode::sbmht

@@ -187,6 +187,55 @@ std::size_t findRoot(std::vector<std::size_t>& parent, std::size_t k) {
   return k;
 }
 
+/// One report as the scan uses it: its measurement function, value, noise and clutter density in
+/// its own space, the gate for its dimension, and where it would start a track.
+struct ReportTerms {
+  bool usable = false;
+  /// A field-frame position: the cheap distance pre-check before the EKFs applies.
+  bool position = false;
+  MeasurementModel model;
+  MeasurementVector z;
+  MeasurementCovariance R;
+  double clutter_density = 0.0;
+  double gate = 0.0;
+  std::optional<PositionFix> fix;
+};
+
+/// The terms of observation o. A plain position (the position engines' reports) has the engine's
+/// own noise (measurement_sigma) and clutter density (per area). Any other measurement must carry
+/// its R and its clutter density in its own space (common/measurement.hpp): a bearing's lambda per
+/// radian cannot be made from a density per area; without them the report is not usable.
+ReportTerms termsOf(const common::Observation& o, double r2, double lambda_fa, const std::array<double, 4>& gates) {
+  ReportTerms t;
+  if (!o.measurement) {
+    t.z.resize(2);
+    t.z << o.x, o.y;
+    t.R = MeasurementCovariance::Identity(2, 2) * r2;
+    t.clutter_density = lambda_fa;
+  } else {
+    const common::Measurement& m = *o.measurement;
+    const auto model = modelOf(m);
+    if (!model) return t;
+    t.model = *model;
+    t.z = valuesOf(m);
+    const auto R = noiseOf(m);
+    const bool position = m.kind == common::MeasurementKind::position;
+    if (R)
+      t.R = *R;
+    else if (position)
+      t.R = MeasurementCovariance::Identity(2, 2) * r2;
+    else
+      return t;
+    t.clutter_density = m.clutter_density > 0.0 ? m.clutter_density : (position ? lambda_fa : 0.0);
+    if (!(t.clutter_density > 0.0)) return t;
+  }
+  t.position = t.model.kind == common::MeasurementKind::position;
+  t.gate = gates[static_cast<std::size_t>(t.model.dimension())];
+  t.fix = positionFix(t.model, t.z, t.R);
+  t.usable = true;
+  return t;
+}
+
 void unite(std::vector<std::size_t>& parent, std::size_t a, std::size_t b) {
   a = findRoot(parent, a);
   b = findRoot(parent, b);
@@ -262,7 +311,8 @@ EngineSpec engineSpec() {
   spec.create = [](const EngineContext& context) -> std::unique_ptr<Engine> {
     return std::make_unique<SbmhtEngine>(context);
   };
-  spec.accepts = {"position"};
+  // Presence and signal strength have no h(x) a filter can use (measurement_models.hpp).
+  spec.accepts = {"position", "bearing", "range_bearing_rate", "azimuth_elevation"};
   return spec;
 }
 
@@ -294,6 +344,8 @@ SbmhtEngine::SbmhtEngine(const EngineContext& context)
   // A report rules out the stop model (eq. 9): a new track moves, model unknown.
   initial_probabilities_ = ModeVector(3);
   initial_probabilities_ << 0.0, 0.5, 0.5;
+  for (int m = 0; m < static_cast<int>(gates_.size()); ++m)
+    gates_[static_cast<std::size_t>(m)] = gateOfSameProbability(params_.gate_chi2, m);
 }
 
 void SbmhtEngine::inject(std::vector<Leaf>& leaves, const Leaf& leaf) {
@@ -318,13 +370,14 @@ void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std:
     if (adoption.tick == tick) inject(leaves, adoption.leaf);
 
   const double r2 = params_.measurement_sigma * params_.measurement_sigma;
-  const MeasurementModel position;  // kind position: h(x) = (x, y)
-  const MeasurementCovariance R = MeasurementCovariance::Identity(2, 2) * r2;
   const Detectability detectability = Detectability::uniform(params_.detection_probability);
-  const double lambda_fa = params_.false_alarm_density;
   const std::size_t cols = slot.size();
-  std::vector<MeasurementVector> z(cols, MeasurementVector(2));
-  for (std::size_t j = 0; j < cols; ++j) z[j] << slot[j].x, slot[j].y;
+  std::vector<ReportTerms> terms;
+  terms.reserve(cols);
+  for (const auto& o : slot) {
+    terms.push_back(termsOf(o, r2, params_.false_alarm_density, gates_));
+    if (!terms.back().usable) ++unusable_reports_;
+  }
 
   // 1. Branching: every leaf gets a miss child and one child per gated report.
   std::vector<Leaf> next;
@@ -350,25 +403,30 @@ void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std:
         next.push_back(std::move(child));
     }
     for (std::size_t j = 0; j < cols; ++j) {
-      // d^2 >= |nu|^2 / trace(S) for each moving model: skip the EKFs of a report far from all.
-      bool near = false;
-      for (std::size_t i = 0; i < imm_.size() && !near; ++i) {
-        if (!imm_.models()[i].moving()) continue;
-        const auto& m = prediction.modes[i];
-        const double dx = z[j](0) - m.x(kX);
-        const double dy = z[j](1) - m.x(kY);
-        near = dx * dx + dy * dy <= params_.gate_chi2 * (m.P(kX, kX) + m.P(kY, kY) + 2.0 * r2);
+      const ReportTerms& t = terms[j];
+      if (!t.usable) continue;
+      if (t.position) {
+        // d^2 >= |nu|^2 / trace(S) for each moving model: skip the EKFs of a report far from all.
+        const double r_trace = t.R(0, 0) + t.R(1, 1);
+        bool near = false;
+        for (std::size_t i = 0; i < imm_.size() && !near; ++i) {
+          if (!imm_.models()[i].moving()) continue;
+          const auto& m = prediction.modes[i];
+          const double dx = t.z(0) - m.x(kX);
+          const double dy = t.z(1) - m.x(kY);
+          near = dx * dx + dy * dy <= t.gate * (m.P(kX, kX) + m.P(kY, kY) + r_trace);
+        }
+        if (!near) continue;
       }
-      if (!near) continue;
-      ImmUpdate hit = imm_.report(prediction, position, z[j], R, detectability);
-      if (!(hit.likelihood > 0.0) || !(hit.gate_distance <= params_.gate_chi2)) continue;
+      ImmUpdate hit = imm_.report(prediction, t.model, t.z, t.R, detectability);
+      if (!(hit.likelihood > 0.0) || !(hit.gate_distance <= t.gate)) continue;
       Leaf child;
       child.tree = leaf.tree;
       child.first_tick = leaf.first_tick;
       child.history = leaf.history;
       child.history.push_back(static_cast<std::int32_t>(j));
       child.imm = std::move(hit.state);
-      child.score = leaf.score.after(reportScoreIncrement(hit.likelihood, lambda_fa), sprt_);
+      child.score = leaf.score.after(reportScoreIncrement(hit.likelihood, t.clutter_density), sprt_);
       child.last_seen_tick = tick;
       child.hits = leaf.hits + 1;
       confirmByCount(child);
@@ -377,21 +435,30 @@ void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std:
     }
   }
 
-  // 2. Every report also starts a new tentative tree, at rest at the report.
+  // 2. Every report that locates a target (not a bearing) also starts a new tentative tree there,
+  // at rest but for a radar's range rate.
   std::vector<common::TrackId> born;
   for (std::size_t j = 0; j < cols; ++j) {
+    if (!terms[j].usable || !terms[j].fix) continue;
+    const PositionFix& fix = *terms[j].fix;
     const common::TrackId id = common::track_id::birth(supernode_, tick, slot[j].sensor);
     // Two reports of one sensor in one tick would share an id: the first (canonical order) wins.
     if (std::find(born.begin(), born.end(), id) != born.end()) continue;
     if (std::any_of(next.begin(), next.end(), [&](const Leaf& l) { return l.tree == id; })) continue;
     born.push_back(id);
     GaussianState start;
-    start.x << slot[j].x, slot[j].y, 0.0, 0.0;
+    start.x << fix.position(0), fix.position(1), 0.0, 0.0;
     start.P.setZero();
-    start.P(kX, kX) = r2;
-    start.P(kY, kY) = r2;
-    start.P(kVx, kVx) = params_.initial_velocity_sigma * params_.initial_velocity_sigma;
-    start.P(kVy, kVy) = start.P(kVx, kVx);
+    start.P.topLeftCorner<2, 2>() = fix.covariance;
+    const double v2 = params_.initial_velocity_sigma * params_.initial_velocity_sigma;
+    Eigen::Matrix2d velocity = Eigen::Matrix2d::Identity() * v2;
+    if (fix.line_of_sight) {
+      // The radar measured the speed along u: v = rho_dot u, with the prior left across it.
+      const Eigen::Vector2d& u = *fix.line_of_sight;
+      start.x.segment<2>(kVx) = fix.range_rate * u;
+      velocity = v2 * (Eigen::Matrix2d::Identity() - u * u.transpose()) + fix.range_rate_variance * u * u.transpose();
+    }
+    start.P.block<2, 2>(kVx, kVx) = velocity;
     Leaf leaf;
     leaf.tree = id;
     leaf.first_tick = tick;

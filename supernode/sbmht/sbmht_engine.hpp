@@ -4,9 +4,11 @@
 // likelihood ratio (track_score.hpp), judged by Wald's SPRT, clustered when they share reports, and
 // combined into the k best global hypotheses per cluster; the tracks' posteriors prune the leaves,
 // N-scan pruning keeps the branches that agree with the best hypothesis N scans back, and duplicate
-// leaves are merged. Position reports only in this step (docs/ONERA.md §3 and §8).
+// leaves are merged. Reports are positions, bearings, radar plots or camera angles (docs/ONERA.md
+// §3 and §8); every kind but a bearing can start a track.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -87,6 +89,9 @@ class SbmhtEngine final : public Engine {
   /// Clusters whose hypothesis search hit its node budget (the k best found so far were used).
   std::uint64_t truncatedSearches() const { return truncated_searches_; }
   std::uint64_t rejectedHandoffs() const { return rejected_handoffs_; }
+  /// Reports (counted at every replay of their tick) that carried no noise R or no clutter density
+  /// their kind needs, and so took no part (docs/ONERA.md §8).
+  std::uint64_t unusableReports() const { return unusable_reports_; }
 
  private:
   struct Adoption {
@@ -128,6 +133,9 @@ class SbmhtEngine final : public Engine {
   std::vector<std::vector<common::Observation>> cached_slots_;
   std::uint64_t truncated_searches_ = 0;
   std::uint64_t rejected_handoffs_ = 0;
+  std::uint64_t unusable_reports_ = 0;
+  /// The gate on d^2 per report dimension 0..3, all of the probability gate_chi2 has in 2-D.
+  std::array<double, 4> gates_{};
 };
 
 }  // namespace wsn::supernode::sbmht

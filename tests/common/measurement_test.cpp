@@ -94,6 +94,15 @@ TEST_CASE("malformed measurements are told apart from usable ones", "[measuremen
   broken = bearing;
   broken.kind = static_cast<MeasurementKind>(200);
   CHECK_FALSE(wellFormed(broken));
+  broken = bearing;
+  broken.sensor->height = -1.0;  // a mast below the ground
+  CHECK_FALSE(wellFormed(broken));
+  broken = bearing;
+  broken.clutter_density = -1e-3;
+  CHECK_FALSE(wellFormed(broken));
+  broken = bearing;
+  broken.clutter_density = std::numeric_limits<double>::quiet_NaN();
+  CHECK_FALSE(wellFormed(broken));
 
   // A report's x, y must agree with its measurement: the position, or the sensor's position.
   Report r{1, 5, 1.0, 2.0, 0, 0, MeasurementRef(bearing)};

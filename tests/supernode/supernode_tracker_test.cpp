@@ -188,7 +188,7 @@ TEST_CASE("every position engine handed a bearing observation fails naming itsel
   REQUIRE(common::wellFormed(measured));  // well formed, only of the wrong kind
   common::Observation bearing{3, 3, test::sensorAt(20.0, 30.0), 20.0, 30.0, 0, 0, common::MeasurementRef(measured)};
 
-  for (const char* engine : {"gnn", "mcmcda", "rulebased", "sbmht"}) {
+  for (const char* engine : {"gnn", "mcmcda", "rulebased"}) {
     INFO(engine);
     auto s = test::gnnScenario();
     s.tracker.engine = engine;
@@ -203,6 +203,24 @@ TEST_CASE("every position engine handed a bearing observation fails naming itsel
                                                           Catch::Contains("kind 'bearing'") &&
                                                           Catch::Contains("accepts only: position"));
   }
+}
+
+TEST_CASE("sbmht handed a presence observation fails naming itself and the kind", "[tracker]") {
+  // sbmht takes positions, bearings, radar plots and camera angles, but a presence has no h(x).
+  common::Measurement presence;
+  presence.kind = common::MeasurementKind::presence;
+  presence.sensor = common::SensorPose{20.0, 30.0, 0.0};
+  REQUIRE(common::wellFormed(presence));
+  const std::vector<common::Observation> delivered{
+      common::Observation{3, 3, test::sensorAt(20.0, 30.0), 20.0, 30.0, 0, 0, common::MeasurementRef(presence)}};
+  auto s = test::gnnScenario();
+  s.tracker.engine = "sbmht";
+  s.tracker.params.clear();
+  resolveEngineParams(s, wsn::common::kNoStatistics);
+  auto tracker = test::trackerFor(s, 0);
+  CHECK_THROWS_WITH(tracker.step(3, delivered, {}),
+                    Catch::Contains("engine 'sbmht'") && Catch::Contains("kind 'presence'") &&
+                        Catch::Contains("accepts only: position, bearing, range_bearing_rate, azimuth_elevation"));
 }
 
 }  // namespace

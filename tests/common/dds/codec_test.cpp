@@ -144,8 +144,9 @@ TEST_CASE("the largest measurement of any kind crosses the wire unchanged", "[co
   m.kind = common::MeasurementKind::range_bearing_rate;
   m.values = {120.0, 0.3, -4.5};
   m.noise = {25.0, 0.0, 0.0, 0.0, 0.0004, 0.0, 0.0, 0.0, 1.0};
-  m.sensor = common::SensorPose{5.0, 6.0, 0.75};
+  m.sensor = common::SensorPose{5.0, 6.0, 0.75, 4.0};
   m.class_likelihoods.assign(common::kMaxClasses, 1.0 / static_cast<double>(common::kMaxClasses));
+  m.clutter_density = 0.2 / (1000.0 * 1.5707963267948966 * 40.0);  // 0.2 per scan over range x 90 deg x +-20 m/s
   REQUIRE(common::wellFormed(m));
   std::vector<common::Report> reports{common::Report{3, 8, 5.0, 6.0, 1, 0, common::MeasurementRef(m)}};
   const auto sent = reports;

@@ -30,7 +30,7 @@ MeasurementModel modelOfKind(MeasurementKind kind, SensorPose sensor = {}, doubl
   MeasurementModel m;
   m.kind = kind;
   m.sensor = sensor;
-  m.mast_height = mast_height;
+  m.sensor.height = mast_height;
   return m;
 }
 
@@ -215,11 +215,10 @@ TEST_CASE("modelOf takes the kind and pose of a measurement and its noise when g
   camera.kind = MeasurementKind::azimuth_elevation;
   camera.values = {0.1, -0.05};
   camera.noise = {1e-6, 0.0, 0.0, 4e-6};
-  camera.sensor = SensorPose{3.0, 4.0, 0.5};
-  const auto model = modelOf(camera, 3.0);
+  camera.sensor = SensorPose{3.0, 4.0, 0.5, 3.0};
+  const auto model = modelOf(camera);
   REQUIRE(model);
-  CHECK(model->sensor == SensorPose{3.0, 4.0, 0.5});
-  CHECK(model->mast_height == 3.0);
+  CHECK(model->sensor == SensorPose{3.0, 4.0, 0.5, 3.0});  // the mast height comes with the pose
   const auto R = noiseOf(camera);
   REQUIRE(R);
   CHECK((*R)(0, 0) == 1e-6);
@@ -228,11 +227,78 @@ TEST_CASE("modelOf takes the kind and pose of a measurement and its noise when g
 
   // Every kind but position needs the pose; presence and signal strength have no h(x) here.
   camera.sensor.reset();
-  CHECK_FALSE(modelOf(camera, 3.0));
+  CHECK_FALSE(modelOf(camera));
   common::Measurement presence;
   presence.kind = MeasurementKind::presence;
   presence.sensor = SensorPose{};
   CHECK_FALSE(modelOf(presence));
+}
+
+TEST_CASE("a radar plot fixes a position with R carried through the polar inverse", "[sbmht]") {
+  // Radar at (10, 20) facing +y (heading pi/2); theta = -pi/2 from the heading is the field's +x,
+  // so rho = 100 puts the target at (110, 20). J = d(x, y)/d(rho, theta) = [u, rho du] with
+  // u = (1, 0), du = (0, 1): covariance diag(sigma_rho^2, rho^2 sigma_theta^2) = diag(25, 100^2 (pi/180)^2).
+  const auto radar = modelOfKind(MeasurementKind::range_bearing_rate, SensorPose{10.0, 20.0, std::numbers::pi / 2});
+  MeasurementVector z(3);
+  z << 100.0, -std::numbers::pi / 2, -4.0;
+  MeasurementCovariance R = MeasurementCovariance::Zero(3, 3);
+  const double sigma_theta = std::numbers::pi / 180.0;
+  R.diagonal() << 25.0, sigma_theta * sigma_theta, 0.09;
+  const auto fix = positionFix(radar, z, R);
+  REQUIRE(fix);
+  CHECK(fix->position.x() == Approx(110.0));
+  CHECK(fix->position.y() == Approx(20.0).margin(1e-9));
+  CHECK(fix->covariance(0, 0) == Approx(25.0));
+  CHECK(fix->covariance(1, 1) == Approx(1e4 * sigma_theta * sigma_theta));  // 3.0462
+  CHECK(fix->covariance(0, 1) == Approx(0.0).margin(1e-9));
+  REQUIRE(fix->line_of_sight);
+  CHECK(fix->line_of_sight->x() == Approx(1.0));
+  CHECK(fix->range_rate == -4.0);
+  CHECK(fix->range_rate_variance == 0.09);
+  // The fix is where h(x) returns the plot's range and bearing.
+  const auto back = radar.predict(state(fix->position.x(), fix->position.y(), -4.0, 0.0));
+  CHECK(back(0) == Approx(100.0));
+  CHECK(back(1) == Approx(-std::numbers::pi / 2));
+  CHECK(back(2) == Approx(-4.0));
+}
+
+TEST_CASE("a camera's angles from a mast fix a position, and a bearing fixes none", "[sbmht]") {
+  // h = 3, phi = atan2(-3, 100): rho = h / tan(-phi) = 100, straight ahead of a camera at the origin
+  // facing +x. d rho / d phi = h / sin^2(phi) = 3 x 10009 / 9 = 3336.33, so sigma_phi = 0.1 deg
+  // (1.74533e-3 rad) gives 5.8230 m along the line of sight (variance 33.907) and rho sigma_theta =
+  // 0.174533 m across it (variance 0.030462): the spec's "about 6 m at 100 m".
+  const auto camera = modelOfKind(MeasurementKind::azimuth_elevation, SensorPose{0.0, 0.0, 0.0}, 3.0);
+  const double sigma = 0.1 * std::numbers::pi / 180.0;
+  MeasurementVector z(2);
+  z << 0.0, std::atan2(-3.0, 100.0);
+  const MeasurementCovariance R = MeasurementCovariance::Identity(2, 2) * sigma * sigma;
+  const auto fix = positionFix(camera, z, R);
+  REQUIRE(fix);
+  CHECK(fix->position.x() == Approx(100.0));
+  CHECK(fix->position.y() == Approx(0.0).margin(1e-9));
+  CHECK(fix->covariance(0, 0) == Approx(33.907).epsilon(1e-4));
+  CHECK(fix->covariance(1, 1) == Approx(0.030462).epsilon(1e-4));
+  CHECK_FALSE(fix->line_of_sight);
+
+  z(1) = 0.0;  // level: no ground range
+  CHECK_FALSE(positionFix(camera, z, R));
+  const auto ground_camera = modelOfKind(MeasurementKind::azimuth_elevation, SensorPose{0.0, 0.0, 0.0}, 0.0);
+  z(1) = -0.1;
+  CHECK_FALSE(positionFix(ground_camera, z, R));
+  const auto antenna = modelOfKind(MeasurementKind::bearing, SensorPose{0.0, 0.0, 0.0});
+  MeasurementVector theta(1);
+  theta << 0.3;
+  CHECK_FALSE(positionFix(antenna, theta, MeasurementCovariance::Identity(1, 1) * 1e-3));
+}
+
+TEST_CASE("gates of other dimensions keep the probability of the 2-D gate", "[sbmht]") {
+  // 9.2103 = -2 ln 0.01 is the 2-D gate of P_G = 0.99; its 1-D and 3-D quantiles are gateThreshold's.
+  CHECK(gateOfSameProbability(gateThreshold(2), 1) == Approx(gateThreshold(1)).epsilon(1e-9));
+  CHECK(gateOfSameProbability(gateThreshold(2), 3) == Approx(gateThreshold(3)).epsilon(1e-9));
+  CHECK(gateOfSameProbability(5.0, 2) == 5.0);
+  CHECK(gateOfSameProbability(5.0, 0) == 0.0);
+  // P_G = 1 - exp(-1) = 0.63212 for gate 2: chi^2_1 quantile (Phi^-1(0.81606))^2 = 0.90045^2 = 0.81081.
+  CHECK(gateOfSameProbability(2.0, 1) == Approx(0.81081).epsilon(1e-4));
 }
 
 }  // namespace
