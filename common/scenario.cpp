@@ -163,6 +163,59 @@ void supernodeIsPlaced(const Reader& r, const Scenario& s, Vec2 p, const Section
                            std::to_string(j) + "]'");
 }
 
+/// A list of points [[x, y], ...] with at least `fewest` items, each inside the region: a road's
+/// centre line, a mask's outline, a target's waypoints. `what` names the list in messages.
+std::vector<Vec2> readPoints(const Reader& r, const Scenario& s, const Entry& list, const std::string& path,
+                             std::size_t fewest, const std::string& what) {
+  const int list_line = Reader::lineOf(list);
+  if (!list.value.IsSequence())
+    r.fail(list_line, "'" + path + "' must be a list of [x, y] points, got " + describe(list.value));
+  if (list.value.size() < fewest)
+    r.fail(list_line, "'" + path + "' has " + std::to_string(list.value.size()) +
+                          (list.value.size() == 1 ? " point; " : " points; ") + what + " needs at least " +
+                          std::to_string(fewest));
+  std::vector<Vec2> points;
+  std::size_t i = 0;
+  for (const auto& item : list.value) {
+    const std::string item_path = path + "[" + std::to_string(i++) + "]";
+    const int line = Reader::lineOf(item) > 0 ? Reader::lineOf(item) : list_line;
+    if (!item.IsSequence() || item.size() != 2)
+      r.fail(line, "'" + item_path + "' must be a point [x, y], got " + describe(item));
+    const Entry x{item, item[0]};
+    const Entry y{item, item[1]};
+    constexpr Range kCoordinate = config::closed(-kMaxCoordinate, kMaxCoordinate);
+    const Vec2 p{r.numberValue(x, item_path + "[0]", kCoordinate), r.numberValue(y, item_path + "[1]", kCoordinate)};
+    if (!s.region.contains(p))
+      r.fail(line, "'" + item_path + "' " + pointText(p) + " is outside the region " + regionText(s.region));
+    points.push_back(p);
+  }
+  return points;
+}
+
+/// A polyline's points: no two in a row equal, since a leg of length 0 has no direction.
+void noRepeatedPoint(const Reader& r, const std::vector<Vec2>& points, const Entry& list, const std::string& path) {
+  for (std::size_t i = 1; i < points.size(); ++i)
+    if (points[i] == points[i - 1]) {
+      const int line = Reader::lineOf(list.value[i]) > 0 ? Reader::lineOf(list.value[i]) : Reader::lineOf(list);
+      r.fail(line, "'" + path + "[" + std::to_string(i) + "]' " + pointText(points[i]) + " repeats the point before it; " +
+                       "expected a leg of nonzero length");
+    }
+}
+
+/// A feature's name: valid, and not one an earlier feature of the same list has.
+template <typename Feature>
+void nameIsNew(const Reader& r, const std::vector<Feature>& earlier, const Feature& feature, const Section& t,
+               const std::string& list_path) {
+  const int line = lineOr(t, "name", t.line);
+  if (!validName(feature.name))
+    r.fail(line, "'" + t.pathOf("name") + "' must be 1 to " + std::to_string(kMaxNameLength) +
+                     " characters from A-Z a-z 0-9 _ - ., got '" + feature.name + "'");
+  for (std::size_t j = 0; j < earlier.size(); ++j)
+    if (earlier[j].name == feature.name)
+      r.fail(line, "'" + t.pathOf("name") + "' '" + feature.name + "' is already the name of '" + list_path + "[" +
+                       std::to_string(j) + "]'; expected unique names");
+}
+
 /// run.node_processes: at most one tile per cell of side 2 Rs.
 void nodeProcessesFitCells(const Reader& r, const Scenario& s, int line) {
   const double cells = layoutCellCount(s.region, s.sensor_model.sensing_range);
@@ -228,6 +281,37 @@ const node::SensorModelSpec& readSensorModel(const Reader& r, const Section& top
   return *model;
 }
 
+/// A waypoint target's route: its waypoints and stops, and from them where it starts and how it
+/// first moves.
+void readRoute(const Reader& r, const Scenario& s, const Section& t, const Entry& waypoints, TargetSpec& spec) {
+  const std::string path = t.pathOf("waypoints");
+  spec.waypoints = readPoints(r, s, waypoints, path, 2, "a route");
+  noRepeatedPoint(r, spec.waypoints, waypoints, path);
+  if (const Entry* stops = t.find("stops"); stops != nullptr && !stops->value.IsNull()) {
+    const std::string stops_path = t.pathOf("stops");
+    if (!stops->value.IsSequence())
+      r.fail(Reader::lineOf(*stops), "'" + stops_path + "' must be a list of {at, ticks}, got " + describe(stops->value));
+    forEachItem(r, *stops, stops_path, "{at, ticks}", [&](const YAML::Node& item, int line, auto& stop_path) {
+      const Section stop_section = r.item(item, line, stop_path, schema::waypointStop());
+      r.require(stop_section, {"at", "ticks"}, "the waypoint's number and how many ticks the target rests there");
+      WaypointStop stop;
+      r.fields(stop_section, schema::waypointStop(), stop);
+      const int at_line = lineOr(stop_section, "at", line);
+      if (static_cast<std::size_t>(stop.at) >= spec.waypoints.size())
+        r.fail(at_line, "'" + stop_section.pathOf("at") + "' " + std::to_string(stop.at) + " is not a waypoint; expected 0 to " +
+                            std::to_string(spec.waypoints.size() - 1));
+      if (!spec.stops.empty() && stop.at <= spec.stops.back().at)
+        r.fail(at_line, "'" + stop_section.pathOf("at") + "' " + std::to_string(stop.at) +
+                            " must come after the previous stop's waypoint " + std::to_string(spec.stops.back().at) +
+                            "; expected stops in route order, one per waypoint");
+      spec.stops.push_back(stop);
+    });
+  }
+  spec.position = spec.waypoints.front();
+  const Vec2 leg = spec.waypoints[1] - spec.waypoints[0];
+  spec.velocity = (spec.speed / std::hypot(leg.x, leg.y)) * leg;
+}
+
 /// targets: the random births and the scripted list.
 void readTargets(const Reader& r, const Section& top, const node::SensorModelSpec& model, Scenario& s) {
   if (const Entry* e = top.find("targets")) {
@@ -247,10 +331,23 @@ void readTargets(const Reader& r, const Section& top, const node::SensorModelSpe
                "'targets.scripted' must be a list of " + shape + ", got " + describe(scripted->value));
       forEachItem(r, *scripted, "targets.scripted", shape, [&](const YAML::Node& item, int line, auto& path) {
         const Section t = r.item(item, line, path, schema::scriptedTarget());
-        r.require(t, {"x", "y"}, "initial position, sensor separations");
-        r.require(t, {"vx", "vy"}, "velocity, sensor separations per tick");
+        const Entry* waypoints = t.find("waypoints");
+        if (waypoints == nullptr) {
+          r.require(t, {"x", "y"}, "initial position, sensor separations");
+          r.require(t, {"vx", "vy"}, "velocity, sensor separations per tick");
+          for (const char* key : {"speed", "stops"})
+            if (const Entry* given = t.find(key))
+              r.fail(Reader::lineOf(given->key), "'" + t.pathOf(key) + "' applies only with 'waypoints'");
+        } else {
+          for (const char* key : {"x", "y", "vx", "vy"})
+            if (const Entry* given = t.find(key))
+              r.fail(Reader::lineOf(given->key), "'" + t.pathOf(key) + "' does not apply with 'waypoints': the target " +
+                                                 "starts at the first waypoint and moves at 'speed'");
+          r.require(t, {"speed"}, "distance per tick along the waypoints");
+        }
         TargetSpec spec;
         r.fields(t, schema::scriptedTarget(), spec);
+        if (waypoints != nullptr) readRoute(r, s, t, *waypoints, spec);
         scriptedTargetIsValid(r, s, model, spec, t);
         s.targets.scripted.push_back(spec);
       });
@@ -280,6 +377,48 @@ void readSupernodes(const Reader& r, const Section& top, Scenario& s) {
   } else {
     s.supernodes = {{0.5 * (s.region.x_min + s.region.x_max), 0.5 * (s.region.y_min + s.region.y_max)}};
     s.derived["supernodes"] = "one supernode at the centre of the region";
+  }
+}
+
+/// terrain: the roads and the masks, each named, every point inside the region.
+void readTerrain(const Reader& r, const Section& top, Scenario& s) {
+  const Entry* e = top.find("terrain");
+  if (e == nullptr) return;
+  const Section sec = r.section(*e, schema::terrain());
+  const auto list = [&](const char* key, const std::string& shape) -> const Entry* {
+    const Entry* items = sec.find(key);
+    if (items == nullptr || items->value.IsNull()) return nullptr;
+    if (!items->value.IsSequence())
+      r.fail(Reader::lineOf(*items), "'" + sec.pathOf(key) + "' must be a list of " + shape + ", got " + describe(items->value));
+    return items;
+  };
+  if (const Entry* roads = list("roads", "{name, points}")) {
+    forEachItem(r, *roads, "terrain.roads", "{name, points}", [&](const YAML::Node& item, int line, auto& path) {
+      const Section t = r.item(item, line, path, schema::road());
+      r.require(t, {"name", "points"}, "the road's name and centre line");
+      RoadLine road;
+      r.fields(t, schema::road(), road);
+      nameIsNew(r, s.terrain.roads, road, t, "terrain.roads");
+      road.points = readPoints(r, s, *t.find("points"), t.pathOf("points"), 2, "a road");
+      noRepeatedPoint(r, road.points, *t.find("points"), t.pathOf("points"));
+      s.terrain.roads.push_back(std::move(road));
+    });
+  }
+  if (const Entry* masks = list("masks", "{name, kind, polygon}")) {
+    forEachItem(r, *masks, "terrain.masks", "{name, kind, polygon}", [&](const YAML::Node& item, int line, auto& path) {
+      const Section t = r.item(item, line, path, schema::mask());
+      r.require(t, {"name", "kind", "polygon"}, "the mask's name, what it is made of and its outline");
+      Mask mask;
+      r.fields(t, schema::mask(), mask);
+      nameIsNew(r, s.terrain.masks, mask, t, "terrain.masks");
+      const Entry& polygon = *t.find("polygon");
+      mask.polygon = readPoints(r, s, polygon, t.pathOf("polygon"), 3, "a polygon");
+      if (!isSimplePolygon(mask.polygon))
+        r.fail(Reader::lineOf(polygon), "'" + t.pathOf("polygon") +
+                                            "' is not a simple polygon: its edges cross or fold back, or it has no "
+                                            "area; expected an outline that goes round once");
+      s.terrain.masks.push_back(std::move(mask));
+    });
   }
 }
 
@@ -348,6 +487,7 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
     r.fields(r.section(*e, schema::dynamics()), schema::dynamics(), s.dynamics);
 
   readSupernodes(r, top, s);
+  readTerrain(r, top, s);
 
   if (const Entry* e = top.find("network")) r.fields(r.section(*e, schema::network()), schema::network(), s.network);
 
@@ -380,6 +520,78 @@ void writeParams(std::ostringstream& out, const std::string& section, const std:
     if (const auto it = derived.find(section + "." + name); it != derived.end()) out << "  # derived: " << it->second;
     out << "\n";
   }
+}
+
+std::string pointsText(const std::vector<Vec2>& points) {
+  std::string text;
+  for (const Vec2 p : points) text += (text.empty() ? "[[" : ", [") + yamlNumber(p.x) + ", " + yamlNumber(p.y) + "]";
+  return text + "]";
+}
+
+/// "{key: value, ...}" of a list item whose table has lists of points: `points_of` gives the
+/// points of a nested key (null when it writes nothing), other nested keys are left to `extra`.
+template <typename C, typename Points, typename Extra>
+std::string itemText(const FieldTable<C>& table, const C& item, Points points_of, Extra extra) {
+  std::string text;
+  for (const auto& field : table.fields) {
+    std::string value;
+    if (field.kind == FieldKind::kNested) {
+      if (const std::vector<Vec2>* points = points_of(field.key))
+        value = pointsText(*points);
+      else
+        value = extra(field.key);
+    } else if (!field.leftOutOfItem(item)) {
+      value = field.yamlValue(item);
+    }
+    if (!value.empty()) text += (text.empty() ? "{" : ", ") + field.key + ": " + value;
+  }
+  return text + "}";
+}
+
+/// targets.scripted: as writeList writes it, but a waypoint target with its route in place of the
+/// start and velocity it is derived into.
+void writeScriptedTargets(std::ostringstream& out, const std::vector<TargetSpec>& targets) {
+  if (targets.empty()) {
+    out << "  scripted: []\n";
+    return;
+  }
+  out << "  scripted:\n";
+  for (const auto& target : targets) {
+    if (target.waypoints.empty()) {
+      out << "    - " << config::flowMapping(schema::scriptedTarget(), target) << "\n";
+      continue;
+    }
+    const auto route_points = [&](const std::string& key) -> const std::vector<Vec2>* {
+      return key == "waypoints" ? &target.waypoints : nullptr;
+    };
+    const auto stops = [&](const std::string& key) -> std::string {
+      if (key != "stops" || target.stops.empty()) return "";
+      std::string text;
+      for (const auto& stop : target.stops)
+        text += (text.empty() ? "[" : ", ") + config::flowMapping(schema::waypointStop(), stop);
+      return text + "]";
+    };
+    FieldTable<TargetSpec> without_start = schema::scriptedTarget();
+    std::erase_if(without_start.fields, [](const auto& field) {
+      return field.key == "x" || field.key == "y" || field.key == "vx" || field.key == "vy";
+    });
+    out << "    - " << itemText(without_start, target, route_points, stops) << "\n";
+  }
+}
+
+/// terrain: written only when the scenario has one, so that a scenario without it reads as before.
+void writeTerrain(std::ostringstream& out, const TerrainConfig& terrain) {
+  if (terrain.empty()) return;
+  const auto nothing_else = [](const std::string&) { return std::string(); };
+  out << "terrain:\n";
+  out << "  roads:" << (terrain.roads.empty() ? " []" : "") << "\n";
+  for (const auto& road : terrain.roads)
+    out << "    - "
+        << itemText(schema::road(), road, [&](const std::string&) { return &road.points; }, nothing_else) << "\n";
+  out << "  masks:" << (terrain.masks.empty() ? " []" : "") << "\n";
+  for (const auto& mask : terrain.masks)
+    out << "    - "
+        << itemText(schema::mask(), mask, [&](const std::string&) { return &mask.polygon; }, nothing_else) << "\n";
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -631,11 +843,12 @@ std::string resolvedScenarioYaml(const Scenario& s) {
   node::sensorModelRegistry().at(s.sensor_model.kind).settings.write(out, s);
   writeSection(out, "localisation", schema::localisation(), s.localisation);
   writeSection(out, "targets", schema::targets(), s.targets);
-  writeList(out, "  ", "scripted", schema::scriptedTarget(), s.targets.scripted);
+  writeScriptedTargets(out, s.targets.scripted);
   writeSection(out, "dynamics", schema::dynamics(), s.dynamics);
   const auto supernodes_derived = s.derived.find("supernodes");
   writeList(out, "", "supernodes", schema::supernode(), s.supernodes,
             supernodes_derived == s.derived.end() ? "" : supernodes_derived->second);
+  writeTerrain(out, s.terrain);
   writeSection(out, "network", schema::network(), s.network);
   writeSection(out, "tracker", schema::tracker(), s.tracker);
   writeParams(out, "tracker.params", s.tracker.params, s.derived);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/geometry.hpp"
+#include "common/terrain.hpp"
 
 namespace wsn::common {
 
@@ -84,15 +85,34 @@ struct LocalisationConfig {
   friend bool operator==(const LocalisationConfig&, const LocalisationConfig&) = default;
 };
 
+/// What a target is: the classes of ONERA eq. (1), made exclusive (docs/ONERA.md §4). The order is
+/// the scenario's choice list (common/scenario_schema.cpp).
+enum class TargetClass { kUnknown, kWheeledLight, kWheeledHeavy, kTracked, kHuman, kGroup, kAerial };
+
+/// A halt of a waypoint target: `ticks` ticks at rest at waypoints[at].
+struct WaypointStop {
+  std::int32_t at = 0;
+  std::int32_t ticks = 0;
+  friend bool operator==(const WaypointStop&, const WaypointStop&) = default;
+};
+
 /// One explicitly scripted target: alive on ticks [appear_tick, disappear_tick).
 struct TargetSpec {
   std::int32_t appear_tick = 1;
   std::int32_t disappear_tick = 0;  ///< 0: until the end of the run (or leaving the region)
+  /// At appear_tick; a waypoint target's are its first waypoint and its first leg at `speed`.
   Vec2 position;
   Vec2 velocity;  ///< per tick
   /// This target's sensing range SR (how loud it is), for models that read it (acoustic sensors);
   /// 0 = sensor_model.sensing_range.
   double sensing_range = 0.0;
+  /// A target that drives a route: from waypoints[0] along the polyline at `speed` per tick,
+  /// halting at `stops`, gone after the last waypoint (common/truth.cpp). Empty: it moves with
+  /// `velocity` under eq. (8).
+  std::vector<Vec2> waypoints;
+  double speed = 0.0;  ///< per tick, for a waypoint target
+  std::vector<WaypointStop> stops;  ///< in route order
+  TargetClass target_class = TargetClass::kUnknown;
   friend bool operator==(const TargetSpec&, const TargetSpec&) = default;
 };
 
@@ -210,6 +230,7 @@ struct Scenario {
   AggregatorConfig aggregator;
   MetricsConfig metrics;
   RunConfig run;
+  TerrainConfig terrain;  ///< roads and masks; empty unless the file has `terrain:`
   /// The keys whose values the loader derived because the file left them out ("sensor_model.beta"),
   /// with how; the resolved scenario.yaml notes them. Not part of equality: a resolved file gives
   /// every value explicitly, so loading it derives nothing, yet it is the same scenario.
@@ -219,7 +240,7 @@ struct Scenario {
   friend bool operator==(const Scenario& a, const Scenario& b) {
     const auto values = [](const Scenario& s) {
       return std::tie(s.name, s.region, s.sensors, s.sensor_model, s.localisation, s.targets, s.dynamics, s.supernodes,
-                      s.network, s.tracker, s.aggregator, s.metrics, s.run);
+                      s.network, s.tracker, s.aggregator, s.metrics, s.run, s.terrain);
     };
     return values(a) == values(b);
   }

@@ -118,20 +118,46 @@ const FieldTable<TargetSpec>& scriptedTarget() {
                     "0, or (`appear_tick`, 10^6]"),
           withNotes(real<C>("x", [](C& t) -> double& { return t.position.x; }, kCoordinate, "separations",
                             "position at `appear_tick`"),
-                    "inside the region", "required"),
+                    "inside the region", "required without `waypoints`"),
           withNotes(real<C>("y", [](C& t) -> double& { return t.position.y; }, kCoordinate, "separations",
                             "position at `appear_tick`"),
-                    "inside the region", "required"),
+                    "inside the region", "required without `waypoints`"),
           withNotes(real<C>("vx", [](C& t) -> double& { return t.velocity.x; }, kCoordinate, "separations/tick",
                             "velocity at `appear_tick`. `speed_class` does not constrain it"),
-                    "", "required"),
+                    "", "required without `waypoints`"),
           withNotes(real<C>("vy", [](C& t) -> double& { return t.velocity.y; }, kCoordinate, "separations/tick",
                             "velocity at `appear_tick`. `speed_class` does not constrain it"),
-                    "", "required"),
+                    "", "required without `waypoints`"),
           unsetWhenZero(withNotes(real<C>("sensing_range", &C::sensing_range, kPositive, "separations",
                                           "the target's sensing range SR, i.e. its sound power Pt = cs SR^α (An "
                                           "et al. 2014 Table 1)"),
                                   "(0, 1e6]; for models that read it (`acoustic_doppler`)", "`sensor_model.sensing_range`")),
+          nested<C>("waypoints", "list of `[x, y]`", "none", "2 or more points inside the region, no two in a row equal",
+                    "a route instead of `x`, `y`, `vx`, `vy`: the target appears at the first waypoint, drives "
+                    "the polyline at `speed` exactly (a tick that passes a waypoint goes on along the next leg), "
+                    "without eq. (8)'s noise, and is gone the tick after it reaches the last one"),
+          unsetWhenZero(withNotes(real<C>("speed", &C::speed, kPositive, "separations/tick",
+                                          "distance a waypoint target covers per tick"),
+                                  "(0, 1e6]; with `waypoints` only", "required with `waypoints`")),
+          nested<C>("stops", "list of `{at, ticks}`", "`[]`", "with `waypoints` only; `at` increasing",
+                    "halts: `ticks` ticks at rest (velocity 0) at waypoint number `at` (from 0), after the tick "
+                    "that reaches it; that tick ends at the waypoint"),
+          unsetWhenZero(choice<C>("class", &C::target_class,
+                                  {"unknown", "wheeled_light", "wheeled_heavy", "tracked", "human", "group", "aerial"},
+                                  "what the target is, ONERA eq. (1) (`docs/ONERA.md`). No output file shows it yet")),
+      }};
+  return table;
+}
+
+const FieldTable<WaypointStop>& waypointStop() {
+  using C = WaypointStop;
+  static const FieldTable<C> table{
+      "targets.scripted[].stops[]",
+      {
+          withNotes(integer<C>("at", &C::at, 0, 1e6, "waypoint", "the waypoint's number in `waypoints`, from 0"),
+                    "a waypoint of the target, after the previous stop's", "required"),
+          withNotes(integer<C>("ticks", &C::ticks, 1, 1e6, "ticks", "how long the target rests there"), "[1, 10^6]",
+                    "required"),
       }};
   return table;
 }
@@ -154,6 +180,50 @@ const FieldTable<Vec2>& supernode() {
       {
           withNotes(real<Vec2>("x", &Vec2::x, kCoordinate, "separations", "position"), "inside the region", "required"),
           withNotes(real<Vec2>("y", &Vec2::y, kCoordinate, "separations", "position"), "inside the region", "required"),
+      }};
+  return table;
+}
+
+const FieldTable<TerrainConfig>& terrain() {
+  using C = TerrainConfig;
+  static const FieldTable<C> table{
+      "terrain",
+      {
+          nested<C>("roads", "list", "`[]`", "see below",
+                    "road centre lines. Where roads share a vertex (exactly) is a junction; a section is the part "
+                    "of a road between junctions or ends"),
+          nested<C>("masks", "list", "`[]`", "see below", "areas that hide targets from sight"),
+      }};
+  return table;
+}
+
+const FieldTable<RoadLine>& road() {
+  using C = RoadLine;
+  static const FieldTable<C> table{
+      "terrain.roads[]",
+      {
+          withNotes(text<C>("name", &C::name, "names the road"),
+                    "1–100 characters from `A-Z a-z 0-9 _ - .`, unique among roads", "required"),
+          nested<C>("points", "list of `[x, y]`", "required",
+                    "2 or more points inside the region, no two in a row equal", "the centre line, a polyline"),
+      }};
+  return table;
+}
+
+const FieldTable<Mask>& mask() {
+  using C = Mask;
+  static const FieldTable<C> table{
+      "terrain.masks[]",
+      {
+          withNotes(text<C>("name", &C::name, "names the mask"),
+                    "1–100 characters from `A-Z a-z 0-9 _ - .`, unique among masks", "required"),
+          withNotes(choice<C>("kind", &C::kind, {"building", "vegetation"},
+                              "what hides: a building blocks every line of sight through it; vegetation blocks "
+                              "optical sight (cameras, PIR) but not radar or acoustic sensing"),
+                    "`building`, `vegetation`", "required"),
+          nested<C>("polygon", "list of `[x, y]`", "required",
+                    "3 or more points inside the region, a simple polygon (no crossing edges)",
+                    "the outline, closed from the last point back to the first"),
       }};
   return table;
 }
@@ -259,7 +329,7 @@ const FieldTable<RunConfig>& run() {
 
 const std::vector<std::string>& sectionNames() {
   static const std::vector<std::string> names = {"name",     "region",   "sensors",    "sensor_model", "localisation",
-                                                 "targets",  "dynamics", "supernodes", "network",      "tracker",
+                                                 "targets",  "dynamics", "supernodes", "terrain", "network",      "tracker",
                                                  "aggregator", "metrics", "run"};
   return names;
 }
@@ -273,8 +343,12 @@ std::vector<std::pair<std::string, std::string>> markdownTables() {
       {"localisation", markdownTable(localisation())},
       {"targets", markdownTable(targets())},
       {"targets.scripted[]", markdownTable(scriptedTarget())},
+      {"targets.scripted[].stops[]", markdownTable(waypointStop())},
       {"dynamics", markdownTable(dynamics())},
       {"supernodes[]", markdownTable(supernode())},
+      {"terrain", markdownTable(terrain())},
+      {"terrain.roads[]", markdownTable(road())},
+      {"terrain.masks[]", markdownTable(mask())},
       {"network", markdownTable(network())},
       {"tracker", markdownTable(tracker())},
       {"aggregator", markdownTable(aggregator())},

@@ -20,8 +20,12 @@ const FieldTable<SensorModelConfig>& sensorModel();  ///< kind, sensing_range (t
 const FieldTable<LocalisationConfig>& localisation();
 const FieldTable<TargetsConfig>& targets();  ///< scalars (scripted: a list)
 const FieldTable<TargetSpec>& scriptedTarget();
+const FieldTable<WaypointStop>& waypointStop();  ///< targets.scripted[].stops[]
 const FieldTable<DynamicsConfig>& dynamics();
 const FieldTable<Vec2>& supernode();
+const FieldTable<TerrainConfig>& terrain();  ///< roads, masks (lists)
+const FieldTable<RoadLine>& road();          ///< terrain.roads[]
+const FieldTable<Mask>& mask();              ///< terrain.masks[]
 const FieldTable<NetworkConfig>& network();
 const FieldTable<TrackerConfig>& tracker();        ///< engine, window_size (params: the engine's table)
 const FieldTable<AggregatorConfig>& aggregator();  ///< association (params: the association's table)

@@ -8,11 +8,90 @@
 namespace wsn::common {
 namespace {
 
+/// Where a waypoint target is on its route.
+struct RouteProgress {
+  std::size_t leg = 0;            // on the leg from waypoints[leg] to waypoints[leg + 1], or at the last waypoint
+  double along_leg = 0.0;         // from waypoints[leg]
+  std::int32_t rest_left = 0;     // ticks still to rest at waypoints[leg]
+  std::size_t next_stop = 0;      // into TargetSpec::stops
+  bool finished = false;          // past its last waypoint: gone
+};
+
 struct LiveTarget {
   TargetState state;
-  std::int32_t disappear_tick;  // exclusive; INT32_MAX when open-ended
-  bool mortal;                  // subject to the per-tick death probability pz
+  std::int32_t disappear_tick = INT32_MAX;  // exclusive; INT32_MAX when open-ended
+  bool mortal = false;                      // subject to the per-tick death probability pz
+  const TargetSpec* route = nullptr;        // a waypoint target's spec; null under eq. (8)
+  RouteProgress progress;
 };
+
+Vec2 legDirection(const std::vector<Vec2>& waypoints, std::size_t leg) {
+  const Vec2 d = waypoints[leg + 1] - waypoints[leg];
+  return (1.0 / std::hypot(d.x, d.y)) * d;
+}
+
+/// The state on the route: on a leg, moving along it at `speed`; at rest or at the end, still.
+void placeOnRoute(TargetState& s, const TargetSpec& spec, const RouteProgress& p, bool moving) {
+  const auto& w = spec.waypoints;
+  const bool on_leg = p.leg + 1 < w.size();
+  const Vec2 direction = on_leg ? legDirection(w, p.leg) : Vec2{};
+  const Vec2 position = on_leg ? w[p.leg] + p.along_leg * direction : w[p.leg];
+  const Vec2 velocity = moving && on_leg ? spec.speed * direction : Vec2{};
+  s.x = position.x;
+  s.y = position.y;
+  s.vx = velocity.x;
+  s.vy = velocity.y;
+}
+
+/// A waypoint target at appear_tick: at its first waypoint, resting there if a stop says so.
+void startRoute(LiveTarget& target) {
+  const TargetSpec& spec = *target.route;
+  RouteProgress& p = target.progress;
+  if (!spec.stops.empty() && spec.stops.front().at == 0) {
+    p.rest_left = spec.stops.front().ticks;
+    p.next_stop = 1;
+  }
+  placeOnRoute(target.state, spec, p, p.rest_left == 0 && spec.waypoints.size() > 1);
+}
+
+/// One tick along the route, exactly: a tick that reaches a waypoint goes on along the next leg by
+/// what is left of `speed`, unless the target stops there (the tick ends at the waypoint) or it is
+/// the last one. Sets `finished` the tick after the last waypoint (and its rest).
+void advanceOnRoute(LiveTarget& target) {
+  const TargetSpec& spec = *target.route;
+  const auto& w = spec.waypoints;
+  RouteProgress& p = target.progress;
+  if (p.rest_left > 0) {
+    --p.rest_left;
+    placeOnRoute(target.state, spec, p, false);
+    return;
+  }
+  if (p.leg + 1 >= w.size()) {
+    p.finished = true;
+    return;
+  }
+  double remaining = spec.speed;
+  while (true) {
+    const double left_on_leg = distance(w[p.leg], w[p.leg + 1]) - p.along_leg;
+    if (remaining < left_on_leg) {
+      p.along_leg += remaining;
+      placeOnRoute(target.state, spec, p, true);
+      return;
+    }
+    remaining -= left_on_leg;
+    ++p.leg;
+    p.along_leg = 0.0;
+    if (p.next_stop < spec.stops.size() && static_cast<std::size_t>(spec.stops[p.next_stop].at) == p.leg) {
+      p.rest_left = spec.stops[p.next_stop++].ticks;
+      placeOnRoute(target.state, spec, p, false);
+      return;
+    }
+    if (p.leg + 1 == w.size()) {
+      placeOnRoute(target.state, spec, p, false);
+      return;
+    }
+  }
+}
 
 /// Oh eq. (8): x_{t+delta} = A_delta x_t + G_delta w_t with w_t ~ N(0, q^2 I).
 void propagate(TargetState& s, const DynamicsConfig& dynamics, Stream& noise) {
@@ -105,8 +184,14 @@ Truth::Truth(const TruthConfig& config) {
         Stream death(seed, Purpose::kTruthDeath, static_cast<std::uint64_t>(target.state.id), t);
         if (death.bernoulli(config.targets.death_probability)) continue;
       }
-      Stream noise(seed, Purpose::kTruthProcessNoise, static_cast<std::uint64_t>(target.state.id), t);
-      propagate(target.state, config.dynamics, noise);
+      if (target.route != nullptr) {
+        // A route is driven exactly: no draw from the noise stream, so other targets are unmoved.
+        advanceOnRoute(target);
+        if (target.progress.finished) continue;
+      } else {
+        Stream noise(seed, Purpose::kTruthProcessNoise, static_cast<std::uint64_t>(target.state.id), t);
+        propagate(target.state, config.dynamics, noise);
+      }
       if (!config.region.contains({target.state.x, target.state.y})) continue;
       next.push_back(target);
     }
@@ -115,7 +200,14 @@ Truth::Truth(const TruthConfig& config) {
     for (const auto& [spec, id] : scripted) {
       if (spec.appear_tick != t) continue;
       const std::int32_t end = spec.disappear_tick > 0 ? spec.disappear_tick : INT32_MAX;
-      live.push_back({{id, spec.position.x, spec.position.y, spec.velocity.x, spec.velocity.y}, end, false});
+      LiveTarget target;
+      target.state = {id, spec.position.x, spec.position.y, spec.velocity.x, spec.velocity.y};
+      target.disappear_tick = end;
+      if (!spec.waypoints.empty()) {
+        target.route = &spec;
+        startRoute(target);
+      }
+      live.push_back(target);
     }
 
     Stream births(seed, Purpose::kTruthBirth, 0, t);
@@ -127,7 +219,10 @@ Truth::Truth(const TruthConfig& config) {
                     init.uniform(config.region.y_min, config.region.y_max), 0.0, 0.0};
       s.vx = init.uniform(speed.min, speed.max) * (init.bernoulli(0.5) ? 1.0 : -1.0);
       s.vy = init.uniform(speed.min, speed.max) * (init.bernoulli(0.5) ? 1.0 : -1.0);
-      live.push_back({s, INT32_MAX, true});
+      LiveTarget newborn;
+      newborn.state = s;
+      newborn.mortal = true;
+      live.push_back(newborn);
     }
 
     auto& now = per_tick_[static_cast<std::size_t>(t)];
@@ -135,6 +230,13 @@ Truth::Truth(const TruthConfig& config) {
     std::sort(now.begin(), now.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
   }
   target_count_ = next_id;
+  classes_.assign(static_cast<std::size_t>(next_id), TargetClass::kUnknown);
+  for (std::size_t i = 0; i < config.targets.scripted.size(); ++i) classes_[i] = config.targets.scripted[i].target_class;
+}
+
+TargetClass Truth::targetClass(TargetId id) const {
+  if (id < 0 || static_cast<std::size_t>(id) >= classes_.size()) return TargetClass::kUnknown;
+  return classes_[static_cast<std::size_t>(id)];
 }
 
 const std::vector<TargetState>& Truth::at(std::int32_t tick) const {

@@ -49,10 +49,13 @@ class Truth {
   std::int32_t ticks() const { return static_cast<std::int32_t>(per_tick_.size()) - 1; }
   /// Number of distinct targets over the whole run.
   std::int32_t targetCount() const { return target_count_; }
+  /// What target `id` is: its scripted class; unknown for drawn and born targets.
+  TargetClass targetClass(TargetId id) const;
 
  private:
   std::vector<std::vector<TargetState>> per_tick_;  // index 0 unused
   std::int32_t target_count_ = 0;
+  std::vector<TargetClass> classes_;  // by id
 };
 
 }  // namespace wsn::common

@@ -349,9 +349,11 @@ def read_scenario(run_dir):
                 raise InputError(f"{at('supernodes', i, key)}: supernodes[{i}].{key} must be a number, got '{value}'")
             xy.append(float(value))
         supernodes.append(tuple(xy))
+    terrain = read_terrain(data.get("terrain"), at)
     return {
         "name": get("name", kind=str, default="?"),
         "region": region,
+        "terrain": terrain,
         "layout": layout,
         "spacing": spacing,
         "supernodes": supernodes,
@@ -362,6 +364,60 @@ def read_scenario(run_dir):
         "ospa_c": get("metrics", "ospa_c", default=math.nan),
         "ospa_p": get("metrics", "ospa_p", default=math.nan),
     }
+
+
+def read_terrain(section, at):
+    """The scenario's roads and masks ({"roads": [[(x, y), ...]], "masks": [(kind, [(x, y), ...])]}),
+    empty when it has no terrain section."""
+    terrain = {"roads": [], "masks": []}
+    if section is None:
+        return terrain
+    if not isinstance(section, dict):
+        raise InputError(f"{at('terrain')}: 'terrain' must be a mapping of roads and masks")
+
+    def points(value, *keys):
+        if not isinstance(value, list) or not all(
+                isinstance(p, list) and len(p) == 2 and all(
+                    isinstance(c, (int, float)) and not isinstance(c, bool) and math.isfinite(c) for c in p)
+                for p in value):
+            raise InputError(f"{at(*keys)}: '{'.'.join(map(str, keys))}' must be a list of [x, y] points")
+        return [(float(x), float(y)) for x, y in value]
+
+    for i, road in enumerate(section.get("roads") or []):
+        if not isinstance(road, dict):
+            raise InputError(f"{at('terrain', 'roads', i)}: terrain.roads[{i}] must be a mapping {{name, points}}")
+        terrain["roads"].append(points(road.get("points"), "terrain", "roads", i, "points"))
+    for i, mask in enumerate(section.get("masks") or []):
+        if not isinstance(mask, dict):
+            raise InputError(f"{at('terrain', 'masks', i)}: terrain.masks[{i}] must be a mapping {{name, kind, polygon}}")
+        terrain["masks"].append((str(mask.get("kind")), points(mask.get("polygon"), "terrain", "masks", i, "polygon")))
+    return terrain
+
+
+# Masks under everything but the region's tint; roads over the masks, under the target paths.
+MASK_COLOURS = {"building": "#8c7b6b", "vegetation": "#7fb77e"}
+ROAD_COLOUR = "#8a8a8a"
+
+
+def draw_terrain(ax, Polygon, scenario):
+    """Draws the masks (filled) and the roads (grey lines); returns legend handles for what it drew."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+    terrain = scenario.get("terrain") or {"roads": [], "masks": []}
+    kinds = []
+    for kind, polygon in terrain["masks"]:
+        colour = MASK_COLOURS.get(kind, "#aaaaaa")
+        ax.add_patch(Polygon(polygon, closed=True, facecolor=colour, edgecolor=colour, alpha=0.55, linewidth=0.8,
+                             zorder=1.5))
+        if kind not in kinds:
+            kinds.append(kind)
+    for road in terrain["roads"]:
+        ax.plot([p[0] for p in road], [p[1] for p in road], color=ROAD_COLOUR, linewidth=3.0, solid_capstyle="round",
+                solid_joinstyle="round", zorder=2.5)
+    handles = [Patch(facecolor=MASK_COLOURS.get(kind, "#aaaaaa"), alpha=0.55, label=f"mask: {kind}") for kind in kinds]
+    if terrain["roads"]:
+        handles.append(Line2D([], [], color=ROAD_COLOUR, linewidth=3.0, label="road"))
+    return handles
 
 
 # Drawing more points than pixels only costs time and file size.
@@ -612,6 +668,7 @@ def plot_tracks(mpl, scenario, sensors, truth, tracks, summary, out_path, observ
     ax.set_aspect("equal")
 
     cells = draw_groups_and_region(ax, Polygon, scenario, (x0, y0, x1, y1))
+    terrain_handles = draw_terrain(ax, Polygon, scenario)
 
     xs, ys, stride = sensors
     if xs:
@@ -693,6 +750,7 @@ def plot_tracks(mpl, scenario, sensors, truth, tracks, summary, out_path, observ
         handles.append(Line2D([], [], linestyle="none", marker="o", markersize=4, markerfacecolor="#b4b4b4",
                               markeredgewidth=0,
                               label="sensor" if stride == 1 else f"sensor (1 in {stride} drawn)"))
+    handles += terrain_handles
     # Below the map rather than on it, so that no track is hidden; a fixed distance in points
     # clears the tick labels and the x label whatever the map's aspect ratio.
     below = offset_copy(ax.transAxes, fig=fig, y=-44, units="points")
@@ -1120,8 +1178,9 @@ def animate(mpl, scenario, sensors, truth, tracks, observations, per_tick, optio
     ax.set_xlabel(f"x ({length_unit(scenario)})", fontsize=10, labelpad=2)
     ax.set_ylabel(f"y ({length_unit(scenario)})", fontsize=10, labelpad=2)
 
-    # Static: tracking groups, the region, sensors, boundaries, supernodes.
+    # Static: tracking groups, the region, terrain, sensors, boundaries, supernodes.
     cells = draw_groups_and_region(ax, Polygon, scenario, (x0, y0, x1, y1))
+    draw_terrain(ax, Polygon, scenario)
     xs, ys, stride = sensors
     if xs:
         pixels_per_sensor = map_w * dpi / math.sqrt(len(xs) * (x1 - x0) / (y1 - y0))

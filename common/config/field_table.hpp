@@ -74,7 +74,8 @@ struct Field {
   std::string range_note;
   /// Docs only: the default column when it is not C{}'s value (e.g. a value the loader derives).
   std::string default_note;
-  /// A number whose 0 means "not given" (a target's own sensing range): list items leave it out.
+  /// A number whose 0, or a choice whose first name, means "not given" (a target's own sensing
+  /// range, its class): list items leave it out.
   bool zero_means_unset = false;
   /// A default derived from other values when the key is left out (kReal, kInteger): how, in
   /// words for the resolved file and the docs, and the function. The loader runs it after the
@@ -92,6 +93,15 @@ struct Field {
   std::function<void(C&, const std::string&)> set_text;
 
   bool isNumber() const { return kind == FieldKind::kReal || kind == FieldKind::kInteger; }
+
+  /// Whether a list item leaves this key out: a nested key (written by its own code) or a value
+  /// that means "not given".
+  bool leftOutOfItem(const C& config) const {
+    if (kind == FieldKind::kNested) return true;
+    if (!zero_means_unset) return false;
+    if (isNumber()) return get_number(config) == 0.0;
+    return kind == FieldKind::kChoice && get_text(config) == choices.front();
+  }
 
   /// The value as written in a resolved YAML file.
   std::string yamlValue(const C& config) const {

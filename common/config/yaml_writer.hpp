@@ -36,12 +36,12 @@ void writeSection(std::ostream& out, const std::string& name, const FieldTable<C
   writeFields(out, "  ", table, config, derived);
 }
 
-/// "{a: 1, b: 2}": a list item on one line; a key whose zero means "not given" is left out at 0.
+/// "{a: 1, b: 2}": a list item on one line; a key whose value means "not given" is left out.
 template <typename C>
 std::string flowMapping(const FieldTable<C>& table, const C& config) {
   std::string text;
   for (const auto& field : table.fields) {
-    if (field.kind == FieldKind::kNested || (field.zero_means_unset && field.get_number(config) == 0.0)) continue;
+    if (field.leftOutOfItem(config)) continue;
     text += (text.empty() ? "{" : ", ") + field.key + ": " + field.yamlValue(config);
   }
   return text + "}";

@@ -12,29 +12,8 @@ using common::kVy;
 using common::kX;
 using common::kY;
 using common::StateMatrix;
-using common::Vec2;
-
-double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
 
 }  // namespace
-
-double RoadFoot::heading() const { return std::atan2(direction.y, direction.x); }
-
-std::optional<RoadFoot> footPoint(const Road& road, Vec2 position) {
-  std::optional<RoadFoot> best;
-  for (std::size_t i = 0; i + 1 < road.points.size(); ++i) {
-    const Vec2 start = road.points[i];
-    const Vec2 along = road.points[i + 1] - start;
-    const double length = std::hypot(along.x, along.y);
-    if (!(length > 0.0)) continue;
-    const Vec2 direction = (1.0 / length) * along;
-    const double t = std::clamp(dot(position - start, direction), 0.0, length);
-    const Vec2 point = start + t * direction;
-    const double distance = common::distance(position, point);
-    if (!best || distance < best->distance) best = RoadFoot{i, point, direction, distance};
-  }
-  return best;
-}
 
 common::GaussianState projectOntoRoad(const common::GaussianState& state, const RoadFoot& foot,
                                       double road_location_sigma) {

@@ -8,6 +8,7 @@
 
 #include "common/geometry.hpp"
 #include "common/kalman.hpp"
+#include "common/terrain.hpp"
 
 namespace wsn::supernode::sbmht {
 
@@ -16,24 +17,16 @@ struct Road {
   std::vector<common::Vec2> points;
 };
 
-/// Where a position meets a road: the foot of the perpendicular on the nearest segment.
-struct RoadFoot {
-  /// Segment from points[segment] to points[segment + 1].
-  std::size_t segment = 0;
-  common::Vec2 point;
-  /// Unit vector along the segment, in the polyline's order.
-  common::Vec2 direction;
-  /// From the position to the foot point.
-  double distance = 0.0;
-
-  /// The segment's direction in radians counter-clockwise from +x (roadModel's road_direction).
-  double heading() const;
-};
+/// Where a position meets a road: the foot of the perpendicular on the nearest segment
+/// (common/terrain.hpp computes it for every road of the scenario too).
+using RoadFoot = common::PolylineFoot;
 
 /// The foot point of `position` on the road's nearest segment; on a tie (outside a bend both
 /// segments are nearest at their shared vertex) the first segment in the polyline's order.
 /// Zero-length segments are skipped; nullopt when no segment is left.
-std::optional<RoadFoot> footPoint(const Road& road, common::Vec2 position);
+inline std::optional<RoadFoot> footPoint(const Road& road, common::Vec2 position) {
+  return common::footPoint(road.points, position);
+}
 
 /// The state moved onto the road at `foot` (docs/ONERA.md, check C8): the position to the foot point and the
 /// velocity to its component along the segment, |v| cos(angle off the road), which reverses

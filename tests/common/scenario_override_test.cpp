@@ -132,7 +132,7 @@ TEST_CASE("an unknown key is the loader's message, naming the --set and no line"
         "pte");
   CHECK(errorOf({"nope.x=1"}) ==
         "override: --set nope.x=1: unknown key 'nope' at the top level; expected one of: aggregator, dynamics, localisation, "
-        "metrics, name, network, region, run, sensor_model, sensors, supernodes, targets, tracker");
+        "metrics, name, network, region, run, sensor_model, sensors, supernodes, targets, terrain, tracker");
   CHECK(errorOf({"run.ticks=0"}) == "override: --set run.ticks=0: 'run.ticks' must be in [1, 1000000], got 0");
 }
 

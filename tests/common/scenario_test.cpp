@@ -223,10 +223,10 @@ TEST_CASE("an unknown key names the key's line, its section and the known keys",
         "s.yaml:3: unknown key 'ptee' in 'network'; expected one of: communication_range, pde, pte");
   CHECK(errorOf("name: x\nnetwrok: {}\n") ==
         "s.yaml:2: unknown key 'netwrok' at the top level; expected one of: aggregator, dynamics, localisation, metrics, name, "
-        "network, region, run, sensor_model, sensors, supernodes, targets, tracker");
+        "network, region, run, sensor_model, sensors, supernodes, targets, terrain, tracker");
   CHECK(errorOf("targets:\n  scripted:\n    - {x: 1, y: 1, vx: 0, vy: 0, z: 3}\n") ==
-        "s.yaml:3: unknown key 'z' in 'targets.scripted[0]'; expected one of: appear_tick, disappear_tick, sensing_range, vx, vy, "
-        "x, y");
+        "s.yaml:3: unknown key 'z' in 'targets.scripted[0]'; expected one of: appear_tick, class, disappear_tick, sensing_range, "
+        "speed, stops, vx, vy, waypoints, x, y");
   CHECK(errorOf("supernodes:\n  - x: 1\n    y: 1\n    z: 1\n") ==
         "s.yaml:4: unknown key 'z' in 'supernodes[0]'; expected one of: x, y");
 }
@@ -252,7 +252,7 @@ TEST_CASE("a wrong type names the dotted key, what was expected and what was fou
   CHECK(errorOf("network: 5\n") == "s.yaml:1: 'network' must be a mapping of communication_range, pde, pte, got '5'");
   CHECK(errorOf("- 1\n- 2\n") ==
         "s.yaml:1: a scenario must be a mapping of sections (aggregator, dynamics, localisation, metrics, name, network, region, "
-        "run, sensor_model, sensors, supernodes, targets, tracker), got a list");
+        "run, sensor_model, sensors, supernodes, targets, terrain, tracker), got a list");
   CHECK(errorOf("sensors:\n  layout: hex\n") == "s.yaml:2: 'sensors.layout' must be one of: grid, random; got 'hex'");
   CHECK(errorOf("targets:\n  speed_class: 3\n") ==
         "s.yaml:2: 'targets.speed_class' must be one of: slow, medium, fast; got '3'");

@@ -117,7 +117,15 @@ TEST_CASE("scripted targets give their own velocities, lifetimes and birth rate"
   s.run.ticks = 50;
   s.dynamics.process_noise_sigma = 0.0;
   s.targets.birth_rate = 0.0;
-  s.targets.scripted = {{1, 21, {10, 10}, {3, 4}, 0.0}, {11, 0, {50, 50}, {-1, 0}, 0.0}};
+  const auto scripted = [](std::int32_t appear, std::int32_t disappear, common::Vec2 position, common::Vec2 velocity) {
+    common::TargetSpec spec;
+    spec.appear_tick = appear;
+    spec.disappear_tick = disappear;
+    spec.position = position;
+    spec.velocity = velocity;
+    return spec;
+  };
+  s.targets.scripted = {scripted(1, 21, {10, 10}, {3, 4}), scripted(11, 0, {50, 50}, {-1, 0})};
   common::ObservationStatistics stats;
   observation_model::deriveTargetStatistics(s, stats);
   // Per-axis mean square: (9 + 16 + 1 + 0) / 4 = 6.5.
