@@ -252,22 +252,23 @@ TEST_CASE("detections follow PD over many ticks", "[field_sensors]") {
 }
 
 TEST_CASE("false alarms come at the proposed rate and within the coverage", "[field_sensors]") {
-  // No targets. Poisson false alarms per sensor and tick: radar 0.2, antenna and camera 0.01,
-  // PIR and magnetic none. Over N = 20000 ticks the expected counts are 4000 (σ = 63) and 200
-  // (σ = 14): accept 4000 ± 250 and 200 ± 50, about 4 σ.
+  // No targets. Poisson false alarms per sensor and tick: radar 0.2, antenna, camera and beacon
+  // 0.01, PIR and magnetic none. Over N = 20000 ticks the expected counts are 4000 (σ = 63) and
+  // 200 (σ = 14): accept 4000 ± 250 and 200 ± 50, about 4 σ.
   const auto s = field(
       "    - {name: r, type: radar, x: 0, y: 0, heading: 90}\n"
       "    - {name: a, type: acoustic_antenna, x: 500, y: 0}\n"
       "    - {name: c, type: camera, x: -500, y: 0, heading: 0}\n"
       "    - {name: p, type: pir, x: 0, y: 500}\n"
-      "    - {name: m, type: magnetic, x: 0, y: -500}\n",
+      "    - {name: m, type: magnetic, x: 0, y: -500}\n"
+      "    - {name: b, type: acoustic_beacon, x: 300, y: -300}\n",
       "    []\n");
   const common::SensorLayout layout(common::sensorFieldConfig(s));
   const common::Truth truth(common::truthConfig(s));
   const FieldSensors sensors(common::settingsOf<FieldSensorsSettings>(s.sensor_model), 1, layout,
                              makeTiles(layout, 1).front(), truth);
   constexpr int kTicks = 20000;
-  std::vector<int> count(5, 0);
+  std::vector<int> count(6, 0);
   for (std::int32_t t = 1; t <= kTicks; ++t)
     for (const auto& r : sensors.detect(t)) {
       ++count[r.sensor];
@@ -277,6 +278,10 @@ TEST_CASE("false alarms come at the proposed rate and within the coverage", "[fi
         CHECK((z[0] >= 0.0 && z[0] < 1000.0));
         CHECK(std::abs(z[1]) <= pi / 4.0);
         CHECK(std::abs(z[2]) <= 20.0);
+      }
+      if (r.sensor == 5) {  // beacon: a presence at the sensor itself
+        CHECK(z == std::vector<double>{300.0, -300.0});
+        CHECK((r.x == 300.0 && r.y == -300.0));
       }
       if (r.sensor == 2) {  // camera: theta within ±15°, phi between -90° and atan2(-3, 200)
         CHECK(std::abs(z[0]) <= 15.0 * pi / 180.0);
@@ -288,6 +293,7 @@ TEST_CASE("false alarms come at the proposed rate and within the coverage", "[fi
   CHECK(std::abs(count[2] - 200) <= 50);
   CHECK(count[3] == 0);
   CHECK(count[4] == 0);
+  CHECK(std::abs(count[5] - 200) <= 50);
 }
 
 TEST_CASE("the field sensors' reports do not depend on the tiling", "[field_sensors]") {
