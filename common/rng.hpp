@@ -30,6 +30,8 @@ enum class Purpose : std::uint64_t {
   kMagnetometerSample = 18,    ///< per (sensor, sample): its read noise, bias drift and bias jump
   kRssNoise = 19,              ///< per (sensor, tick): the noise v of an ADMAN reading (eq. 1)
   kMlmcParticles = 20,         ///< per (attached sensor, tick x 16 + sweep): ADMAN's MLMC particles
+  kFieldSensorDetection = 21,  ///< per (sensor x 2^32 + target, tick): a field sensor's detection and noise
+  kFieldSensorFalseAlarm = 22,  ///< per (sensor, tick): a field sensor's false alarms
 };
 
 /// SplitMix64 finaliser: a bijective 64-bit mix with full avalanche.

@@ -103,6 +103,82 @@ void gridFitsRegion(const Reader& r, const Scenario& s, int line) {
                      compactNumber(kMaxSensors));
 }
 
+bool contains(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+/// sensors.list: the items of a list layout (and none otherwise), each inside the region and
+/// named apart from every other; `count` is the list's length.
+void readSensorList(const Reader& r, const Section& sec, Scenario& s) {
+  const Entry* list = sec.find("list");
+  const bool given = list != nullptr && !list->value.IsNull();
+  if (s.sensors.kind != SensorLayoutConfig::Kind::kList) {
+    if (given) r.fail(Reader::lineOf(*list), "'sensors.list' applies only with 'sensors.layout: list'");
+    return;
+  }
+  const std::string shape = "{name, type, x, y, heading, fov, range, height}";
+  if (!given || !list->value.IsSequence() || list->value.size() == 0)
+    r.fail(given ? Reader::lineOf(*list) : sec.line,
+           "'sensors.layout: list' needs 'sensors.list', a non-empty list of " + shape +
+               (given ? ", got " + describe(list->value) : std::string()));
+  if (static_cast<double>(list->value.size()) > kMaxSensors)
+    r.fail(Reader::lineOf(*list), "'sensors.list' holds " + std::to_string(list->value.size()) +
+                                      " sensors; expected at most " + compactNumber(kMaxSensors));
+  forEachItem(r, *list, "sensors.list", shape, [&](const YAML::Node& item, int line, auto& path) {
+    const Section t = r.item(item, line, path, schema::placedSensor());
+    r.require(t, {"name", "type", "x", "y"}, "every listed sensor has a name, a type and a position");
+    PlacedSensorConfig sensor;
+    r.fields(t, schema::placedSensor(), sensor);
+    sensor.line = t.line;
+    sensor.type_line = Reader::lineOf(*t.find("type"));
+    const int name_line = Reader::lineOf(*t.find("name"));
+    if (sensor.name.empty()) r.fail(name_line, "'" + path + ".name' must not be empty");
+    for (const auto& earlier : s.sensors.list)
+      if (earlier.name == sensor.name)
+        r.fail(name_line, "'" + path + ".name' '" + sensor.name + "' is already the name of the sensor on line " +
+                              std::to_string(earlier.line) + "; expected names that differ");
+    if (!s.region.contains(sensor.position))
+      r.fail(t.line, "'" + path + "' at " + pointText(sensor.position) + " is outside the region " +
+                         regionText(s.region));
+    s.sensors.list.push_back(sensor);
+  });
+  const auto length = static_cast<std::uint32_t>(s.sensors.list.size());
+  if (const Entry* count = sec.find("count"); count != nullptr && s.sensors.count != length)
+    r.fail(Reader::lineOf(*count), "'sensors.count' " + std::to_string(s.sensors.count) + " differs from the " +
+                                       std::to_string(length) + " sensors of 'sensors.list'; leave count out");
+  s.sensors.count = length;
+}
+
+/// sensors and sensor_model: a model with sensor types places them by a list, each item of one of
+/// its types; a model without types places none.
+void sensorTypesFitModel(const Reader& r, const Scenario& s, const node::SensorModelSpec& model, int layout_line,
+                         int kind_line) {
+  const auto& types = model.settings.sensor_types;
+  const bool listed = s.sensors.kind == SensorLayoutConfig::Kind::kList;
+  if (!types.empty() && !listed)
+    r.fail(kind_line, "'sensor_model.kind: " + model.name + "' places sensors of types " + config::join(types) +
+                          " one by one; expected 'sensors.layout: list'");
+  if (types.empty() && listed)
+    r.fail(layout_line, "'sensors.layout: list' places typed sensors, but 'sensor_model.kind: " + model.name +
+                            "' has no sensor types; expected a grid or random layout, or a model with types");
+  for (std::size_t i = 0; i < s.sensors.list.size(); ++i) {
+    const PlacedSensorConfig& sensor = s.sensors.list[i];
+    if (!contains(types, sensor.type))
+      r.fail(sensor.type_line, "'sensors.list[" + std::to_string(i) + "].type' must be one of: " +
+                                   config::join(types) + "; got '" + sensor.type + "'");
+  }
+}
+
+/// The line of sensor_model.kind, else of the section, else `fallback`.
+int sensorModelKindLine(const Section& top, int fallback) {
+  const Entry* e = top.find("sensor_model");
+  if (e == nullptr) return fallback;
+  if (e->value.IsMap())
+    for (const auto& pair : e->value)
+      if (pair.first.IsScalar() && pair.first.Scalar() == "kind") return Reader::lineOf(pair.first);
+  return Reader::lineOf(*e);
+}
+
 /// targets.birth_rate: at most kMaxBirthsPerTick expected births per tick over the region.
 void birthsPerTickBounded(const Reader& r, const Scenario& s, int line) {
   const double births = s.targets.birth_rate * s.region.area();
@@ -110,10 +186,6 @@ void birthsPerTickBounded(const Reader& r, const Scenario& s, int line) {
     r.fail(line, "'targets.birth_rate' " + compactNumber(s.targets.birth_rate) + " gives " + compactNumber(births) +
                      " expected births per tick over the region (area " + compactNumber(s.region.area()) +
                      "); expected at most " + compactNumber(kMaxBirthsPerTick));
-}
-
-bool contains(const std::vector<std::string>& names, const std::string& name) {
-  return std::find(names.begin(), names.end(), name) != names.end();
 }
 
 /// The sensor models whose keys (`which`: of sensor_model or of a scripted target) include `key`.
@@ -469,15 +541,19 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
   }
 
   int layout_line = region_line;  // where a layout that does not fit the region is reported
+  int list_line = region_line;    // where a list layout the sensor model cannot take is reported
   if (const Entry* e = top.find("sensors")) {
     const Section sec = r.section(*e, schema::sensors());
     r.fields(sec, schema::sensors(), s.sensors);
     layout_line = lineOr(sec, "spacing", layout_line);
+    readSensorList(r, sec, s);
+    list_line = lineOr(sec, "layout", sec.line);
   }
   gridFitsRegion(r, s, layout_line);
 
   int sensing_range_line = region_line;
   const node::SensorModelSpec& model = readSensorModel(r, top, s, sensing_range_line);
+  sensorTypesFitModel(r, s, model, list_line, sensorModelKindLine(top, region_line));
 
   if (const Entry* e = top.find("localisation"))
     r.fields(r.section(*e, schema::localisation()), schema::localisation(), s.localisation);
@@ -839,6 +915,8 @@ std::string resolvedScenarioYaml(const Scenario& s) {
   writeFields(out, "", schema::topLevel(), s);
   writeSection(out, "region", schema::region(), s.region);
   writeSection(out, "sensors", schema::sensors(), s.sensors);
+  if (s.sensors.kind == SensorLayoutConfig::Kind::kList)
+    writeList(out, "  ", "list", schema::placedSensor(), s.sensors.list);
   writeSection(out, "sensor_model", schema::sensorModel(), s.sensor_model, s.derived);
   node::sensorModelRegistry().at(s.sensor_model.kind).settings.write(out, s);
   writeSection(out, "localisation", schema::localisation(), s.localisation);

@@ -16,15 +16,40 @@
 
 namespace wsn::common {
 
+/// One sensor of a `list` layout as the file places it (ONERA §II-A, Table I: each sensor has its
+/// own type, pose and coverage). Angles stay in the file's degrees here so that a resolved file
+/// reads back to equal values; common/sensor_layout.hpp turns them into radians. A zero fov, range
+/// or height leaves the sensor model's default for the type.
+struct PlacedSensorConfig {
+  std::string name;
+  std::string type;  ///< a sensor type of the scenario's sensor model (sensor_model.kind)
+  Vec2 position;     ///< true position; the believed one adds the localisation error
+  double heading_deg = 0.0;  ///< centre of the field of view, counter-clockwise from +x
+  double fov_deg = 0.0;      ///< width of the field of view, in (0, 360]; 0: the type's default
+  double range = 0.0;        ///< coverage radius; 0: the type's default
+  double height = 0.0;       ///< mast height (cameras); 0: the type's default
+  int line = 0;              ///< the item's line, for rules checked once the sensor model is known
+  int type_line = 0;
+  /// Equal in what they place; the lines only serve messages.
+  friend bool operator==(const PlacedSensorConfig& a, const PlacedSensorConfig& b) {
+    const auto values = [](const PlacedSensorConfig& s) {
+      return std::tie(s.name, s.type, s.position, s.heading_deg, s.fov_deg, s.range, s.height);
+    };
+    return values(a) == values(b);
+  }
+};
+
 /// Sensor placement over the region.
 struct SensorLayoutConfig {
-  enum class Kind { kGrid, kRandom };
+  enum class Kind { kGrid, kRandom, kList };
   Kind kind = Kind::kGrid;
   /// Grid: separation between neighbouring sensors; sensors sit at cell centres, so a
   /// 100 x 100 region with spacing 1 holds sensors at 0.5, 1.5, ..., 99.5 (Oh §VII).
   double spacing = 1.0;
-  /// Random: number of sensors placed uniformly over the region.
+  /// Random: number of sensors placed uniformly over the region. List: the list's length.
   std::uint32_t count = 10000;
+  /// List: every sensor, in id order.
+  std::vector<PlacedSensorConfig> list;
   friend bool operator==(const SensorLayoutConfig&, const SensorLayoutConfig&) = default;
 };
 

@@ -45,13 +45,46 @@ const FieldTable<SensorLayoutConfig>& sensors() {
   static const FieldTable<C> table{
       "sensors",
       {
-          choice<C>("layout", &C::kind, {"grid", "random"},
+          choice<C>("layout", &C::kind, {"grid", "random", "list"},
                     "`grid`: sensors at the cell centres (x_min + (i + ½) spacing, …), as in §VII. `random`: `count` "
-                    "sensors placed uniformly, drawn from the seed"),
+                    "sensors placed uniformly, drawn from the seed. `list`: each sensor of `list` placed by hand "
+                    "(ONERA Table I), for a sensor model with sensor types"),
           withNotes(real<C>("spacing", &C::spacing, kPositive, "separations", "grid separation"),
                     "(0, 1e6]; a grid must hold 1 to 10^7 sensors"),
-          withNotes(integer<C>("count", &C::count, 1, kMaxSensors, "sensors", "number of sensors of a `random` layout"),
+          withNotes(integer<C>("count", &C::count, 1, kMaxSensors, "sensors",
+                               "number of sensors of a `random` layout; of a `list` layout, its length"),
                     "[1, 10^7]"),
+          nested<C>("list", "list of sensors", "`[]`", "`layout: list` only",
+                    "the sensors of a `list` layout, in id order; each item's keys in `sensors.list[]`"),
+      }};
+  return table;
+}
+
+const FieldTable<PlacedSensorConfig>& placedSensor() {
+  using C = PlacedSensorConfig;
+  static const FieldTable<C> table{
+      "sensors.list[]",
+      {
+          withNotes(text<C>("name", &C::name, "names the sensor; unique in the list"), "non-empty text"),
+          withNotes(text<C>("type", &C::type, "the sensor's type, one of the sensor model's types"),
+                    "a type of `sensor_model.kind`"),
+          withNotes(real<C>("x", [](C& c) -> double& { return c.position.x; }, kCoordinate, "distance",
+                            "true position (the believed one adds the localisation error)"),
+                    "inside the region"),
+          withNotes(real<C>("y", [](C& c) -> double& { return c.position.y; }, kCoordinate, "distance",
+                            "true position"),
+                    "inside the region"),
+          real<C>("heading", &C::heading_deg, closed(-360.0, 360.0), "degrees",
+                  "centre of the field of view, counter-clockwise from +x; the sensor's angles are measured from it"),
+          unsetWhenZero(withNotes(real<C>("fov", &C::fov_deg, openClosed(0.0, 360.0), "degrees",
+                                          "width of the field of view, centred on the heading"),
+                                  "(0, 360]", "the type's `fov`")),
+          unsetWhenZero(withNotes(real<C>("range", &C::range, kNonNegative, "distance",
+                                          "coverage radius: farther targets are not detected"),
+                                  "[0, 1e6]; 0: the type's", "the type's `range`")),
+          unsetWhenZero(withNotes(real<C>("height", &C::height, closed(0.0, 1e3), "distance",
+                                          "mast height above the ground (cameras: φ = atan2(−h, ρ))"),
+                                  "[0, 1e3]; 0: the type's", "the type's `height`")),
       }};
   return table;
 }
@@ -339,6 +372,7 @@ std::vector<std::pair<std::string, std::string>> markdownTables() {
       {"name", markdownTable(topLevel())},
       {"region", markdownTable(region())},
       {"sensors", markdownTable(sensors())},
+      {"sensors.list[]", markdownTable(placedSensor())},
       {"sensor_model", markdownTable(sensorModel())},
       {"localisation", markdownTable(localisation())},
       {"targets", markdownTable(targets())},

@@ -16,6 +16,7 @@ using config::FieldTable;
 const FieldTable<Scenario>& topLevel();  ///< name
 const FieldTable<Rect>& region();
 const FieldTable<SensorLayoutConfig>& sensors();
+const FieldTable<PlacedSensorConfig>& placedSensor();  ///< an item of sensors.list
 const FieldTable<SensorModelConfig>& sensorModel();  ///< kind, sensing_range (the rest: the model's table)
 const FieldTable<LocalisationConfig>& localisation();
 const FieldTable<TargetsConfig>& targets();  ///< scalars (scripted: a list)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "common/rng.hpp"
 
@@ -12,9 +13,26 @@ SensorFieldConfig sensorFieldConfig(const Scenario& scenario) {
           scenario.run.seed};
 }
 
+PlacedSensor placedSensorOf(const PlacedSensorConfig& config) {
+  constexpr double kRadiansPerDegree = std::numbers::pi / 180.0;
+  return {config.name,
+          config.type,
+          config.heading_deg * kRadiansPerDegree,
+          config.fov_deg * kRadiansPerDegree,
+          config.range,
+          config.height};
+}
+
 SensorLayout::SensorLayout(const SensorFieldConfig& field) : region_(field.region) {
   const auto& config = field.sensors;
-  if (config.kind == SensorLayoutConfig::Kind::kGrid) {
+  if (config.kind == SensorLayoutConfig::Kind::kList) {
+    true_positions_.reserve(config.list.size());
+    placed_.reserve(config.list.size());
+    for (const auto& sensor : config.list) {
+      true_positions_.push_back(sensor.position);
+      placed_.push_back(placedSensorOf(sensor));
+    }
+  } else if (config.kind == SensorLayoutConfig::Kind::kGrid) {
     const auto columns = static_cast<std::uint32_t>(std::floor(region_.width() / config.spacing + 1e-9));
     const auto rows = static_cast<std::uint32_t>(std::floor(region_.height() / config.spacing + 1e-9));
     true_positions_.reserve(static_cast<std::size_t>(columns) * rows);

@@ -1,8 +1,10 @@
 // The sensor field: true and believed positions of every sensor (Oh §V, §VII-B), a pure
-// function of (scenario, seed), plus a cell index for range queries.
+// function of (scenario, seed), plus a cell index for range queries; for a list layout also each
+// sensor's own type, pose and coverage (ONERA Table I), which sensor models read.
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "common/geometry.hpp"
@@ -23,6 +25,21 @@ struct SensorFieldConfig {
 /// The sensor-field config of `scenario`: split off at the role edge.
 SensorFieldConfig sensorFieldConfig(const Scenario& scenario);
 
+/// What a list layout says about one sensor beyond its position, in radians. Zero fov, range or
+/// height: the sensor model's default for the type.
+struct PlacedSensor {
+  std::string name;
+  std::string type;
+  double heading = 0.0;  ///< radians counter-clockwise from +x
+  double fov = 0.0;      ///< radians, in (0, 2 pi]; 0: the type's default
+  double range = 0.0;
+  double height = 0.0;
+  friend bool operator==(const PlacedSensor&, const PlacedSensor&) = default;
+};
+
+/// The record of `config` in radians.
+PlacedSensor placedSensorOf(const PlacedSensorConfig& config);
+
 class SensorLayout {
  public:
   explicit SensorLayout(const SensorFieldConfig& field);
@@ -32,6 +49,10 @@ class SensorLayout {
   /// Where the sensor believes it is: true + N(0, sigma^2 I), Oh §VII-B.
   Vec2 believedPosition(SensorId id) const { return believed_positions_[id]; }
   const std::vector<Vec2>& truePositions() const { return true_positions_; }
+  /// True for a list layout, whose sensors each have a PlacedSensor record.
+  bool hasPlacedSensors() const { return !placed_.empty(); }
+  /// The sensor's record; only for a list layout (hasPlacedSensors()).
+  const PlacedSensor& placedSensor(SensorId id) const { return placed_[id]; }
 
   /// Calls f(id) for every sensor whose true position lies within `radius` of p (inclusive),
   /// in increasing id order.
@@ -58,6 +79,7 @@ class SensorLayout {
   Rect region_;
   std::vector<Vec2> true_positions_;
   std::vector<Vec2> believed_positions_;
+  std::vector<PlacedSensor> placed_;  // empty unless a list layout
   double cell_size_ = 1.0;
   std::int32_t columns_ = 1;
   std::int32_t rows_ = 1;

@@ -138,7 +138,9 @@ void checkComponentsFit(const common::Scenario& scenario) {
   const auto& model = node::sensorModelRegistry().at(scenario.sensor_model.kind);
   const auto& engine = supernode::engineRegistry().at<common::ScenarioError>(
       scenario.tracker.engine, scenario.source_path + ":" + std::to_string(scenario.tracker.engine_line) + ": ");
-  if (const auto kind = unacceptedKind(model.measurement_kinds, engine.accepts))
+  const std::vector<std::string> reported =
+      model.scenario_measurement_kinds ? model.scenario_measurement_kinds(scenario) : model.measurement_kinds;
+  if (const auto kind = unacceptedKind(reported, engine.accepts))
     throw common::ScenarioError(scenario.source_path + ":" + std::to_string(std::max(scenario.tracker.engine_line, 1)) +
                                 ": engine '" + engine.name + "' takes " + joined(engine.accepts) +
                                 " measurements, but sensor model '" + model.name + "' reports " + *kind);

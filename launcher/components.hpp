@@ -26,7 +26,8 @@ std::optional<std::string> unacceptedKind(const std::vector<std::string>& report
                                           const std::vector<std::string>& accepted);
 
 /// Throws common::ScenarioError "file:line: ..." when the scenario's tracker engine does not
-/// accept every measurement kind of its sensor model.
+/// accept every measurement kind of its sensor model (of the scenario's sensors, where the model
+/// tells them apart).
 void checkComponentsFit(const common::Scenario& scenario);
 
 }  // namespace wsn::launcher

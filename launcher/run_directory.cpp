@@ -139,7 +139,7 @@ void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario
               common::fixed6(target.y) + "," + common::fixed6(target.vx) + "," + common::fixed6(target.vy));
   csv.close();
 
-  if (scenario.sensors.kind == common::SensorLayoutConfig::Kind::kRandom) {
+  if (scenario.sensors.kind != common::SensorLayoutConfig::Kind::kGrid) {  // grids need no list
     const common::SensorLayout layout(sensorFieldConfig(scenario));
     common::CsvFile sensors(run_dir + "/sensors.csv", "sensor,x,y");
     for (common::SensorId id = 0; id < layout.size(); ++id) {

@@ -4,6 +4,7 @@
 
 #include "node/acoustic/plugin.hpp"
 #include "node/adman/plugin.hpp"
+#include "node/field_sensors/plugin.hpp"
 #include "node/magnetometer/plugin.hpp"
 #include "node/signal_strength/plugin.hpp"
 
@@ -15,6 +16,7 @@ const common::Registry<SensorModelSpec>& sensorModelRegistry() {
       acoustic::sensorModelSpec(),
       magnetometer::sensorModelSpec(),
       adman::sensorModelSpec(),
+      field_sensors::sensorModelSpec(),
       // A new model: its folder, and one line here.
   });
   return registry;

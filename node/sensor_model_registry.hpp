@@ -58,6 +58,9 @@ struct SensorModelSettingsSpec {
   std::vector<std::string> keys;
   /// The keys of a `targets.scripted[]` item it reads beyond position, velocity and lifetime.
   std::vector<std::string> target_keys;
+  /// The `type`s a `sensors.list[]` item may have. A model with types needs `sensors.layout:
+  /// list` (its sensors differ one by one); a model without takes no list.
+  std::vector<std::string> sensor_types;
   /// Reads its keys from `sensor_model` as written (null when the file has no such section) and
   /// derives those left out; sensor_model.kind and sensing_range are read already.
   std::function<std::shared_ptr<const common::SensorModelSettings>(
@@ -84,6 +87,9 @@ struct SensorModelSpec {
   std::vector<std::string> measurement_kinds;
   SensorModelSettingsSpec settings;
   std::function<std::unique_ptr<TileSensors>(const TileContext&)> create;
+  /// Optional: what the scenario's own sensors report, a subset of measurement_kinds, for a model
+  /// whose sensors differ by type (an engine then need not accept the kinds of absent types).
+  std::function<std::vector<std::string>(const common::Scenario&)> scenario_measurement_kinds = {};
 };
 
 /// Every sensor model, in registration order.

@@ -333,8 +333,8 @@ def read_scenario(run_dir):
     if not (region[0] < region[2] and region[1] < region[3]):
         raise InputError(f"{at('region')}: region must have x_min < x_max and y_min < y_max, got {region}")
     layout = get("sensors", "layout", kind=str)
-    if layout not in ("grid", "random"):
-        raise InputError(f"{at('sensors', 'layout')}: 'sensors.layout' must be grid or random, got '{layout}'")
+    if layout not in ("grid", "random", "list"):
+        raise InputError(f"{at('sensors', 'layout')}: 'sensors.layout' must be grid, random or list, got '{layout}'")
     spacing = get("sensors", "spacing") if layout == "grid" else None
     if spacing is not None and spacing <= 0:
         raise InputError(f"{at('sensors', 'spacing')}: 'sensors.spacing' must be > 0, got {spacing:g}")
@@ -433,7 +433,7 @@ def read_sensors(run_dir, scenario):
         shown = rows[::stride]
         return [r[1] for r in shown], [r[2] for r in shown], stride
     if scenario["layout"] != "grid":
-        print(f"plot_run.py: {path} missing: the random sensor layout is not drawn", file=sys.stderr)
+        print(f"plot_run.py: {path} missing: the {scenario['layout']} sensor layout is not drawn", file=sys.stderr)
         return [], [], 1
     # Same formula as common/sensor_layout.cpp: sensors at the cell centres.
     x0, y0, x1, y1 = scenario["region"]

@@ -5,6 +5,7 @@
 #include "aggregator/association.hpp"
 #include "aggregator/metric/metric.hpp"
 #include "common/measurement.hpp"
+#include "common/scenario.hpp"
 #include "common/scenario_schema.hpp"
 #include "node/sensor_model_registry.hpp"
 #include "supernode/engine.hpp"
@@ -88,6 +89,26 @@ TEST_CASE("a sensor model and an engine fit when the engine accepts every kind t
   s.source_path = "s.yaml";
   s.tracker.engine_line = 4;
   CHECK_THROWS_WITH(checkComponentsFit(s), Catch::Contains("s.yaml:4: unknown tracker engine 'kalman'"));
+}
+
+TEST_CASE("a model whose sensors differ by type fits an engine by the kinds its placed sensors report",
+          "[launcher][components]") {
+  // field_sensors reports positions from beacons and magnetic detectors, bearings from antennas:
+  // sbmht takes positions only, so the first scenario fits and the second does not.
+  const auto scenario = [](const std::string& second_type) {
+    return common::parseScenario(
+        "region: {x_min: 0, y_min: 0, x_max: 1000, y_max: 1000}\n"
+        "sensors:\n  layout: list\n  list:\n"
+        "    - {name: b, type: acoustic_beacon, x: 100, y: 100}\n"
+        "    - {name: s, type: " + second_type + ", x: 200, y: 100}\n"
+        "sensor_model: {kind: field_sensors, sensing_range: 100}\n"
+        "tracker: {engine: sbmht}\n",
+        "s.yaml");
+  };
+  CHECK_NOTHROW(checkComponentsFit(scenario("magnetic")));
+  CHECK_THROWS_WITH(checkComponentsFit(scenario("acoustic_antenna")),
+                    "s.yaml:8: engine 'sbmht' takes position measurements, but sensor model 'field_sensors' reports "
+                    "bearing");
 }
 
 TEST_CASE("an engine that lacks a kind the sensor model reports does not fit", "[launcher][components]") {

@@ -1,0 +1,73 @@
+#include "node/field_sensors/field_sensors.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace wsn::node::field_sensors {
+
+FieldSensor fieldSensorOf(const common::SensorLayout& layout, common::SensorId id,
+                          const FieldSensorsSettings& settings) {
+  const common::PlacedSensor& placed = layout.placedSensor(id);
+  const SensorType* type = sensorTypeNamed(placed.type);
+  const auto found = settings.types.find(placed.type);
+  if (type == nullptr || found == settings.types.end())
+    throw std::invalid_argument("field_sensors: sensor " + placed.name + " has type '" + placed.type +
+                                "', which no sensor type has");
+  const TypeSettings& s = found->second;
+  FieldSensor sensor;
+  sensor.id = id;
+  sensor.position = layout.truePosition(id);
+  const common::Vec2 believed = layout.believedPosition(id);
+  sensor.pose = {believed.x, believed.y, placed.heading};
+  sensor.heading = placed.heading;
+  sensor.fov = placed.fov > 0.0 ? placed.fov : radians(s.fov_deg);
+  sensor.range = placed.range > 0.0 ? placed.range : s.range;
+  sensor.height = placed.height > 0.0 ? placed.height : s.height;
+  sensor.type = type;
+  sensor.settings = &s;
+  return sensor;
+}
+
+FieldSensors::FieldSensors(const FieldSensorsSettings& settings, std::uint64_t seed, const common::SensorLayout& layout,
+                           const Tile& tile, const common::Truth& truth)
+    : settings_(settings), seed_(seed), truth_(&truth) {
+  if (!layout.hasPlacedSensors())
+    throw std::invalid_argument("field_sensors: the layout places no typed sensors (sensors.layout: list)");
+  for (const common::SensorId id : tileSensorIds(layout, tile, "FieldSensors"))
+    sensors_.push_back(fieldSensorOf(layout, id, settings_));
+}
+
+common::Report FieldSensors::reportOf(std::int32_t tick, const FieldSensor& sensor, std::vector<double> values,
+                                      common::TargetId target, std::vector<double> class_likelihoods) const {
+  common::Measurement m{sensor.type->kind(), std::move(values), sensor.type->noise(sensor), sensor.pose,
+                        std::move(class_likelihoods)};
+  // common/messages.hpp: a report lies at its measured position, or at its sensor for other kinds.
+  const double x = m.kind == common::MeasurementKind::position ? m.values[0] : sensor.pose.x;
+  const double y = m.kind == common::MeasurementKind::position ? m.values[1] : sensor.pose.y;
+  return {tick, sensor.id, x, y, target, 0, common::MeasurementRef(std::move(m))};
+}
+
+std::vector<common::Report> FieldSensors::detect(std::int32_t tick) const {
+  std::vector<common::Report> out;
+  const auto& targets = truth_->at(tick);
+  for (const FieldSensor& sensor : sensors_) {
+    const SensorType& type = *sensor.type;
+    for (const common::TargetState& target : targets) {
+      const TargetView view = viewOf(sensor, target);
+      if (!covers(sensor, view, settings_.min_speed) || !inLineOfSight(sensor, target)) continue;
+      const std::uint64_t pair = (static_cast<std::uint64_t>(sensor.id) << 32) | static_cast<std::uint32_t>(target.id);
+      common::Stream draw(seed_, common::Purpose::kFieldSensorDetection, pair, tick);
+      if (!draw.bernoulli(sensor.settings->detection_probability)) continue;
+      out.push_back(reportOf(tick, sensor, type.perturb(type.measure(sensor, view), sensor, draw), target.id,
+                             type.classLikelihoods(sensor, target)));
+    }
+    if (sensor.settings->false_alarms_per_tick <= 0.0) continue;
+    common::Stream clutter(seed_, common::Purpose::kFieldSensorFalseAlarm, sensor.id, tick);
+    const std::uint64_t count = clutter.poisson(sensor.settings->false_alarms_per_tick);
+    for (std::uint64_t i = 0; i < count; ++i)
+      out.push_back(reportOf(tick, sensor, type.falseAlarm(sensor, clutter), common::kFalseAlarm, {}));
+  }
+  return out;
+}
+
+}  // namespace wsn::node::field_sensors
