@@ -30,6 +30,7 @@ class AcousticAntenna final : public SensorType {
   std::vector<double> falseAlarm(const FieldSensor& sensor, common::Stream& draw) const override {
     return {wrapAngle(draw.uniform(-0.5 * sensor.fov, 0.5 * sensor.fov))};
   }
+  double falseAlarmVolume(const FieldSensor& sensor) const override { return sensor.fov; }
 };
 
 }  // namespace

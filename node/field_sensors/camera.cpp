@@ -42,6 +42,9 @@ class Camera final : public SensorType {
     const double phi = draw.uniform(-0.5 * std::numbers::pi, std::atan2(-sensor.height, sensor.range));
     return {theta, phi};
   }
+  double falseAlarmVolume(const FieldSensor& sensor) const override {
+    return sensor.fov * (std::atan2(-sensor.height, sensor.range) + 0.5 * std::numbers::pi);
+  }
 };
 
 }  // namespace

@@ -1,9 +1,17 @@
 #include "node/field_sensors/field_sensors.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
 namespace wsn::node::field_sensors {
+namespace {
+
+/// One false report per this many ticks: the clutter density a sensor without false alarms gives
+/// (the floor sbmht puts under its own density per area).
+constexpr double kClutterFloorTicks = 100.0;
+
+}  // namespace
 
 FieldSensor fieldSensorOf(const common::SensorLayout& layout, common::SensorId id,
                           const FieldSensorsSettings& settings) {
@@ -18,11 +26,11 @@ FieldSensor fieldSensorOf(const common::SensorLayout& layout, common::SensorId i
   sensor.id = id;
   sensor.position = layout.truePosition(id);
   const common::Vec2 believed = layout.believedPosition(id);
-  sensor.pose = {believed.x, believed.y, placed.heading};
   sensor.heading = placed.heading;
   sensor.fov = placed.fov > 0.0 ? placed.fov : radians(s.fov_deg);
   sensor.range = placed.range > 0.0 ? placed.range : s.range;
   sensor.height = placed.height > 0.0 ? placed.height : s.height;
+  sensor.pose = {believed.x, believed.y, placed.heading, sensor.height};
   sensor.type = type;
   sensor.settings = &s;
   return sensor;
@@ -41,6 +49,10 @@ common::Report FieldSensors::reportOf(std::int32_t tick, const FieldSensor& sens
                                       common::TargetId target, std::vector<double> class_likelihoods) const {
   common::Measurement m{sensor.type->kind(), std::move(values), sensor.type->noise(sensor), sensor.pose,
                         std::move(class_likelihoods)};
+  // A sensor without false alarms still names a density (one per kClutterFloorTicks ticks over its
+  // space), so that a tracker's score ln(PD Lambda / lambda) of its reports stays finite.
+  const double rate = std::max(sensor.settings->false_alarms_per_tick, 1.0 / kClutterFloorTicks);
+  m.clutter_density = rate / sensor.type->falseAlarmVolume(sensor);
   // common/messages.hpp: a report lies at its measured position, or at its sensor for other kinds.
   const double x = m.kind == common::MeasurementKind::position ? m.values[0] : sensor.pose.x;
   const double y = m.kind == common::MeasurementKind::position ? m.values[1] : sensor.pose.y;

@@ -40,6 +40,9 @@ class Radar final : public SensorType {
     const double rho_dot = draw.uniform(-sensor.settings->max_range_rate, sensor.settings->max_range_rate);
     return {rho, theta, rho_dot};
   }
+  double falseAlarmVolume(const FieldSensor& sensor) const override {
+    return sensor.range * sensor.fov * 2.0 * sensor.settings->max_range_rate;
+  }
 };
 
 }  // namespace

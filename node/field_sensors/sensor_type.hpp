@@ -92,6 +92,9 @@ class SensorType {
   virtual std::vector<double> perturb(std::vector<double> h, const FieldSensor& sensor, common::Stream& draw) const;
   /// One false alarm's values, uniform over the sensor's measurement space within its coverage.
   virtual std::vector<double> falseAlarm(const FieldSensor& sensor, common::Stream& draw) const = 0;
+  /// The volume of the space falseAlarm() draws from (rad for a bearing, m x rad x m/s for a radar,
+  /// m^2 for a presence): the false alarms per tick over it are the clutter density its reports carry.
+  virtual double falseAlarmVolume(const FieldSensor& sensor) const = 0;
   /// c_k of a detection (ONERA eq. 19-20); empty until targets have classes.
   virtual std::vector<double> classLikelihoods(const FieldSensor&, const common::TargetState&) const { return {}; }
 };
@@ -107,6 +110,10 @@ class PresenceType : public SensorType {
   std::vector<double> perturb(std::vector<double> h, const FieldSensor&, common::Stream&) const override { return h; }
   std::vector<double> falseAlarm(const FieldSensor& sensor, common::Stream&) const override {
     return {sensor.pose.x, sensor.pose.y};
+  }
+  /// A false presence stands for a target anywhere in the sensor's disc.
+  double falseAlarmVolume(const FieldSensor& sensor) const override {
+    return std::numbers::pi * sensor.range * sensor.range;
   }
 };
 

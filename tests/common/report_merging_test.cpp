@@ -54,6 +54,28 @@ TEST_CASE("a tie of labels goes to the smaller target id and level 0 weighs as 1
   CHECK(merged[0].sensor == 8);  // equal levels: the first is the strongest
 }
 
+TEST_CASE("reports that carry their own measurement are never merged", "[report_merging]") {
+  // Two plain positions 0.5 apart merge; a bearing reported at the same place (its sensor's) and a
+  // presence with its R stay as they are, after the merged ones.
+  Measurement bearing;
+  bearing.kind = MeasurementKind::bearing;
+  bearing.values = {0.3};
+  bearing.noise = {1e-3};
+  bearing.sensor = SensorPose{0.0, 0.0, 0.0};
+  Measurement presence = Measurement::position(0.2, 0.0);
+  presence.noise = {1.0, 0.0, 0.0, 1.0};
+  std::vector<Report> items{report(1, 0, 0, 0, 5), report(2, 0.5, 0, 0, 6), report(3, 0, 0, 0, 0),
+                            report(4, 0.2, 0, 0, 0)};
+  items[2].measurement = MeasurementRef(bearing);
+  items[3].measurement = MeasurementRef(presence);
+  const auto merged = mergeNearby(std::span<const Report>(items), 1.0);
+  REQUIRE(merged.size() == 3);
+  CHECK(merged[0].sensor == 2);  // the plain pair, from its stronger member
+  CHECK(merged[0].x == Approx((0.0 * 5 + 0.5 * 6) / 11.0));
+  CHECK(merged[1] == items[2]);
+  CHECK(merged[2] == items[3]);
+}
+
 TEST_CASE("a radius of zero or a single report leaves the reports as they are", "[report_merging]") {
   const std::vector<Report> items{report(1, 0, 0, 0, 5), report(2, 0.1, 0, 0, 6)};
   CHECK(mergeNearby(std::span<const Report>(items), 0.0) == items);

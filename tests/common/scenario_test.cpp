@@ -253,9 +253,7 @@ TEST_CASE("a wrong type names the dotted key, what was expected and what was fou
   CHECK(errorOf("- 1\n- 2\n") ==
         "s.yaml:1: a scenario must be a mapping of sections (aggregator, dynamics, localisation, metrics, name, network, region, "
         "run, sensor_model, sensors, supernodes, targets, terrain, tracker), got a list");
-  CHECK(errorOf("sensors:
-  layout: hex
-") == "s.yaml:2: 'sensors.layout' must be one of: grid, random, list; got 'hex'");
+  CHECK(errorOf("sensors:\n  layout: hex\n") == "s.yaml:2: 'sensors.layout' must be one of: grid, random, list; got 'hex'");
   CHECK(errorOf("targets:\n  speed_class: 3\n") ==
         "s.yaml:2: 'targets.speed_class' must be one of: slow, medium, fast; got '3'");
   CHECK(errorOf("name: [a]\n") == "s.yaml:1: 'name' must be a string, got a list");

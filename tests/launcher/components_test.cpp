@@ -94,21 +94,23 @@ TEST_CASE("a sensor model and an engine fit when the engine accepts every kind t
 TEST_CASE("a model whose sensors differ by type fits an engine by the kinds its placed sensors report",
           "[launcher][components]") {
   // field_sensors reports positions from beacons and magnetic detectors, bearings from antennas:
-  // sbmht takes positions only, so the first scenario fits and the second does not.
-  const auto scenario = [](const std::string& second_type) {
+  // gnn takes positions only, so the first scenario fits it and the second does not; sbmht takes both.
+  const auto scenario = [](const std::string& second_type, const std::string& engine) {
     return common::parseScenario(
         "region: {x_min: 0, y_min: 0, x_max: 1000, y_max: 1000}\n"
         "sensors:\n  layout: list\n  list:\n"
         "    - {name: b, type: acoustic_beacon, x: 100, y: 100}\n"
         "    - {name: s, type: " + second_type + ", x: 200, y: 100}\n"
         "sensor_model: {kind: field_sensors, sensing_range: 100}\n"
-        "tracker: {engine: sbmht}\n",
+        "tracker: {engine: " + engine + "}\n",
         "s.yaml");
   };
-  CHECK_NOTHROW(checkComponentsFit(scenario("magnetic")));
-  CHECK_THROWS_WITH(checkComponentsFit(scenario("acoustic_antenna")),
-                    "s.yaml:8: engine 'sbmht' takes position measurements, but sensor model 'field_sensors' reports "
+  CHECK_NOTHROW(checkComponentsFit(scenario("magnetic", "gnn")));
+  CHECK_THROWS_WITH(checkComponentsFit(scenario("acoustic_antenna", "gnn")),
+                    "s.yaml:8: engine 'gnn' takes position measurements, but sensor model 'field_sensors' reports "
                     "bearing");
+  CHECK_NOTHROW(checkComponentsFit(scenario("acoustic_antenna", "sbmht")));
+  CHECK_NOTHROW(checkComponentsFit(scenario("radar", "sbmht")));
 }
 
 TEST_CASE("an engine that lacks a kind the sensor model reports does not fit", "[launcher][components]") {

@@ -120,7 +120,7 @@ TEST_CASE("no type detects a target slower than min_speed, presence types includ
 /// The sbmht engine's h(x) for the measurement a sensor's report would carry.
 supernode::sbmht::MeasurementVector engineSees(const FieldSensor& s, const TargetState& t) {
   const common::Measurement m{s.type->kind(), s.type->measure(s, viewOf(s, t)), s.type->noise(s), s.pose, {}};
-  const auto model = supernode::sbmht::modelOf(m, s.height);
+  const auto model = supernode::sbmht::modelOf(m);  // the mast height comes with the pose
   REQUIRE(model.has_value());
   common::StateVector x;
   x << t.x, t.y, t.vx, t.vy;
