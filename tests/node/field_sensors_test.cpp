@@ -237,6 +237,27 @@ TEST_CASE("a report carries its measurement, R and pose, at the sensor's believe
   CHECK(r.measurement->values[0] == Approx(300.0).margin(25.0));
   CHECK(r.measurement->values[1] == Approx(0.0).margin(5.0 * pi / 180.0));
   CHECK(r.measurement->values[2] == Approx(-2.0).margin(1.5));
+  // No false alarms configured: the floor of one per 100 ticks over the radar's space, range 1000 x
+  // sector pi/2 x range rates 2 x 20: 0.01 / 62831.85 = 1.5915e-7.
+  CHECK(r.measurement->clutter_density == Approx(0.01 / (1000.0 * (pi / 2.0) * 40.0)));
+}
+
+TEST_CASE("a camera's report carries its mast height and its clutter density per steradian of view",
+          "[field_sensors]") {
+  // Camera 4 m up, heading 0, fov 40 deg, range 250, PD 1, 0.01 false alarms a tick (the default):
+  // its false alarms fall uniformly over theta in +-20 deg and phi in [-90 deg, atan2(-4, 250)], so
+  // the density is 0.01 / (0.69813 x (1.57080 - 0.01600)) = 0.01 / 1.08547 = 9.2126e-3.
+  const auto s = field("    - {name: c, type: camera, x: 0, y: 0, heading: 0, fov: 40, range: 250, height: 4}\n",
+                       "    - {appear_tick: 1, x: 100, y: 0, vx: 2, vy: 0}\n",
+                       "  camera: {detection_probability: 1}\n");
+  for (const auto& r : reportsAt(s, 1, 1)) {
+    if (r.target != 0) continue;
+    REQUIRE(r.measurement);
+    CHECK(r.measurement->sensor == common::SensorPose{0.0, 0.0, 0.0, 4.0});
+    CHECK(r.measurement->clutter_density == Approx(9.2126e-3).epsilon(1e-4));
+    return;
+  }
+  FAIL("the camera did not report the target");
 }
 
 TEST_CASE("detections follow PD over many ticks", "[field_sensors]") {
