@@ -64,17 +64,18 @@ std::vector<std::size_t> strongestFirstClusters(std::span<const Item> items, dou
 /// least 1 each), as eq. (6) weighs readings; from its strongest member's sensor, with that power
 /// level; labelled with the target most of its members name (a tie: the smaller id; false alarms
 /// count as a label of their own). An observation keeps its members' earliest delivery. radius <= 0
-/// returns the items unchanged. Only plain positions are merged: an item that carries its own
-/// measurement (a bearing, a radar plot, a presence with its R) is not a point to average, and
-/// follows the merged ones unchanged.
+/// returns the items unchanged. Only positions are merged: a report of another kind (a bearing, a
+/// radar plot) lies at its sensor, not at its target, so it is not a point to average; it follows
+/// the merged ones unchanged.
 template <typename Item>
 std::vector<Item> mergeNearby(std::span<const Item> items, double radius) {
   if (!(radius > 0.0) || items.size() < 2) return {items.begin(), items.end()};
-  if (std::any_of(items.begin(), items.end(), [](const Item& item) { return bool(item.measurement); })) {
-    std::vector<Item> plain, measured;
-    for (const Item& item : items) (item.measurement ? measured : plain).push_back(item);
-    std::vector<Item> merged = mergeNearby(std::span<const Item>(plain), radius);
-    merged.insert(merged.end(), measured.begin(), measured.end());
+  const auto at_target = [](const Item& item) { return item.measurement.kind() == MeasurementKind::position; };
+  if (!std::all_of(items.begin(), items.end(), at_target)) {
+    std::vector<Item> positions, others;
+    for (const Item& item : items) (at_target(item) ? positions : others).push_back(item);
+    std::vector<Item> merged = mergeNearby(std::span<const Item>(positions), radius);
+    merged.insert(merged.end(), others.begin(), others.end());
     return merged;
   }
   const std::vector<std::size_t> cluster = strongestFirstClusters(items, radius);

@@ -164,12 +164,15 @@ SensorMeasurement measureSensorModel(const common::Scenario& scenario, const com
   // A model that reports a target more than once a tick (every detecting sensor, unfused) is
   // merged before tracking: the radius that joins one target's reports to its strongest one (at
   // the 95th percentile of target-ticks), and the errors below are those of the merged reports.
+  // Only positions count: a report of another kind is never merged (common::mergeNearby), and a
+  // bearing or radar plot lies at its sensor, not at its target.
   std::size_t labelled = 0, targets_heard = 0;
   std::vector<double> joining;
   for (const auto& tick : scored) {
     std::map<common::TargetId, std::vector<common::Report>> of_target;
     for (const auto& r : tick.reports)
-      if (r.target != common::kFalseAlarm) of_target[r.target].push_back(r);
+      if (r.target != common::kFalseAlarm && r.measurement.kind() == common::MeasurementKind::position)
+        of_target[r.target].push_back(r);
     for (const auto& [id, own] : of_target) {
       labelled += own.size();
       ++targets_heard;

@@ -32,7 +32,7 @@ const std::vector<Field<TypeSettings>>& allTypeFields() {
       real<C>("sigma_elevation_deg", &C::sigma_elevation_deg, openClosed(0.0, 90.0), "degrees", "σφ"),
       real<C>("sigma_range", &C::sigma_range, kPositive, "distance", "σρ"),
       real<C>("sigma_range_rate", &C::sigma_range_rate, kPositive, "distance/tick", "σρ̇"),
-      real<C>("max_range_rate", &C::max_range_rate, kNonNegative, "distance/tick",
+      real<C>("max_range_rate", &C::max_range_rate, kPositive, "distance/tick",
               "a false alarm's ρ̇ is uniform in ±this"),
       real<C>("sigma_position", &C::sigma_position, kPositive, "distance",
               "σ per axis of the target around the sensor: R = σ² I"),

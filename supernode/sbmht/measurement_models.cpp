@@ -69,9 +69,10 @@ double gateThreshold(int dimension) {
 double gateOfSameProbability(double gate_2d, int dimension) {
   if (dimension <= 0) return 0.0;
   if (dimension == 2) return gate_2d;
-  const double probability = -std::expm1(-0.5 * gate_2d);
-  if (!(probability < 1.0)) return std::numeric_limits<double>::infinity();
-  return boost::math::quantile(boost::math::chi_squared(dimension), probability);
+  // The upper tail exp(-gate_2d / 2) keeps its precision where 1 - tail would round to 1 (gate_2d > ~75).
+  const double tail = std::exp(-0.5 * gate_2d);
+  if (!(tail > 0.0)) return std::numeric_limits<double>::infinity();
+  return boost::math::quantile(boost::math::complement(boost::math::chi_squared(dimension), tail));
 }
 
 int MeasurementModel::dimension() const {
@@ -212,7 +213,8 @@ std::optional<PositionFix> positionFix(const MeasurementModel& model, const Meas
     case MeasurementKind::azimuth_elevation: {
       const double h = model.sensor.height;
       const double phi = z(1);
-      if (!(h > 0.0) || !(phi < 0.0)) return std::nullopt;
+      // Below -pi/2 the ray would point behind the camera (rho < 0).
+      if (!(h > 0.0) || !(phi < 0.0) || !(phi > -0.5 * std::numbers::pi)) return std::nullopt;
       // rho = h / tan(-phi) = -h / tan(phi); d rho / d phi = h / sin^2(phi).
       const double rho = -h / std::tan(phi);
       const double s = std::sin(phi);

@@ -34,7 +34,7 @@ double gateThreshold(int dimension);
 
 /// The gate on d^2 of an M-dimensional report with the probability that gate_2d has for a 2-D one,
 /// P_G = 1 - exp(-gate_2d / 2) (the chi^2 CDF with 2 degrees of freedom): the chi^2_M quantile of
-/// P_G. gate_2d itself for M = 2, 0 for M = 0, +inf where P_G rounds to 1.
+/// P_G. gate_2d itself for M = 2, 0 for M = 0, +inf only where exp(-gate_2d / 2) underflows (gate_2d > ~1490).
 double gateOfSameProbability(double gate_2d, int dimension);
 
 /// The measurement function of one report: its kind and the sensor that made it. The state is
@@ -75,7 +75,8 @@ struct PositionFix {
 /// The fix of report z (noise R) under `model`: a position is its own; a radar's (rho, theta) and a
 /// camera's (theta, phi) from a mast (rho = h / tan(-phi)) are inverted, R carried through the
 /// inverse's Jacobian. Nullopt for a bearing (it gives a line, not a point), for a camera that looks
-/// level or up (phi >= 0: no ground range) or from h = 0, and for a non-finite result.
+/// level or up (phi >= 0: no ground range), below the nadir (phi <= -pi/2) or from h = 0, and for a
+/// non-finite result.
 std::optional<PositionFix> positionFix(const MeasurementModel& model, const MeasurementVector& z,
                                        const MeasurementCovariance& R);
 

@@ -380,6 +380,7 @@ void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std:
   }
 
   // 1. Branching: every leaf gets a miss child and one child per gated report.
+  std::vector<char> gated(cols, 0);  // a report some existing leaf took
   std::vector<Leaf> next;
   next.reserve(leaves.size() * 2 + cols);
   for (const Leaf& leaf : leaves) {
@@ -425,6 +426,7 @@ void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std:
       child.first_tick = leaf.first_tick;
       child.history = leaf.history;
       child.history.push_back(static_cast<std::int32_t>(j));
+      gated[j] = 1;
       child.imm = std::move(hit.state);
       child.score = leaf.score.after(reportScoreIncrement(hit.likelihood, t.clutter_density), sprt_);
       child.last_seen_tick = tick;
@@ -435,14 +437,26 @@ void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std:
     }
   }
 
-  // 2. Every report that locates a target (not a bearing) also starts a new tentative tree there,
-  // at rest but for a radar's range rate.
-  std::vector<common::TrackId> born;
+  // 2. A report that locates a target (not a bearing) also starts a new tentative tree there, at
+  // rest but for a radar's range rate. A birth id names (tick, sensor), so a sensor starts one tree
+  // a tick: from its first report that no existing leaf took (the likeliest new target), else from
+  // its first. A radar that sees a known and a new target in one tick thus starts the new one's
+  // tree at once; two new targets of one sensor start a tick apart.
+  std::vector<char> births(cols, 0);
   for (std::size_t j = 0; j < cols; ++j) {
     if (!terms[j].usable || !terms[j].fix) continue;
+    std::size_t chosen = j;
+    for (std::size_t k = 0; k < cols; ++k)
+      if (slot[k].sensor == slot[j].sensor && terms[k].usable && terms[k].fix &&
+          (gated[k] < gated[chosen] || (gated[k] == gated[chosen] && k < chosen)))
+        chosen = k;
+    births[chosen] = 1;
+  }
+  std::vector<common::TrackId> born;
+  for (std::size_t j = 0; j < cols; ++j) {
+    if (!births[j]) continue;
     const PositionFix& fix = *terms[j].fix;
     const common::TrackId id = common::track_id::birth(supernode_, tick, slot[j].sensor);
-    // Two reports of one sensor in one tick would share an id: the first (canonical order) wins.
     if (std::find(born.begin(), born.end(), id) != born.end()) continue;
     if (std::any_of(next.begin(), next.end(), [&](const Leaf& l) { return l.tree == id; })) continue;
     born.push_back(id);

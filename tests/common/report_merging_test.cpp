@@ -54,9 +54,9 @@ TEST_CASE("a tie of labels goes to the smaller target id and level 0 weighs as 1
   CHECK(merged[0].sensor == 8);  // equal levels: the first is the strongest
 }
 
-TEST_CASE("reports that carry their own measurement are never merged", "[report_merging]") {
-  // Two plain positions 0.5 apart merge; a bearing reported at the same place (its sensor's) and a
-  // presence with its R stay as they are, after the merged ones.
+TEST_CASE("reports of a kind other than position are never merged", "[report_merging]") {
+  // Two plain positions 0.5 and a presence (a position with its R) 0.2 from the first merge; a
+  // bearing reported at the same place (its sensor's) stays as it is, after the merged one.
   Measurement bearing;
   bearing.kind = MeasurementKind::bearing;
   bearing.values = {0.3};
@@ -69,11 +69,13 @@ TEST_CASE("reports that carry their own measurement are never merged", "[report_
   items[2].measurement = MeasurementRef(bearing);
   items[3].measurement = MeasurementRef(presence);
   const auto merged = mergeNearby(std::span<const Report>(items), 1.0);
-  REQUIRE(merged.size() == 3);
-  CHECK(merged[0].sensor == 2);  // the plain pair, from its stronger member
-  CHECK(merged[0].x == Approx((0.0 * 5 + 0.5 * 6) / 11.0));
+  REQUIRE(merged.size() == 2);
+  // Levels 5, 6 and 0 (weighing 1) at x = 0, 0.5 and 0.2: x = (0 + 3 + 0.2) / 12, from sensor 2,
+  // the strongest; a centre of mass has no R of its own.
+  CHECK(merged[0].sensor == 2);
+  CHECK(merged[0].x == Approx(3.2 / 12.0));
+  CHECK_FALSE(merged[0].measurement);
   CHECK(merged[1] == items[2]);
-  CHECK(merged[2] == items[3]);
 }
 
 TEST_CASE("a radius of zero or a single report leaves the reports as they are", "[report_merging]") {

@@ -260,6 +260,21 @@ TEST_CASE("a radar plot fixes a position with R carried through the polar invers
   CHECK(back(0) == Approx(100.0));
   CHECK(back(1) == Approx(-std::numbers::pi / 2));
   CHECK(back(2) == Approx(-4.0));
+
+  // An oblique line of sight, where J is not symmetric: facing +x, theta = pi/6 puts rho = 10 at
+  // (10 cos 30, 10 sin 30) = (8.6603, 5). J = [[cos b, -rho sin b], [sin b, rho cos b]] with
+  // R = diag(4, 0.01): cov = J R J' = [[4 cos^2 + 100 (0.01) sin^2, (4 - 1) sin cos], [., 4 sin^2 + 1 cos^2]]
+  // = [[3.25, 1.2990], [1.2990, 1.75]] (sin 30 = 0.5, cos 30 = 0.86603).
+  const auto ahead = modelOfKind(MeasurementKind::range_bearing_rate, SensorPose{0.0, 0.0, 0.0});
+  z << 10.0, std::numbers::pi / 6, 0.0;
+  R.diagonal() << 4.0, 0.01, 1.0;
+  const auto oblique = positionFix(ahead, z, R);
+  REQUIRE(oblique);
+  CHECK(oblique->position.x() == Approx(8.66025));
+  CHECK(oblique->position.y() == Approx(5.0));
+  CHECK(oblique->covariance(0, 0) == Approx(3.25));
+  CHECK(oblique->covariance(1, 1) == Approx(1.75));
+  CHECK(oblique->covariance(0, 1) == Approx(1.29904));
 }
 
 TEST_CASE("a camera's angles from a mast fix a position, and a bearing fixes none", "[sbmht]") {
@@ -282,6 +297,8 @@ TEST_CASE("a camera's angles from a mast fix a position, and a bearing fixes non
 
   z(1) = 0.0;  // level: no ground range
   CHECK_FALSE(positionFix(camera, z, R));
+  z(1) = -2.0;  // below the nadir: the ray would land behind the camera
+  CHECK_FALSE(positionFix(camera, z, R));
   const auto ground_camera = modelOfKind(MeasurementKind::azimuth_elevation, SensorPose{0.0, 0.0, 0.0}, 0.0);
   z(1) = -0.1;
   CHECK_FALSE(positionFix(ground_camera, z, R));
@@ -299,6 +316,14 @@ TEST_CASE("gates of other dimensions keep the probability of the 2-D gate", "[sb
   CHECK(gateOfSameProbability(5.0, 0) == 0.0);
   // P_G = 1 - exp(-1) = 0.63212 for gate 2: chi^2_1 quantile (Phi^-1(0.81606))^2 = 0.90045^2 = 0.81081.
   CHECK(gateOfSameProbability(2.0, 1) == Approx(0.81081).epsilon(1e-4));
+  // A wide 2-D gate (tail exp(-50) = 1.9e-22, where 1 - tail rounds to 1) still maps to finite gates,
+  // ordered as chi^2 quantiles of one tail are: fewer degrees of freedom, a smaller quantile.
+  const double narrow = gateOfSameProbability(100.0, 1);
+  const double wide = gateOfSameProbability(100.0, 3);
+  CHECK(std::isfinite(narrow));
+  CHECK(std::isfinite(wide));
+  CHECK(narrow < 100.0);
+  CHECK(wide > 100.0);
 }
 
 }  // namespace

@@ -134,6 +134,31 @@ TEST_CASE("sbmht starts and follows a track on radar plots alone", "[sbmht]") {
   CHECK(h.engine.unusableReports() == 0);
 }
 
+TEST_CASE("sbmht starts a track for each of two targets one radar sees every tick", "[sbmht]") {
+  // PD 1: the radar plots both targets every tick. A birth id names (tick, sensor), so a sensor
+  // starts one tree a tick; the first-plotted target's tree starts at tick 1 and the other's at
+  // tick 2, from the plot no existing leaf took (taking the first plot again would never start it).
+  Harness h(sbmhtScenario());
+  const common::SensorPose radar{0.0, 0.0, 0.0, 0.0};
+  const double clutter = 0.2 / (100.0 * 90.0 * kDegree * 40.0);
+  auto a = [](std::int32_t t) { return common::Vec2{40.0 + t, 20.0}; };
+  auto b = [](std::int32_t t) { return common::Vec2{60.0, 70.0 - t}; };
+  for (std::int32_t t = 1; t <= 15; ++t) {
+    std::vector<common::Observation> plots;
+    plots.push_back(sensed(t, 1, radar, common::MeasurementKind::range_bearing_rate, a(t), {1.0, 0.0},
+                           {25.0, kDegree * kDegree, 0.09}, clutter));
+    plots.push_back(sensed(t, 1, radar, common::MeasurementKind::range_bearing_rate, b(t), {0.0, -1.0},
+                           {25.0, kDegree * kDegree, 0.09}, clutter));
+    h.step(t, plots);
+  }
+  const auto tracks = h.engine.confirmedTracks();
+  REQUIRE(tracks.size() == 2);
+  CHECK(tracks[0].track != tracks[1].track);
+  const bool a_first = distance(tracks[0], a(15)) < distance(tracks[1], a(15));
+  CHECK(distance(tracks[a_first ? 0 : 1], a(15)) < 1.0);
+  CHECK(distance(tracks[a_first ? 1 : 0], b(15)) < 1.0);
+}
+
 TEST_CASE("sbmht starts no track from bearings but sharpens one with them", "[sbmht]") {
   const common::SensorPose antenna{50.0, -50.0, std::numbers::pi / 2, 0.0};  // below the field, facing +y
   const double clutter = 0.01 / (2.0 * std::numbers::pi);  // 0.01 false bearings a tick over the circle
@@ -178,14 +203,22 @@ TEST_CASE("sbmht starts no track from bearings but sharpens one with them", "[sb
 }
 
 TEST_CASE("sbmht leaves out a bearing that does not say its clutter density", "[sbmht]") {
+  // A confirmed track on plain positions, then at tick 6 only a bearing of it that gives no clutter
+  // density: a density per area cannot score a report per radian, so the track misses that tick
+  // rather than taking the bearing, and every replay of the tick counts the report.
   Harness h(sbmhtScenario());
   const common::SensorPose antenna{50.0, -50.0, std::numbers::pi / 2, 0.0};
-  for (std::int32_t t = 1; t <= 3; ++t)
-    h.step(t, {sensed(t, 1, antenna, common::MeasurementKind::bearing, {50.0, 50.0}, {0.0, 0.0},
-                      {9.0 * kDegree * kDegree}, 0.0)});
-  // A density per area cannot score a report per radian: each replay of each tick counts it.
-  CHECK(h.engine.unusableReports() >= 3);
-  CHECK(h.engine.leaves().empty());
+  auto truth = [](std::int32_t t) { return common::Vec2{45.0 + t, 50.0}; };
+  for (std::int32_t t = 1; t <= 5; ++t) h.step(t, {observation(t, t, truth(t).x, truth(t).y)});
+  REQUIRE(h.engine.confirmedTracks().size() == 1);
+  std::vector<common::Observation> bearing;
+  bearing.push_back(sensed(6, 1, antenna, common::MeasurementKind::bearing, truth(6), {1.0, 0.0},
+                           {9.0 * kDegree * kDegree}, 0.0));
+  h.step(6, bearing);
+  CHECK(h.engine.unusableReports() >= 1);
+  const auto tracks = h.engine.confirmedTracks();
+  REQUIRE(tracks.size() == 1);
+  CHECK(tracks[0].last_seen_tick == 5);  // the bearing was not taken
 }
 
 TEST_CASE("sbmht keeps the ids of two crossing targets", "[sbmht]") {
