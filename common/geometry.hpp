@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <vector>
 
 namespace wsn::common {
@@ -25,6 +26,14 @@ inline double squaredDistance(Vec2 a, Vec2 b) {
   return dx * dx + dy * dy;
 }
 inline double distance(Vec2 a, Vec2 b) { return std::sqrt(squaredDistance(a, b)); }
+
+/// An angle brought into (-pi, pi]: the one convention of every bearing a sensor reports and a
+/// tracker predicts. remainder() lands in [-pi, pi]; -pi is the same direction as pi, and (-pi, pi]
+/// keeps pi.
+inline double wrapAngle(double angle) {
+  const double wrapped = std::remainder(angle, 2.0 * std::numbers::pi);
+  return wrapped <= -std::numbers::pi ? wrapped + 2.0 * std::numbers::pi : wrapped;
+}
 
 /// Axis-aligned rectangle [x_min, x_max] x [y_min, y_max].
 struct Rect {

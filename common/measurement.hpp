@@ -31,6 +31,10 @@ enum class MeasurementKind : std::uint8_t {
 
 /// Largest dimension of any kind; bounds the wire's sequences.
 inline constexpr std::size_t kMaxMeasurementDimension = 4;
+/// A clutter density is never below one false report per this many ticks over its space, so that a
+/// tracker's score ln(PD Lambda / lambda) stays finite for a sensor without false alarms: the field
+/// sensors floor the density their reports carry, and sbmht its own density per area.
+inline constexpr double kClutterFloorTicks = 100.0;
 /// Most class likelihoods a measurement carries (ONERA's proposed set has 7 classes).
 inline constexpr std::size_t kMaxClasses = 8;
 

@@ -5,13 +5,6 @@
 #include <string>
 
 namespace wsn::node::field_sensors {
-namespace {
-
-/// One false report per this many ticks: the clutter density a sensor without false alarms gives
-/// (the floor sbmht puts under its own density per area).
-constexpr double kClutterFloorTicks = 100.0;
-
-}  // namespace
 
 FieldSensor fieldSensorOf(const common::SensorLayout& layout, common::SensorId id,
                           const FieldSensorsSettings& settings) {
@@ -49,9 +42,8 @@ common::Report FieldSensors::reportOf(std::int32_t tick, const FieldSensor& sens
                                       common::TargetId target, std::vector<double> class_likelihoods) const {
   common::Measurement m{sensor.type->kind(), std::move(values), sensor.type->noise(sensor), sensor.pose,
                         std::move(class_likelihoods)};
-  // A sensor without false alarms still names a density (one per kClutterFloorTicks ticks over its
-  // space), so that a tracker's score ln(PD Lambda / lambda) of its reports stays finite.
-  const double rate = std::max(sensor.settings->false_alarms_per_tick, 1.0 / kClutterFloorTicks);
+  // A sensor without false alarms still names a density (common::kClutterFloorTicks).
+  const double rate = std::max(sensor.settings->false_alarms_per_tick, 1.0 / common::kClutterFloorTicks);
   m.clutter_density = rate / sensor.type->falseAlarmVolume(sensor);
   // common/messages.hpp: a report lies at its measured position, or at its sensor for other kinds.
   const double x = m.kind == common::MeasurementKind::position ? m.values[0] : sensor.pose.x;

@@ -59,8 +59,7 @@ struct TargetView {
   double speed = 0.0;
 };
 
-/// An angle brought into (-pi, pi], as supernode/sbmht/measurement_models.hpp wraps it.
-double wrapAngle(double angle);
+using common::wrapAngle;
 
 TargetView viewOf(const FieldSensor& sensor, const common::TargetState& target);
 

@@ -4,12 +4,6 @@
 
 namespace wsn::node::field_sensors {
 
-double wrapAngle(double angle) {
-  // remainder() lands in [-pi, pi]; -pi is the same direction as pi, and (-pi, pi] keeps pi.
-  const double wrapped = std::remainder(angle, 2.0 * std::numbers::pi);
-  return wrapped <= -std::numbers::pi ? wrapped + 2.0 * std::numbers::pi : wrapped;
-}
-
 TargetView viewOf(const FieldSensor& sensor, const common::TargetState& target) {
   const double dx = target.x - sensor.position.x;
   const double dy = target.y - sensor.position.y;

@@ -50,12 +50,6 @@ void bearingRow(MeasurementJacobian& H, int row, const Relative& r) {
 
 }  // namespace
 
-double wrapAngle(double angle) {
-  // remainder() lands in [-pi, pi]; -pi is the same direction as pi, and (-pi, pi] keeps pi.
-  const double wrapped = std::remainder(angle, 2.0 * std::numbers::pi);
-  return wrapped <= -std::numbers::pi ? wrapped + 2.0 * std::numbers::pi : wrapped;
-}
-
 double gateThreshold(int dimension) {
   // The 0.99 quantiles of chi^2 with 1, 2 and 3 degrees of freedom (2: -2 ln 0.01 exactly).
   switch (dimension) {

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "common/geometry.hpp"
 #include "common/kalman.hpp"
 #include "common/measurement.hpp"
 
@@ -25,8 +26,7 @@ using MeasurementJacobian =
 /// the model refuses to linearise there rather than divide by zero.
 inline constexpr double kMinimumRange = 1e-6;
 
-/// An angle brought into (-pi, pi].
-double wrapAngle(double angle);
+using common::wrapAngle;  // (-pi, pi], common/geometry.hpp
 
 /// chi^2_M(0.99), the gate on d^2 of an M-dimensional report (docs/ONERA.md §3): 6.635, 9.210 and 11.345 for
 /// M = 1, 2, 3 to four digits; +inf for any other M, which no report has.

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -36,9 +37,6 @@ constexpr double kMinTrackProbability = 1e-3;
 /// Nodes the k-best search of one cluster may visit; beyond it the k best found so far are used
 /// (counted in truncatedSearches()).
 constexpr std::uint64_t kSearchBudget = 200000;
-/// A floor on the false-alarm density: one false report per this many ticks over the region, so
-/// that ln(Lambda / lambda_fa) stays finite for a sensor model without false alarms (docs/ONERA.md §7).
-constexpr double kFalseAlarmFloorTicks = 100.0;
 
 bool leafOrder(const Leaf& a, const Leaf& b) {
   if (a.tree != b.tree) return a.tree < b.tree;
@@ -62,7 +60,7 @@ std::map<std::string, common::ParamDerivation> derivations() {
       "the sensor model's false reports x the network's delivery, at least one per 100 ticks over the region",
       [](const common::StatisticsSource& stats, const Resolved&) {
         const Statistics& s = stats();
-        const double floor = 1.0 / (kFalseAlarmFloorTicks * std::max(s.region_area, 1e-12));
+        const double floor = 1.0 / (common::kClutterFloorTicks * std::max(s.region_area, 1e-12));
         return Derived{std::max(s.falseAlarmDensity(), floor),
                        "max(" + shortNumber(s.falseAlarmDensity()) + ", 1 / (100 x area " + shortNumber(s.region_area) +
                            "))"};
@@ -442,24 +440,21 @@ void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std:
   // a tick: from its first report that no existing leaf took (the likeliest new target), else from
   // its first. A radar that sees a known and a new target in one tick thus starts the new one's
   // tree at once; two new targets of one sensor start a tick apart.
-  std::vector<char> births(cols, 0);
+  std::map<common::SensorId, std::size_t> birth_of_sensor;
   for (std::size_t j = 0; j < cols; ++j) {
     if (!terms[j].usable || !terms[j].fix) continue;
-    std::size_t chosen = j;
-    for (std::size_t k = 0; k < cols; ++k)
-      if (slot[k].sensor == slot[j].sensor && terms[k].usable && terms[k].fix &&
-          (gated[k] < gated[chosen] || (gated[k] == gated[chosen] && k < chosen)))
-        chosen = k;
-    births[chosen] = 1;
+    const auto [at, first] = birth_of_sensor.try_emplace(slot[j].sensor, j);
+    if (!first && gated[at->second] && !gated[j]) at->second = j;
   }
-  std::vector<common::TrackId> born;
-  for (std::size_t j = 0; j < cols; ++j) {
-    if (!births[j]) continue;
+  std::vector<std::size_t> births;
+  births.reserve(birth_of_sensor.size());
+  for (const auto& entry : birth_of_sensor) births.push_back(entry.second);
+  std::sort(births.begin(), births.end());  // canonical order, as the slot
+  for (const std::size_t j : births) {
     const PositionFix& fix = *terms[j].fix;
     const common::TrackId id = common::track_id::birth(supernode_, tick, slot[j].sensor);
-    if (std::find(born.begin(), born.end(), id) != born.end()) continue;
+    // A handed-over tree may already carry this id.
     if (std::any_of(next.begin(), next.end(), [&](const Leaf& l) { return l.tree == id; })) continue;
-    born.push_back(id);
     GaussianState start;
     start.x << fix.position(0), fix.position(1), 0.0, 0.0;
     start.P.setZero();

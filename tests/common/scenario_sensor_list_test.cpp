@@ -7,6 +7,7 @@
 
 #include "common/scenario.hpp"
 #include "common/sensor_layout.hpp"
+#include "tests/common/scenario_test_support.hpp"
 
 namespace wsn::common {
 namespace {
@@ -32,14 +33,7 @@ std::string listScenario(int i = -1, const std::string& replacement = "", const 
          "supernodes: [{x: 500, y: 500}]\n";  // given, so that the resolved file derives nothing
 }
 
-std::string errorOf(const std::string& text) {
-  try {
-    parseScenario(text, "s.yaml");
-  } catch (const ScenarioError& error) {
-    return error.what();
-  }
-  return "";
-}
+using test_support::errorOf;
 
 TEST_CASE("a list layout places each sensor with its type, pose and coverage", "[scenario][sensor_list]") {
   const Scenario s = parseScenario(listScenario(), "s.yaml");

@@ -1,4 +1,5 @@
 #include "common/scenario.hpp"
+#include "tests/common/scenario_test_support.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -25,18 +26,8 @@ const SignalStrengthSettings& signalModel(const Scenario& s) { return settingsOf
 /// The acoustic model's own settings of a scenario.
 const AcousticSettings& acousticModel(const Scenario& s) { return settingsOf<AcousticSettings>(s.sensor_model); }
 
-/// parseScenario with the file name "s.yaml" used in every expected message below.
-Scenario parse(const std::string& text) { return parseScenario(text, "s.yaml"); }
-
-/// The message of the ScenarioError that parsing `text` throws ("" when it does not throw).
-std::string errorOf(const std::string& text) {
-  try {
-    parse(text);
-  } catch (const ScenarioError& error) {
-    return error.what();
-  }
-  return "";
-}
+using test_support::errorOf;
+using test_support::parse;
 
 /// A directory of its own under the system temp directory, removed at the end of the test.
 class TempDir {

@@ -4,22 +4,15 @@
 #include <string>
 
 #include "common/scenario.hpp"
+#include "tests/common/scenario_test_support.hpp"
 
 namespace wsn::common {
 namespace {
 
 using Catch::Matchers::Contains;
 
-Scenario parse(const std::string& text) { return parseScenario(text, "s.yaml"); }
-
-std::string errorOf(const std::string& text) {
-  try {
-    parse(text);
-  } catch (const ScenarioError& error) {
-    return error.what();
-  }
-  return "";
-}
+using test_support::errorOf;
+using test_support::parse;
 
 /// Two roads meeting at (50, 50), a building and a wood, in the default region [0, 100]^2.
 const std::string kTerrain =

@@ -260,6 +260,13 @@ TEST_CASE("a camera's report carries its mast height and its clutter density per
   FAIL("the camera did not report the target");
 }
 
+TEST_CASE("a radar whose false alarms have no range rates is refused at load", "[field_sensors]") {
+  // max_range_rate 0 would give its false alarms no volume, so an infinite clutter density that
+  // the wire refuses mid-run: the loader names the key and the line instead.
+  CHECK_THROWS_WITH(field("    - {name: r, type: radar, x: 0, y: 0}\n", "    []\n", "  radar: {max_range_rate: 0}\n"),
+                    Catch::Contains("field_sensors_test.yaml:") && Catch::Contains("max_range_rate"));
+}
+
 TEST_CASE("detections follow PD over many ticks", "[field_sensors]") {
   // An antenna at the origin (range 200, all round) and a target along y = 10 from x = -149 at
   // 1 per tick: |x| < 151 over ticks 1..300, always covered. Expected 0.8 x 300 = 240 reports, σ =
