@@ -12,9 +12,12 @@
 #include <vector>
 
 #include "common/geometry.hpp"
+#include "common/sensor_coverage.hpp"
 #include "common/terrain.hpp"
 
 namespace wsn::common {
+
+struct Scenario;
 
 /// One sensor of a `list` layout as the file places it (ONERA §II-A, Table I: each sensor has its
 /// own type, pose and coverage). Angles stay in the file's degrees here so that a resolved file
@@ -61,6 +64,9 @@ class SensorModelSettings {
  public:
   virtual ~SensorModelSettings() = default;
   virtual bool equals(const SensorModelSettings& other) const = 0;
+  /// Each sensor's coverage, for trackers that weigh a miss by where a sensor looks (ONERA eq. 15);
+  /// empty for a model whose sensors all look alike (its detection probability is then uniform).
+  virtual std::vector<SensorCoverage> coverage(const Scenario&) const { return {}; }
 };
 
 /// The base of a model's settings struct S (which defines ==): equality by value within a model.

@@ -16,7 +16,8 @@ void runNodeRole(const dds::RoleContext& context) {
     const common::SensorLayout layout(sensorFieldConfig(scenario));
     const auto tiles = makeTiles(layout, context.shape.tiles);
     const auto sensors = makeTileSensors(
-        {scenario.sensor_model, scenario.run.seed, scenario.targets.scripted, layout, tiles.at(context.index), truth});
+        {scenario.sensor_model, scenario.run.seed, scenario.targets.scripted, layout, tiles.at(context.index), truth,
+         &scenario.terrain});
 
     Writer<wsn_msg_SensorBoundary> boundary_writer(participant, topics.sensor_boundary, Qos::reliableKeepAll());
     Writer<wsn_msg_ReportBatch> report_writer(participant, topics.report_batch, Qos::reliableKeepAll());

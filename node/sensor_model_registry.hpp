@@ -32,6 +32,8 @@ struct TileContext {
   const common::SensorLayout& layout;
   const Tile& tile;
   const common::Truth& truth;
+  /// Roads and masks (the scenario's `terrain:`); null or empty: open ground, nothing hidden.
+  const common::TerrainConfig* terrain = nullptr;
 };
 
 /// One tile's sensors. A tick runs in two phases so that models whose sensors fuse with their

@@ -143,7 +143,8 @@ SensorMeasurement measureSensorModel(const common::Scenario& scenario, const com
         probes.push_back(probe);
       }
     const common::Truth truth(truth_config);
-    const node::TileContext context{scenario.sensor_model, seed, probes, layout, tiles.front(), truth};
+    const node::TileContext context{scenario.sensor_model, seed, probes, layout, tiles.front(), truth,
+                                    &scenario.terrain};
     const auto sensors = node::makeTileSensors(context);
     m.ticks += truth_config.ticks;
     for (std::int32_t tick = 1; tick <= truth_config.ticks; ++tick) {

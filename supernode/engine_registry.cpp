@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <utility>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -39,8 +40,20 @@ void resolveEngineParams(common::Scenario& scenario, const common::StatisticsSou
 }
 
 EngineContext engineContext(const common::Scenario& scenario, std::uint32_t supernode) {
-  return {scenario.tracker.engine, supernode,        scenario.region, scenario.run.seed, scenario.dynamics,
-          scenario.sensors.spacing, scenario.tracker.window_size, scenario.tracker.params};
+  std::vector<common::SensorCoverage> coverage;
+  if (scenario.sensor_model.settings) coverage = scenario.sensor_model.settings->coverage(scenario);
+  std::shared_ptr<const common::Terrain> terrain;
+  if (!scenario.terrain.empty()) terrain = std::make_shared<const common::Terrain>(scenario.terrain);
+  return {scenario.tracker.engine,
+          supernode,
+          scenario.region,
+          scenario.run.seed,
+          scenario.dynamics,
+          scenario.sensors.spacing,
+          scenario.tracker.window_size,
+          scenario.tracker.params,
+          std::move(coverage),
+          std::move(terrain)};
 }
 
 std::unique_ptr<Engine> makeEngine(const EngineContext& context) {

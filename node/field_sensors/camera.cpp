@@ -12,6 +12,8 @@ class Camera final : public SensorType {
  public:
   std::string_view name() const override { return "camera"; }
   common::MeasurementKind kind() const override { return common::MeasurementKind::azimuth_elevation; }
+  // An optical sensor: buildings and vegetation both hide a target.
+  common::SightBlockers blockers() const override { return common::SightBlockers::buildings_and_vegetation; }
   std::string_view description() const override {
     return "camera: (θ, φ) from a mast, φ = atan2(−h, ρ) (Table I: 5° to 50°, < 100 or 200 m); σθ = σφ = 0.1°, a 3 m "
            "mast, PD 0.9 and 0.01 false alarms per tick proposed";

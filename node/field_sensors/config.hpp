@@ -5,6 +5,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "common/config/field_table.hpp"
 #include "common/scenario_config.hpp"
@@ -22,6 +23,9 @@ struct FieldSensorsSettings : common::SensorModelSettingsOf<FieldSensorsSettings
   double min_speed = 0.5;
   std::map<std::string, TypeSettings> types = defaultTypeSettings();
   friend bool operator==(const FieldSensorsSettings&, const FieldSensorsSettings&) = default;
+
+  /// Every listed sensor's sector, PD and sight blockers, from its believed position.
+  std::vector<common::SensorCoverage> coverage(const common::Scenario& scenario) const override;
 };
 
 const common::config::FieldTable<FieldSensorsSettings>& settingsTable();

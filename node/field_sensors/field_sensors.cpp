@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace wsn::node::field_sensors {
 
@@ -29,13 +30,30 @@ FieldSensor fieldSensorOf(const common::SensorLayout& layout, common::SensorId i
   return sensor;
 }
 
+std::vector<common::SensorCoverage> FieldSensorsSettings::coverage(const common::Scenario& scenario) const {
+  const common::SensorLayout layout(common::sensorFieldConfig(scenario));
+  std::vector<common::SensorCoverage> out;
+  if (!layout.hasPlacedSensors()) return out;
+  out.reserve(layout.size());
+  for (common::SensorId id = 0; id < layout.size(); ++id) {
+    const FieldSensor sensor = fieldSensorOf(layout, id, *this);
+    out.push_back({id, {sensor.pose.x, sensor.pose.y}, sensor.heading, sensor.fov, sensor.range,
+                   sensor.settings->detection_probability, sensor.type->blockers()});
+  }
+  return out;
+}
+
 FieldSensors::FieldSensors(const FieldSensorsSettings& settings, std::uint64_t seed, const common::SensorLayout& layout,
-                           const Tile& tile, const common::Truth& truth)
-    : settings_(settings), seed_(seed), truth_(&truth) {
+                           const Tile& tile, const common::Truth& truth, common::TerrainConfig terrain)
+    : settings_(settings), seed_(seed), truth_(&truth), terrain_(std::move(terrain)) {
   if (!layout.hasPlacedSensors())
     throw std::invalid_argument("field_sensors: the layout places no typed sensors (sensors.layout: list)");
   for (const common::SensorId id : tileSensorIds(layout, tile, "FieldSensors"))
     sensors_.push_back(fieldSensorOf(layout, id, settings_));
+}
+
+bool FieldSensors::inLineOfSight(const FieldSensor& sensor, const common::TargetState& target) const {
+  return !common::hiddenBy(&terrain_, sensor.type->blockers(), sensor.position, {target.x, target.y});
 }
 
 common::Report FieldSensors::reportOf(std::int32_t tick, const FieldSensor& sensor, std::vector<double> values,
@@ -58,7 +76,7 @@ std::vector<common::Report> FieldSensors::detect(std::int32_t tick) const {
     const SensorType& type = *sensor.type;
     for (const common::TargetState& target : targets) {
       const TargetView view = viewOf(sensor, target);
-      if (!covers(sensor, view, settings_.min_speed) || !inLineOfSight(sensor, target)) continue;
+      if (!covers(sensor, target, settings_.min_speed) || !inLineOfSight(sensor, target)) continue;
       const std::uint64_t pair = (static_cast<std::uint64_t>(sensor.id) << 32) | static_cast<std::uint32_t>(target.id);
       common::Stream draw(seed_, common::Purpose::kFieldSensorDetection, pair, tick);
       if (!draw.bernoulli(sensor.settings->detection_probability)) continue;

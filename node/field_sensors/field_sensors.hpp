@@ -9,6 +9,7 @@
 #include "common/messages.hpp"
 #include "common/scenario_config.hpp"
 #include "common/sensor_layout.hpp"
+#include "common/terrain.hpp"
 #include "common/truth.hpp"
 #include "node/field_sensors/config.hpp"
 #include "node/field_sensors/sensor_type.hpp"
@@ -28,7 +29,7 @@ FieldSensor fieldSensorOf(const common::SensorLayout& layout, common::SensorId i
 class FieldSensors {
  public:
   FieldSensors(const FieldSensorsSettings& settings, std::uint64_t seed, const common::SensorLayout& layout,
-               const Tile& tile, const common::Truth& truth);
+               const Tile& tile, const common::Truth& truth, common::TerrainConfig terrain = {});
   // The sensors point into settings_: a copy would point into another object's.
   FieldSensors(const FieldSensors&) = delete;
   FieldSensors& operator=(const FieldSensors&) = delete;
@@ -40,14 +41,16 @@ class FieldSensors {
   const std::vector<FieldSensor>& sensors() const { return sensors_; }
 
  private:
-  /// The terrain's masks go here (ONERA Pe): until they land every covered target is visible.
-  bool inLineOfSight(const FieldSensor&, const common::TargetState&) const { return true; }
+  /// Eq. 15's line of sight: no mask of a kind the sensor's type cannot see through lies between
+  /// the sensor and the target.
+  bool inLineOfSight(const FieldSensor& sensor, const common::TargetState& target) const;
   common::Report reportOf(std::int32_t tick, const FieldSensor& sensor, std::vector<double> values,
                           common::TargetId target, std::vector<double> class_likelihoods) const;
 
   FieldSensorsSettings settings_;
   std::uint64_t seed_;
   const common::Truth* truth_;
+  common::Terrain terrain_;
   std::vector<FieldSensor> sensors_;  // the tile's, sorted by id; their settings point into settings_
 };
 

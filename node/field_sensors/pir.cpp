@@ -11,6 +11,8 @@ class Pir final : public SensorType {
  public:
   std::string_view name() const override { return "pir"; }
   common::MeasurementKind kind() const override { return common::MeasurementKind::bearing; }
+  // An optical sensor: buildings and vegetation both hide a target.
+  common::SightBlockers blockers() const override { return common::SightBlockers::buildings_and_vegetation; }
   std::string_view description() const override {
     return "PIR: bearing θ of a target in its beam (Table I, < 200 m) with σθ = fov/√12 (a uniform spread over the "
            "beam: 2.9° for 10°); PD 0.9 and no false alarms (§V) proposed";

@@ -14,7 +14,8 @@ class FieldSensorsTile final : public TileSensors {
  public:
   explicit FieldSensorsTile(const TileContext& context)
       : field_(common::settingsOf<FieldSensorsSettings>(context.sensor_model), context.seed, context.layout,
-               context.tile, context.truth) {}
+               context.tile, context.truth,
+               context.terrain ? *context.terrain : common::TerrainConfig{}) {}
 
   bool exchangesReadings() const override { return false; }
   std::vector<common::SensorReading> sense(std::int32_t) override { return {}; }

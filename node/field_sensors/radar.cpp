@@ -8,6 +8,8 @@ class Radar final : public SensorType {
  public:
   std::string_view name() const override { return "radar"; }
   common::MeasurementKind kind() const override { return common::MeasurementKind::range_bearing_rate; }
+  // Its waves pass through foliage, not through buildings (docs/ONERA.md §9).
+  common::SightBlockers blockers() const override { return common::SightBlockers::buildings; }
   std::string_view description() const override {
     return "radar: (ρ, θ, ρ̇) over a 90° sector to 1000 m (Table I); σρ 5, σθ 1°, σρ̇ 0.3, PD 0.9 and 0.2 false "
            "alarms per scan uniform over sector × range × ρ̇ ∈ ±20 proposed";

@@ -14,6 +14,7 @@
 #include "common/measurement.hpp"
 #include "common/messages.hpp"
 #include "common/rng.hpp"
+#include "common/sensor_coverage.hpp"
 #include "common/truth.hpp"
 
 namespace wsn::node::field_sensors {
@@ -63,10 +64,10 @@ using common::wrapAngle;
 
 TargetView viewOf(const FieldSensor& sensor, const common::TargetState& target);
 
-/// Table I's coverage (within range, within the sector of width fov centred on the heading, edges
-/// included) and the spec's eq. 9 assumption that only a target moving at >= min_speed per tick is
-/// detectable. Line of sight is not here: it belongs to the terrain.
-bool covers(const FieldSensor& sensor, const TargetView& view, double min_speed);
+/// Table I's coverage (common::inSector from the sensor's true position) and the spec's eq. 9
+/// assumption that only a target moving at >= min_speed per tick is detectable. Line of sight is
+/// not here: it belongs to the terrain.
+bool covers(const FieldSensor& sensor, const common::TargetState& target, double min_speed);
 
 /// One type of sensor.
 class SensorType {
@@ -96,6 +97,9 @@ class SensorType {
   virtual double falseAlarmVolume(const FieldSensor& sensor) const = 0;
   /// c_k of a detection (ONERA eq. 19-20); empty until targets have classes.
   virtual std::vector<double> classLikelihoods(const FieldSensor&, const common::TargetState&) const { return {}; }
+  /// The masks that hide a target from it (eq. 15's line of sight); presence and acoustic
+  /// sensors are hidden by none.
+  virtual common::SightBlockers blockers() const { return common::SightBlockers::none; }
 };
 
 /// The value of z = h at a presence type's sensor: its believed position, which is what ONERA's

@@ -15,10 +15,9 @@ TargetView viewOf(const FieldSensor& sensor, const common::TargetState& target) 
   return view;
 }
 
-bool covers(const FieldSensor& sensor, const TargetView& view, double min_speed) {
-  if (view.speed < min_speed || view.rho > sensor.range) return false;
-  // A full circle covers every bearing, including the one at exactly -pi from the heading.
-  return sensor.fov >= 2.0 * std::numbers::pi || std::abs(view.theta) <= 0.5 * sensor.fov;
+bool covers(const FieldSensor& sensor, const common::TargetState& target, double min_speed) {
+  if (std::hypot(target.vx, target.vy) < min_speed) return false;
+  return common::inSector(sensor.position, sensor.heading, sensor.fov, sensor.range, {target.x, target.y});
 }
 
 std::vector<double> diagonalNoise(std::initializer_list<double> sigmas) {

@@ -83,6 +83,12 @@ std::map<std::string, common::ParamDerivation> derivations() {
         // the same false-track economics as the other engines' confirmation.
         return common::clutterConfirmation(stats(), r, "gate_chi2", "max_misses", 10);
       }};
+  d["delivery_probability"] = {"the network's delivery into the window",
+                                [](const common::StatisticsSource& stats, const Resolved&) {
+                                  const Statistics& s = stats();
+                                  return Derived{std::clamp(s.delivery_probability.value, 0.001, 1.0),
+                                                 "delivery " + shortNumber(s.delivery_probability.value)};
+                                }};
   d["cv_slow_sigma"] = {"the targets' process noise q (dynamics.process_noise_sigma)",
                         [](const common::StatisticsSource& stats, const Resolved&) {
                           return Derived{stats().process_noise_sigma, "q"};
@@ -185,9 +191,11 @@ std::size_t findRoot(std::vector<std::size_t>& parent, std::size_t k) {
   return k;
 }
 
+}  // namespace
+
 /// One report as the scan uses it: its measurement function, value, noise and clutter density in
 /// its own space, the gate for its dimension, and where it would start a track.
-struct ReportTerms {
+struct SbmhtEngine::ReportTerms {
   bool usable = false;
   /// A field-frame position: the cheap distance pre-check before the EKFs applies.
   bool position = false;
@@ -198,6 +206,10 @@ struct ReportTerms {
   double gate = 0.0;
   std::optional<PositionFix> fix;
 };
+
+namespace {
+
+using ReportTerms = SbmhtEngine::ReportTerms;
 
 /// The terms of observation o. A plain position (the position engines' reports) has the engine's
 /// own noise (measurement_sigma) and clutter density (per area). Any other measurement must carry
@@ -295,6 +307,12 @@ const config::FieldTable<SbmhtParams>& paramTable() {
           integer<P>("confirm_reports", &P::confirm_reports, 1.0, 1000.0, "reports",
                      "a tentative track with this many reports is confirmed, even before its score reaches the "
                      "SPRT's threshold: the evidence the scenario's clutter makes decisive (1 without clutter)"),
+          real<P>("delivery_probability", &P::delivery_probability, config::closed(0.001, 1.0), "",
+                  "where sensors are listed: the share of a sensor's reports that reach the window; a sensor's PD "
+                  "at a target it covers and sees is its type's PD times this"),
+          integer<P>("max_coast_ticks", &P::max_coast_ticks, 1.0, 1e6, "ticks",
+                     "where sensors are listed: a leaf that took no report for this many ticks is deleted, even "
+                     "where no sensor could see it (a mask, a gap between sensor areas)"),
       }};
   return table;
 }
@@ -332,6 +350,8 @@ Imm makeImm(const SbmhtParams& p, double delta) {
 SbmhtEngine::SbmhtEngine(const EngineContext& context)
     : supernode_(context.supernode),
       region_(context.region),
+      coverage_(context.coverage),
+      terrain_(context.terrain),
       params_(SbmhtParams::fromContext(context)),
       delta_(context.dynamics.delta),
       imm_(makeImm(params_, context.dynamics.delta)),
@@ -344,6 +364,11 @@ SbmhtEngine::SbmhtEngine(const EngineContext& context)
   initial_probabilities_ << 0.0, 0.5, 0.5;
   for (int m = 0; m < static_cast<int>(gates_.size()); ++m)
     gates_[static_cast<std::size_t>(m)] = gateOfSameProbability(params_.gate_chi2, m);
+  for (std::size_t c = 0; c < coverage_.size(); ++c) {
+    const common::SensorId id = coverage_[c].sensor;
+    if (id >= coverage_of_sensor_.size()) coverage_of_sensor_.resize(id + 1, -1);
+    coverage_of_sensor_[id] = static_cast<std::int32_t>(c);
+  }
 }
 
 void SbmhtEngine::inject(std::vector<Leaf>& leaves, const Leaf& leaf) {
@@ -363,45 +388,88 @@ const Leaf* SbmhtEngine::representative(const std::vector<Leaf>& leaves, common:
   return chosen;
 }
 
-void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot) {
-  for (const auto& adoption : adoptions_)
-    if (adoption.tick == tick) inject(leaves, adoption.leaf);
-
-  const double r2 = params_.measurement_sigma * params_.measurement_sigma;
-  const Detectability detectability = Detectability::uniform(params_.detection_probability);
-  const std::size_t cols = slot.size();
-  std::vector<ReportTerms> terms;
-  terms.reserve(cols);
-  for (const auto& o : slot) {
-    terms.push_back(termsOf(o, r2, params_.false_alarm_density, gates_));
-    if (!terms.back().usable) ++unusable_reports_;
+std::span<const std::int32_t> Leaf::reportsAt(std::int32_t tick) const {
+  std::int32_t t = first_tick;
+  std::size_t begin = 0;
+  for (std::size_t k = 0; k < history.size(); ++k) {
+    if (history[k] != kTickEnd) continue;
+    if (t == tick) return std::span(history).subspan(begin, k - begin);
+    ++t;
+    begin = k + 1;
   }
+  // The open entries of the tick whose scans are running.
+  if (t == tick) return std::span(history).subspan(begin);
+  return {};
+}
 
-  // 1. Branching: every leaf gets a miss child and one child per gated report.
-  std::vector<char> gated(cols, 0);  // a report some existing leaf took
+namespace {
+
+/// Where the last n ticks of a closed history start, or nullopt when it holds fewer ticks.
+std::optional<std::size_t> lastTicksStart(const std::vector<std::int32_t>& history, std::size_t n) {
+  std::size_t ends = 0;
+  for (std::size_t k = history.size(); k-- > 0;) {
+    if (history[k] != SbmhtEngine::kTickEnd) continue;
+    if (ends == n) return k + 1;
+    ++ends;
+  }
+  if (ends == n) return 0;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::vector<SbmhtEngine::Scan> SbmhtEngine::scansOf(std::span<const common::Observation> slot) const {
+  std::vector<Scan> scans;
+  if (coverage_.empty()) {
+    scans.emplace_back();
+    for (std::size_t j = 0; j < slot.size(); ++j) scans.back().reports.push_back(j);
+    return scans;
+  }
+  // Every listed sensor is a scan, whether it reported or not: its silence is evidence where it looks.
+  for (const auto& sensor : coverage_) scans.push_back(Scan{&sensor, {}});
+  Scan unlisted;
+  for (std::size_t j = 0; j < slot.size(); ++j) {
+    const common::SensorId id = slot[j].sensor;
+    if (id < coverage_of_sensor_.size() && coverage_of_sensor_[id] >= 0)
+      scans[static_cast<std::size_t>(coverage_of_sensor_[id])].reports.push_back(j);
+    else
+      unlisted.reports.push_back(j);
+  }
+  if (!unlisted.reports.empty()) scans.push_back(std::move(unlisted));
+  return scans;
+}
+
+Detectability SbmhtEngine::detectabilityOf(const Scan& scan, const ImmState& imm) const {
+  if (scan.coverage == nullptr) return Detectability::uniform(params_.detection_probability);
+  const common::SensorCoverage& sensor = *scan.coverage;
+  Detectability d;
+  d.detection_probability = sensor.detection_probability * params_.delivery_probability;
+  d.perceivability = ModeVector(static_cast<Eigen::Index>(imm.modes.size()));
+  for (std::size_t i = 0; i < imm.modes.size(); ++i) {
+    const auto& x = imm.modes[i].x;
+    // Pe of eq. 15 is 1 or 0: the sector and the masks are sharp.
+    d.perceivability(static_cast<Eigen::Index>(i)) =
+        common::detectionProbabilityAt(sensor, {x(kX), x(kY)}, terrain_.get()) > 0.0 ? 1.0 : 0.0;
+  }
+  return d;
+}
+
+void SbmhtEngine::runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot,
+                          const std::vector<ReportTerms>& terms, const Scan& scan) const {
+  std::vector<char> gated(slot.size(), 0);  // a report some existing leaf took
   std::vector<Leaf> next;
-  next.reserve(leaves.size() * 2 + cols);
-  for (const Leaf& leaf : leaves) {
-    const ImmPrediction prediction = imm_.predict(leaf.imm);
-    {
-      ImmUpdate miss = imm_.miss(prediction, detectability);
-      Leaf child;
-      child.tree = leaf.tree;
-      child.first_tick = leaf.first_tick;
-      child.history = leaf.history;
-      child.history.push_back(-1);
-      child.imm = std::move(miss.state);
-      child.score = leaf.score.after(missScoreIncrement(miss.likelihood), sprt_);
-      child.last_seen_tick = leaf.last_seen_tick;
-      child.hits = leaf.hits;
-      child.misses = leaf.misses + 1;
-      const GaussianState c = child.imm.combined();
-      // A leaf that coasted out of the region followed a target that left: no sensor sees it again.
-      if (child.score.status != TrackStatus::deleted && child.misses < params_.max_misses &&
-          region_.contains({c.x(kX), c.x(kY)}))
-        next.push_back(std::move(child));
+  next.reserve(leaves.size() * 2 + scan.reports.size());
+  for (Leaf& leaf : leaves) {
+    const Detectability detectability = detectabilityOf(scan, leaf.imm);
+    const bool perceivable = scan.coverage == nullptr || detectability.perceivability.maxCoeff() > 0.0;
+    // A sensor that could not have seen the target and reported nothing leaves the leaf as it is.
+    if (!perceivable && scan.reports.empty()) {
+      next.push_back(std::move(leaf));
+      continue;
     }
-    for (std::size_t j = 0; j < cols; ++j) {
+    // The time update ran at the tick's start: each scan updates the estimate in place.
+    const ImmPrediction prediction{leaf.imm.modes, leaf.imm.probabilities};
+    for (const std::size_t j : scan.reports) {
       const ReportTerms& t = terms[j];
       if (!t.usable) continue;
       if (t.position) {
@@ -430,18 +498,25 @@ void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std:
       child.last_seen_tick = tick;
       child.hits = leaf.hits + 1;
       confirmByCount(child);
-      child.misses = 0;
+      child.misses = leaf.misses;
+      child.miss_evidence = leaf.miss_evidence;
       if (child.score.status != TrackStatus::deleted) next.push_back(std::move(child));
     }
+    // The miss branch last: the leaf itself becomes it.
+    ImmUpdate miss = imm_.miss(prediction, detectability);
+    leaf.imm = std::move(miss.state);
+    leaf.score = leaf.score.after(missScoreIncrement(miss.likelihood), sprt_);
+    if (scan.coverage != nullptr) leaf.miss_evidence -= std::log(miss.likelihood);
+    if (leaf.score.status != TrackStatus::deleted) next.push_back(std::move(leaf));
   }
 
-  // 2. A report that locates a target (not a bearing) also starts a new tentative tree there, at
+  // A report that locates a target (not a bearing) also starts a new tentative tree there, at
   // rest but for a radar's range rate. A birth id names (tick, sensor), so a sensor starts one tree
   // a tick: from its first report that no existing leaf took (the likeliest new target), else from
   // its first. A radar that sees a known and a new target in one tick thus starts the new one's
   // tree at once; two new targets of one sensor start a tick apart.
   std::map<common::SensorId, std::size_t> birth_of_sensor;
-  for (std::size_t j = 0; j < cols; ++j) {
+  for (const std::size_t j : scan.reports) {
     if (!terms[j].usable || !terms[j].fix) continue;
     const auto [at, first] = birth_of_sensor.try_emplace(slot[j].sensor, j);
     if (!first && gated[at->second] && !gated[j]) at->second = j;
@@ -479,43 +554,108 @@ void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std:
     confirmByCount(leaf);
     next.push_back(std::move(leaf));
   }
-
-  // 3. Merging: of leaves whose last N entries are the same N reports, the best-scoring one stays.
-  const auto n = static_cast<std::size_t>(params_.n_scan);
-  if (n >= 1) {
-    std::vector<std::size_t> candidates;
-    const auto tail = [&](std::size_t k) { return std::span(next[k].history).last(n); };
-    for (std::size_t k = 0; k < next.size(); ++k) {
-      if (next[k].history.size() < n) continue;
-      const auto last = tail(k);
-      if (std::all_of(last.begin(), last.end(), [](std::int32_t e) { return e >= 0; })) candidates.push_back(k);
-    }
-    std::sort(candidates.begin(), candidates.end(), [&](std::size_t a, std::size_t b) {
-      const auto ta = tail(a);
-      const auto tb = tail(b);
-      if (!std::equal(ta.begin(), ta.end(), tb.begin()))
-        return std::lexicographical_compare(ta.begin(), ta.end(), tb.begin(), tb.end());
-      if (next[a].score.score != next[b].score.score) return next[a].score.score > next[b].score.score;
-      return leafOrder(next[a], next[b]);
-    });
-    std::vector<char> keep(next.size(), 1);
-    for (std::size_t c = 1; c < candidates.size(); ++c) {
-      const auto prev = tail(candidates[c - 1]);
-      const auto here = tail(candidates[c]);
-      if (std::equal(prev.begin(), prev.end(), here.begin())) keep[candidates[c]] = 0;
-    }
-    keepMarked(next, keep);
-  }
-
   std::sort(next.begin(), next.end(), leafOrder);
-  manageHypotheses(next, tick);
-
-  for (const auto& release : releases_)
-    if (release.tick == tick) std::erase_if(next, [&](const Leaf& l) { return l.tree == release.id; });
   leaves = std::move(next);
 }
 
-void SbmhtEngine::manageHypotheses(std::vector<Leaf>& leaves, std::int32_t tick) {
+void SbmhtEngine::endTick(std::vector<Leaf>& leaves, std::int32_t tick) const {
+  // Without coverage every tick is a scan of the whole field at PD, and a run of max_misses misses
+  // is rarer than 1 % (derived). With coverage the same rareness is measured: a tick's miss counts
+  // by how unlikely it was where the target was, and not at all where no sensor could see it or
+  // while the stop model explains it.
+  const double rare_run = params_.max_misses * -std::log1p(-params_.detection_probability);
+  std::vector<char> keep(leaves.size(), 1);
+  for (std::size_t k = 0; k < leaves.size(); ++k) {
+    Leaf& leaf = leaves[k];
+    leaf.history.push_back(kTickEnd);
+    if (leaf.last_seen_tick == tick) {
+      leaf.misses = 0;
+      leaf.miss_evidence = 0.0;
+      continue;
+    }
+    ++leaf.misses;
+    const GaussianState c = leaf.imm.combined();
+    const bool too_many = coverage_.empty() ? leaf.misses >= params_.max_misses
+                                            : leaf.miss_evidence >= rare_run || leaf.misses >= params_.max_coast_ticks;
+    // A leaf that coasted out of the region followed a target that left: no sensor sees it again.
+    if (too_many || !region_.contains({c.x(kX), c.x(kY)})) keep[k] = 0;
+  }
+  keepMarked(leaves, keep);
+}
+
+void SbmhtEngine::mergeDuplicates(std::vector<Leaf>& leaves) const {
+  const auto n = static_cast<std::size_t>(params_.n_scan);
+  if (n < 1) return;
+  struct Candidate {
+    std::size_t leaf;
+    std::size_t tail;  // where its last n ticks start in its history
+  };
+  std::vector<Candidate> candidates;
+  const auto tail = [&](const Candidate& c) { return std::span(leaves[c.leaf].history).subspan(c.tail); };
+  for (std::size_t k = 0; k < leaves.size(); ++k) {
+    const auto start = lastTicksStart(leaves[k].history, n);
+    if (!start) continue;
+    // Only leaves that took a report at each of those ticks: no tick entry is kTickEnd alone.
+    const auto last = std::span(leaves[k].history).subspan(*start);
+    bool every_tick = true;
+    for (std::size_t e = 0; e < last.size() && every_tick; ++e)
+      every_tick = last[e] != kTickEnd || (e > 0 && last[e - 1] != kTickEnd);
+    if (every_tick) candidates.push_back({k, *start});
+  }
+  std::sort(candidates.begin(), candidates.end(), [&](const Candidate& a, const Candidate& b) {
+    const auto ta = tail(a);
+    const auto tb = tail(b);
+    if (!std::equal(ta.begin(), ta.end(), tb.begin(), tb.end()))
+      return std::lexicographical_compare(ta.begin(), ta.end(), tb.begin(), tb.end());
+    if (leaves[a.leaf].score.score != leaves[b.leaf].score.score)
+      return leaves[a.leaf].score.score > leaves[b.leaf].score.score;
+    return leafOrder(leaves[a.leaf], leaves[b.leaf]);
+  });
+  std::vector<char> keep(leaves.size(), 1);
+  for (std::size_t c = 1; c < candidates.size(); ++c) {
+    const auto prev = tail(candidates[c - 1]);
+    const auto here = tail(candidates[c]);
+    if (std::equal(prev.begin(), prev.end(), here.begin(), here.end())) keep[candidates[c].leaf] = 0;
+  }
+  keepMarked(leaves, keep);
+}
+
+void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot) {
+  for (const auto& adoption : adoptions_)
+    if (adoption.tick == tick) inject(leaves, adoption.leaf);
+
+  const double r2 = params_.measurement_sigma * params_.measurement_sigma;
+  std::vector<ReportTerms> terms;
+  terms.reserve(slot.size());
+  for (const auto& o : slot) {
+    terms.push_back(termsOf(o, r2, params_.false_alarm_density, gates_));
+    if (!terms.back().usable) ++unusable_reports_;
+  }
+
+  // The time update, once per tick: mixing and each model's prediction (mu becomes cbar).
+  for (Leaf& leaf : leaves) {
+    ImmPrediction p = imm_.predict(leaf.imm);
+    leaf.imm.modes = std::move(p.modes);
+    leaf.imm.probabilities = std::move(p.probabilities);
+  }
+
+  const std::vector<Scan> scans = scansOf(slot);
+  for (std::size_t s = 0; s < scans.size(); ++s) {
+    runScan(leaves, tick, slot, terms, scans[s]);
+    // Between one sensor's scan and the next, the hypotheses the reports made unlikely go, or the
+    // leaves would multiply by two per sensor that saw the target.
+    if (s + 1 < scans.size() && !scans[s].reports.empty()) manageHypotheses(leaves, tick, false);
+  }
+  endTick(leaves, tick);
+  mergeDuplicates(leaves);
+  std::sort(leaves.begin(), leaves.end(), leafOrder);
+  manageHypotheses(leaves, tick, true);
+
+  for (const auto& release : releases_)
+    if (release.tick == tick) std::erase_if(leaves, [&](const Leaf& l) { return l.tree == release.id; });
+}
+
+void SbmhtEngine::manageHypotheses(std::vector<Leaf>& leaves, std::int32_t tick, bool n_scan_pruning) {
   const std::size_t count = leaves.size();
   if (count == 0) return;
 
@@ -530,10 +670,15 @@ void SbmhtEngine::manageHypotheses(std::vector<Leaf>& leaves, std::int32_t tick)
     std::size_t leaf;
   };
   std::vector<Entry> entries;
-  for (std::size_t k = 0; k < count; ++k)
-    for (std::size_t e = 0; e < leaves[k].history.size(); ++e)
-      if (leaves[k].history[e] >= 0)
-        entries.push_back({leaves[k].first_tick + static_cast<std::int32_t>(e), leaves[k].history[e], k});
+  for (std::size_t k = 0; k < count; ++k) {
+    std::int32_t t = leaves[k].first_tick;
+    for (const std::int32_t e : leaves[k].history) {
+      if (e == SbmhtEngine::kTickEnd)
+        ++t;
+      else
+        entries.push_back({t, e, k});
+    }
+  }
   std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
     return std::tie(a.tick, a.report, a.leaf) < std::tie(b.tick, b.report, b.leaf);
   });
@@ -591,6 +736,7 @@ void SbmhtEngine::manageHypotheses(std::vector<Leaf>& leaves, std::int32_t tick)
   // N scans back, with its leaf in the best hypothesis (or its most probable leaf when it has none).
   // The leaves of a tree already agree on every older scan, so one entry decides.
   std::erase_if(leaves, [](const Leaf& l) { return !l.best && l.probability < kMinTrackProbability; });
+  if (!n_scan_pruning) return;
   std::vector<char> keep(leaves.size(), 1);
   for (std::size_t begin = 0; begin < leaves.size();) {
     std::size_t end = begin;
@@ -605,10 +751,14 @@ void SbmhtEngine::manageHypotheses(std::vector<Leaf>& leaves, std::int32_t tick)
           (leaves[k].probability == leaves[ref].probability && leaves[k].score.score > leaves[ref].score.score))
         ref = k;
     }
-    const std::int64_t e = std::int64_t{tick} - params_.n_scan - leaves[ref].first_tick;
-    if (e >= 0 && e < static_cast<std::int64_t>(leaves[ref].history.size()))
-      for (std::size_t k = begin; k < end; ++k)
-        keep[k] = leaves[k].history[static_cast<std::size_t>(e)] == leaves[ref].history[static_cast<std::size_t>(e)];
+    const std::int32_t back = tick - params_.n_scan;
+    if (back >= leaves[ref].first_tick) {
+      const auto agreed = leaves[ref].reportsAt(back);
+      for (std::size_t k = begin; k < end; ++k) {
+        const auto here = leaves[k].reportsAt(back);
+        keep[k] = std::equal(here.begin(), here.end(), agreed.begin(), agreed.end());
+      }
+    }
     begin = end;
   }
   keepMarked(leaves, keep);

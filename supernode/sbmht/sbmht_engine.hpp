@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -44,7 +45,9 @@ struct SbmhtParams {
   double slow_time_constant = 30.0;
   double fast_time_constant = 10.0;
   double merge_radius = 0.0;
-  std::int32_t confirm_reports = 3;  ///< a tentative track with this many reports is confirmed
+  std::int32_t confirm_reports = 3;
+  double delivery_probability = 1.0;  ///< scales each sensor's PD where the engine has coverage
+  std::int32_t max_coast_ticks = 60;  ///< a leaf no sensor could see is kept this long  ///< a tentative track with this many reports is confirmed
 
   static SbmhtParams fromContext(const EngineContext& context);
 };
@@ -70,19 +73,30 @@ class SbmhtEngine final : public Engine {
   /// A track hypothesis: one leaf of a track tree.
   struct Leaf {
     common::TrackId tree = 0;        ///< the tree's id, the track id it reports under
-    std::int32_t first_tick = 0;     ///< tick of history[0]
-    /// One entry per scan since first_tick: the index of the report it took in that tick's slot
-    /// (canonical order), or -1 for a miss. Two leaves of one tree differ only in their last
-    /// n_scan entries (N-scan pruning).
+    std::int32_t first_tick = 0;     ///< the tick history starts at
+    /// Tick by tick since first_tick: the indices (into that tick's slot, canonical order) of the
+    /// reports it took, then kTickEnd; a tick it missed is kTickEnd alone. While a tick's scans
+    /// run, its entries are open (no kTickEnd yet). Two leaves of one tree differ only in their
+    /// last n_scan ticks (N-scan pruning).
     std::vector<std::int32_t> history;
     ImmState imm;
     TrackScore score;
     std::int32_t last_seen_tick = 0;
     std::int32_t hits = 0;
-    std::int32_t misses = 0;         ///< consecutive misses
+    std::int32_t misses = 0;         ///< consecutive ticks without a report
+    /// With coverage: -ln of the run of misses' likelihood (how surprising it is that the
+    /// target went unreported for `misses` ticks, given where it was and whether it stopped).
+    double miss_evidence = 0.0;
     double probability = 1.0;        ///< P(T) over the cluster's k best hypotheses
     bool best = false;               ///< in the best global hypothesis
+
+    /// The reports it took at `tick` (empty: a miss, or a tick outside its history).
+    std::span<const std::int32_t> reportsAt(std::int32_t tick) const;
   };
+  /// Ends a tick's entries in Leaf::history.
+  static constexpr std::int32_t kTickEnd = -1;
+  /// One report as a scan uses it (its measurement model, value, noise, clutter density, gate).
+  struct ReportTerms;
 
   /// Leaves at the newest tick, sorted by (tree, history).
   const std::vector<Leaf>& leaves() const { return current_; }
@@ -103,12 +117,31 @@ class SbmhtEngine final : public Engine {
     common::TrackId id = 0;
   };
 
-  /// One MHT scan at `tick` on leaves whose state is at tick - 1.
+  /// The reports one sensor gave at a tick (all reports when the engine has no coverage).
+  struct Scan {
+    const common::SensorCoverage* coverage = nullptr;  ///< null: uniform detection_probability
+    std::vector<std::size_t> reports;                  ///< indices into the tick's slot
+  };
+
+  /// The MHT at `tick` on leaves whose state is at tick - 1: one time update, then a scan per
+  /// sensor (one scan of every report without coverage), then hypothesis management.
   void processTick(std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot);
+  /// The scans of a tick's reports, in sensor order.
+  std::vector<Scan> scansOf(std::span<const common::Observation> slot) const;
+  /// Branches every leaf on the scan's reports and a miss, and starts the scan's births.
+  void runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot,
+               const std::vector<ReportTerms>& terms, const Scan& scan) const;
+  /// PD and per-model Pe of the scan's sensor for the leaf's (time-updated) estimate.
+  Detectability detectabilityOf(const Scan& scan, const ImmState& imm) const;
+  /// Closes the tick in every leaf's history; drops leaves whose run of misses is too unlikely or
+  /// that coasted out of the region.
+  void endTick(std::vector<Leaf>& leaves, std::int32_t tick) const;
+  /// Of leaves whose last n_scan ticks took the same reports, keeps the best-scoring one.
+  void mergeDuplicates(std::vector<Leaf>& leaves) const;
   /// Confirms a tentative leaf that holds confirm_reports reports (the SPRT may confirm it sooner).
   void confirmByCount(Leaf& leaf) const;
-  /// Clusters, k best hypotheses, P(T), hypothesis pruning and N-scan pruning of the scan at `tick`.
-  void manageHypotheses(std::vector<Leaf>& leaves, std::int32_t tick);
+  /// Clusters, k best hypotheses, P(T), hypothesis pruning and (at a tick's end) N-scan pruning.
+  void manageHypotheses(std::vector<Leaf>& leaves, std::int32_t tick, bool n_scan_pruning);
   void foldAnchorTo(std::int32_t tick);
   static void inject(std::vector<Leaf>& leaves, const Leaf& leaf);
   /// The leaf that speaks for tree `tree` in leaves (best hypothesis, else most probable).
@@ -116,6 +149,11 @@ class SbmhtEngine final : public Engine {
 
   std::uint32_t supernode_;
   common::Rect region_;
+  /// Each sensor's sector, PD and sight (empty: uniform detection_probability), and the terrain
+  /// whose masks hide targets from them.
+  std::vector<common::SensorCoverage> coverage_;
+  std::vector<std::int32_t> coverage_of_sensor_;  // index into coverage_ by sensor id, or -1
+  std::shared_ptr<const common::Terrain> terrain_;
   SbmhtParams params_;
   double delta_ = 1.0;
   Imm imm_;

@@ -55,7 +55,7 @@ TargetState at(Vec2 from, double rho, double theta, double speed = 1.0) {
 }
 
 bool sees(const FieldSensor& sensor, const TargetState& target, double min_speed = 0.5) {
-  return covers(sensor, viewOf(sensor, target), min_speed);
+  return covers(sensor, target, min_speed);
 }
 
 TEST_CASE("every type covers a target within its range and misses one beyond it", "[field_sensors]") {

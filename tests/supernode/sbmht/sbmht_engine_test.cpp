@@ -307,15 +307,18 @@ TEST_CASE("sbmht N-scan pruning collapses branches that differ only N scans back
     // At the fork a second report just beside the target: both are in the track's gate.
     if (t == fork) reports.push_back(observation(t, t, p.x + 0.4, p.y + 0.6));
     h.step(t, reports);
-    std::set<std::int32_t> at_fork;  // the choices the tree's leaves made at the fork
-    for (const auto& leaf : h.engine.leaves())
-      if (leaf.tree == id && t >= fork) at_fork.insert(leaf.history.at(static_cast<std::size_t>(fork - leaf.first_tick)));
+    std::set<std::vector<std::int32_t>> at_fork;  // the choices the tree's leaves made at the fork
+    for (const auto& leaf : h.engine.leaves()) {
+      const auto took = leaf.reportsAt(fork);
+      if (leaf.tree == id && t >= fork) at_fork.emplace(took.begin(), took.end());
+    }
     if (t > fork && t < fork + n) CHECK(at_fork.size() >= 2);  // both reports still have branches
     if (t == fork + n) CHECK(at_fork.size() == 1);             // N scans later one branch remains
   }
   // ...and it is the branch of the better report.
   for (const auto& leaf : h.engine.leaves())
-    if (leaf.tree == id) CHECK(leaf.history.at(static_cast<std::size_t>(fork - leaf.first_tick)) == 0);
+    if (leaf.tree == id) CHECK(std::vector<std::int32_t>(leaf.reportsAt(fork).begin(), leaf.reportsAt(fork).end()) ==
+                               std::vector<std::int32_t>{0});
 }
 
 TEST_CASE("sbmht gives identical outputs for identical inputs", "[sbmht]") {

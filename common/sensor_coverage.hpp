@@ -1,0 +1,42 @@
+// Where each sensor of the field looks and how likely it detects a target there: PD x Pe of ONERA
+// eq. (15), a pure function of the scenario (its sensor list, the types' settings, the terrain's
+// masks). The node's sensors decide what they see with it, and trackers weigh a miss with it.
+#pragma once
+
+#include <vector>
+
+#include "common/geometry.hpp"
+#include "common/messages.hpp"
+#include "common/terrain.hpp"
+
+namespace wsn::common {
+
+/// Which masks hide a target from a sensor (docs/ONERA.md §9): a camera or PIR sees through
+/// neither buildings nor vegetation, a radar through vegetation, a presence or acoustic sensor
+/// through both.
+enum class SightBlockers { none, buildings, buildings_and_vegetation };
+
+/// One sensor as a tracker may know it.
+struct SensorCoverage {
+  SensorId sensor = 0;
+  Vec2 position;                      ///< where it measures from (its believed position)
+  double heading = 0.0;               ///< radians counter-clockwise from +x
+  double fov = 0.0;                   ///< radians, (0, 2 pi]; 2 pi and more: every bearing
+  double range = 0.0;                 ///< ground range it covers
+  double detection_probability = 0.0; ///< PD of a covered target in its sight, each tick
+  SightBlockers blockers = SightBlockers::none;
+  friend bool operator==(const SensorCoverage&, const SensorCoverage&) = default;
+};
+
+/// Whether p lies within `range` of the sensor and within the sector of width `fov` centred on
+/// `heading`, edges included. The one sector test of the field sensors and the trackers.
+bool inSector(Vec2 sensor, double heading, double fov, double range, Vec2 p);
+
+/// Whether the terrain's masks of the kinds `blockers` names hide p from a sensor at `from`;
+/// nothing is hidden without a terrain.
+bool hiddenBy(const Terrain* terrain, SightBlockers blockers, Vec2 from, Vec2 p);
+
+/// PD x Pe at p: the sensor's PD where p is in its sector and sight, else 0.
+double detectionProbabilityAt(const SensorCoverage& sensor, Vec2 p, const Terrain* terrain);
+
+}  // namespace wsn::common
