@@ -35,7 +35,8 @@ inline constexpr std::size_t kMaxMeasurementDimension = 4;
 /// tracker's score ln(PD Lambda / lambda) stays finite for a sensor without false alarms: the field
 /// sensors floor the density their reports carry, and sbmht its own density per area.
 inline constexpr double kClutterFloorTicks = 100.0;
-/// Most class likelihoods a measurement carries (ONERA's proposed set has 7 classes).
+/// Most class likelihoods a measurement carries (ONERA's exclusive set has kClassCount = 6, in
+/// common/class_evidence.hpp; the spec's proposal of 7 also fits).
 inline constexpr std::size_t kMaxClasses = 8;
 
 /// Where a sensor stood and where it looked, in the field frame. Angles of a measurement (theta,
