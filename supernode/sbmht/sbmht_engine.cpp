@@ -311,8 +311,8 @@ const config::FieldTable<SbmhtParams>& paramTable() {
                   "where sensors are listed: the share of a sensor's reports that reach the window; a sensor's PD "
                   "at a target it covers and sees is its type's PD times this"),
           integer<P>("max_coast_ticks", &P::max_coast_ticks, 1.0, 1e6, "ticks",
-                     "where sensors are listed: a leaf that took no report for this many ticks is deleted, even "
-                     "where no sensor could see it (a mask, a gap between sensor areas)"),
+                     "where sensors are listed: a leaf that no sensor could see (behind a mask, in a gap between "
+                     "sensor areas) for this many ticks running is deleted; a miss costs nothing there"),
       }};
   return table;
 }
@@ -359,6 +359,8 @@ SbmhtEngine::SbmhtEngine(const EngineContext& context)
       initial_score_(initialScore(params_.initial_score == 1 ? InitialScore::paper : InitialScore::blackman,
                                   params_.detection_probability, params_.false_alarm_density,
                                   params_.birth_density)) {
+  birth_tick_sprt_ = sprt_;
+  birth_tick_sprt_.delete_tentative = -std::numeric_limits<double>::infinity();
   // A report rules out the stop model (eq. 9): a new track moves, model unknown.
   initial_probabilities_ = ModeVector(3);
   initial_probabilities_ << 0.0, 0.5, 0.5;
@@ -462,6 +464,10 @@ void SbmhtEngine::runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::spa
   for (Leaf& leaf : leaves) {
     const Detectability detectability = detectabilityOf(scan, leaf.imm);
     const bool perceivable = scan.coverage == nullptr || detectability.perceivability.maxCoeff() > 0.0;
+    leaf.perceivable = leaf.perceivable || perceivable;
+    // Born in an earlier scan of this tick (an adopted tree enters with an older last_seen_tick).
+    const bool born_now = leaf.first_tick == tick && leaf.last_seen_tick == tick && leaf.hits == 1;
+    const SprtThresholds& sprt = born_now ? birth_tick_sprt_ : sprt_;
     // A sensor that could not have seen the target and reported nothing leaves the leaf as it is.
     if (!perceivable && scan.reports.empty()) {
       next.push_back(std::move(leaf));
@@ -469,6 +475,9 @@ void SbmhtEngine::runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::spa
     }
     // The time update ran at the tick's start: each scan updates the estimate in place.
     const ImmPrediction prediction{leaf.imm.modes, leaf.imm.probabilities};
+    // A report proves the sensor could see the target (Pe = 1 where the report puts it), though a
+    // lagging prediction may still lie behind the mask it came out of: Pe weighs misses only.
+    const Detectability seen = Detectability::uniform(detectability.detection_probability);
     for (const std::size_t j : scan.reports) {
       const ReportTerms& t = terms[j];
       if (!t.usable) continue;
@@ -485,7 +494,7 @@ void SbmhtEngine::runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::spa
         }
         if (!near) continue;
       }
-      ImmUpdate hit = imm_.report(prediction, t.model, t.z, t.R, detectability);
+      ImmUpdate hit = imm_.report(prediction, t.model, t.z, t.R, seen);
       if (!(hit.likelihood > 0.0) || !(hit.gate_distance <= t.gate)) continue;
       Leaf child;
       child.tree = leaf.tree;
@@ -494,19 +503,19 @@ void SbmhtEngine::runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::spa
       child.history.push_back(static_cast<std::int32_t>(j));
       gated[j] = 1;
       child.imm = std::move(hit.state);
-      child.score = leaf.score.after(reportScoreIncrement(hit.likelihood, t.clutter_density), sprt_);
+      child.score = leaf.score.after(reportScoreIncrement(hit.likelihood, t.clutter_density), sprt);
       child.last_seen_tick = tick;
       child.hits = leaf.hits + 1;
       confirmByCount(child);
       child.misses = leaf.misses;
-      child.miss_evidence = leaf.miss_evidence;
+      child.unseen_ticks = leaf.unseen_ticks;
+      child.perceivable = true;
       if (child.score.status != TrackStatus::deleted) next.push_back(std::move(child));
     }
     // The miss branch last: the leaf itself becomes it.
     ImmUpdate miss = imm_.miss(prediction, detectability);
     leaf.imm = std::move(miss.state);
-    leaf.score = leaf.score.after(missScoreIncrement(miss.likelihood), sprt_);
-    if (scan.coverage != nullptr) leaf.miss_evidence -= std::log(miss.likelihood);
+    leaf.score = leaf.score.after(missScoreIncrement(miss.likelihood), sprt);
     if (leaf.score.status != TrackStatus::deleted) next.push_back(std::move(leaf));
   }
 
@@ -560,23 +569,24 @@ void SbmhtEngine::runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::spa
 
 void SbmhtEngine::endTick(std::vector<Leaf>& leaves, std::int32_t tick) const {
   // Without coverage every tick is a scan of the whole field at PD, and a run of max_misses misses
-  // is rarer than 1 % (derived). With coverage the same rareness is measured: a tick's miss counts
-  // by how unlikely it was where the target was, and not at all where no sensor could see it or
-  // while the stop model explains it.
-  const double rare_run = params_.max_misses * -std::log1p(-params_.detection_probability);
+  // is rarer than 1 % (derived). With coverage a miss is weighed where it happens, and a stopped
+  // target (below every sensor's minimum speed) is expected to be silent: the stop model explains
+  // its misses and T_drop ends its track (§2 of docs/ONERA.md, about 136 silent ticks), as the
+  // paper's does; only a leaf no sensor could see is ended by a count, max_coast_ticks.
   std::vector<char> keep(leaves.size(), 1);
   for (std::size_t k = 0; k < leaves.size(); ++k) {
     Leaf& leaf = leaves[k];
     leaf.history.push_back(kTickEnd);
     if (leaf.last_seen_tick == tick) {
       leaf.misses = 0;
-      leaf.miss_evidence = 0.0;
+      leaf.unseen_ticks = 0;
       continue;
     }
     ++leaf.misses;
+    if (!leaf.perceivable) ++leaf.unseen_ticks;
     const GaussianState c = leaf.imm.combined();
-    const bool too_many = coverage_.empty() ? leaf.misses >= params_.max_misses
-                                            : leaf.miss_evidence >= rare_run || leaf.misses >= params_.max_coast_ticks;
+    const bool too_many =
+        coverage_.empty() ? leaf.misses >= params_.max_misses : leaf.unseen_ticks >= params_.max_coast_ticks;
     // A leaf that coasted out of the region followed a target that left: no sensor sees it again.
     if (too_many || !region_.contains({c.x(kX), c.x(kY)})) keep[k] = 0;
   }
@@ -634,6 +644,7 @@ void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std:
 
   // The time update, once per tick: mixing and each model's prediction (mu becomes cbar).
   for (Leaf& leaf : leaves) {
+    leaf.perceivable = false;
     ImmPrediction p = imm_.predict(leaf.imm);
     leaf.imm.modes = std::move(p.modes);
     leaf.imm.probabilities = std::move(p.probabilities);

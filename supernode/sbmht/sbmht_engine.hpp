@@ -84,9 +84,8 @@ class SbmhtEngine final : public Engine {
     std::int32_t last_seen_tick = 0;
     std::int32_t hits = 0;
     std::int32_t misses = 0;         ///< consecutive ticks without a report
-    /// With coverage: -ln of the run of misses' likelihood (how surprising it is that the
-    /// target went unreported for `misses` ticks, given where it was and whether it stopped).
-    double miss_evidence = 0.0;
+    std::int32_t unseen_ticks = 0;   ///< consecutive ticks without a report that no sensor could see it
+    bool perceivable = false;        ///< some sensor could have seen it at the current tick
     double probability = 1.0;        ///< P(T) over the cluster's k best hypotheses
     bool best = false;               ///< in the best global hypothesis
 
@@ -158,6 +157,9 @@ class SbmhtEngine final : public Engine {
   double delta_ = 1.0;
   Imm imm_;
   SprtThresholds sprt_;
+  /// The SPRT for a tree's birth tick: it confirms but does not delete, since L(1) may lie below
+  /// T2 (track_score.hpp) and another sensor's scan of the same tick is not yet its next scan.
+  SprtThresholds birth_tick_sprt_;
   double initial_score_ = 0.0;
   ModeVector initial_probabilities_;
   bool started_ = false;

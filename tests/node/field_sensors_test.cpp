@@ -190,10 +190,10 @@ TEST_CASE("each type's R is the spec's proposed noise", "[field_sensors]") {
 
 /// A 2000 x 2000 m field with the given sensors lines and targets lines (YAML list items).
 common::Scenario field(const std::string& sensors, const std::string& targets, const std::string& model = "",
-                       int node_processes = 1) {
+                       int node_processes = 1, const std::string& terrain = "") {
   return common::parseScenario(
-      "region: {x_min: -1000, y_min: -1000, x_max: 1000, y_max: 1000}\n"
-      "sensors:\n  layout: list\n  list:\n" + sensors +
+      "region: {x_min: -1000, y_min: -1000, x_max: 1000, y_max: 1000}\n" + terrain +
+          "sensors:\n  layout: list\n  list:\n" + sensors +
           "sensor_model:\n  kind: field_sensors\n  sensing_range: 100\n" + model +
           "dynamics: {delta: 1, process_noise_sigma: 0}\n"
           "targets:\n  scripted:\n" + targets +
@@ -208,7 +208,7 @@ std::vector<common::Report> reportsAt(const common::Scenario& s, int tiles, std:
   const auto& settings = common::settingsOf<FieldSensorsSettings>(s.sensor_model);
   std::vector<common::Report> all;
   for (const auto& tile : makeTiles(layout, tiles)) {
-    const FieldSensors sensors(settings, s.run.seed, layout, tile, truth);
+    const FieldSensors sensors(settings, s.run.seed, layout, tile, truth, s.terrain);
     const auto reports = sensors.detect(tick);
     all.insert(all.end(), reports.begin(), reports.end());
   }
@@ -345,6 +345,49 @@ TEST_CASE("the field sensors' reports do not depend on the tiling", "[field_sens
     total += one.size();
   }
   CHECK(total > 200);  // the comparison is not vacuous
+}
+
+TEST_CASE("masks hide targets from the sensors whose sight they block, as the coverage says", "[field_sensors]") {
+  // Four sensors at the origin seeing all round to 1000 m, PD 1, no false alarms. A house hides the
+  // target east of them, a wood the one north, the one west is in the open. A camera or PIR sees
+  // only the open target, the radar sees through the wood, the acoustic antenna hears all three.
+  const std::string all_round = "heading: 0, fov: 360, range: 1000";
+  const auto s = field("    - {name: cam, type: camera, x: 0, y: 0, " + all_round + ", height: 5}\n"
+                       "    - {name: pir, type: pir, x: 0, y: 0, " + all_round + "}\n"
+                       "    - {name: radar, type: radar, x: 0, y: 0, " + all_round + "}\n"
+                       "    - {name: ant, type: acoustic_antenna, x: 0, y: 0, " + all_round + "}\n",
+                       "    - {appear_tick: 1, x: 300, y: 0, vx: 0, vy: 2}\n"
+                       "    - {appear_tick: 1, x: 0, y: 300, vx: 2, vy: 0}\n"
+                       "    - {appear_tick: 1, x: -300, y: 0, vx: 0, vy: 2}\n",
+                       "  camera: {detection_probability: 1, false_alarms_per_tick: 0}\n"
+                       "  pir: {detection_probability: 1, false_alarms_per_tick: 0}\n"
+                       "  radar: {detection_probability: 1, false_alarms_per_tick: 0}\n"
+                       "  acoustic_antenna: {detection_probability: 1, false_alarms_per_tick: 0}\n",
+                       1,
+                       "terrain:\n  masks:\n"
+                       "    - {name: house, kind: building, polygon: [[100, -20], [150, -20], [150, 20], [100, 20]]}\n"
+                       "    - {name: wood, kind: vegetation, polygon: [[-20, 100], [20, 100], [20, 150], [-20, 150]]}\n");
+  const auto reports = reportsAt(s, 1, 1);
+  std::vector<std::vector<common::TargetId>> seen(4);
+  for (const auto& r : reports) seen[r.sensor].push_back(r.target);
+  CHECK(seen[0] == std::vector<common::TargetId>{2});
+  CHECK(seen[1] == std::vector<common::TargetId>{2});
+  CHECK(seen[2] == std::vector<common::TargetId>{1, 2});
+  CHECK(seen[3] == std::vector<common::TargetId>{0, 1, 2});
+
+  // The coverage the trackers get agrees with what the sensors did, target by target.
+  const auto coverage = common::settingsOf<FieldSensorsSettings>(s.sensor_model).coverage(s);
+  REQUIRE(coverage.size() == 4);
+  const common::Terrain terrain(s.terrain);
+  const common::Truth truth(common::truthConfig(s));
+  for (const auto& sensor : coverage) {
+    CHECK(sensor.detection_probability == 1.0);
+    for (const auto& target : truth.at(1)) {
+      const bool reported = std::count(seen[sensor.sensor].begin(), seen[sensor.sensor].end(), target.id) == 1;
+      INFO("sensor " << sensor.sensor << " target " << target.id);
+      CHECK((common::detectionProbabilityAt(sensor, {target.x, target.y}, &terrain) > 0.0) == reported);
+    }
+  }
 }
 
 }  // namespace

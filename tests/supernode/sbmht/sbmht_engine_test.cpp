@@ -9,6 +9,7 @@
 #include "common/rng.hpp"
 #include "supernode/observation_window.hpp"
 #include "supernode/sbmht/measurement_models.hpp"
+#include "tests/supernode/sbmht/sbmht_test_support.hpp"
 #include "tests/supernode/test_support.hpp"
 
 namespace wsn::supernode::sbmht {
@@ -16,40 +17,7 @@ namespace {
 
 using test::observation;
 using test::sensorAt;
-
-/// A scenario with one supernode at the centre of [0, 100]^2 and resolved "sbmht" defaults
-/// (PD 0.9, lambda_fa 1e-4, lambda_nt 1e-5, sigma 0.5, N = 3, 20 hypotheses).
-common::Scenario sbmhtScenario(std::map<std::string, double> params = {}) {
-  common::Scenario s;
-  s.source_path = "test.yaml";
-  s.supernodes = {{50.0, 50.0}};
-  s.tracker.engine = "sbmht";
-  s.tracker.window_size = 10;
-  for (const auto& [key, value] : params) s.tracker.params[key] = common::EngineParam{value, 1, false};
-  resolveEngineParams(s, common::kNoStatistics);
-  return s;
-}
-
-struct Harness {
-  explicit Harness(common::Scenario s)
-      : scenario(std::move(s)), window(scenario.tracker.window_size), engine(engineContext(scenario, 0)) {}
-  void step(std::int32_t tick, const std::vector<common::Observation>& delivered = {}) {
-    window.advanceTo(tick);
-    for (const auto& o : delivered) window.insert(o);
-    engine.step(window);
-  }
-  common::Scenario scenario;
-  ObservationWindow window;
-  SbmhtEngine engine;
-};
-
-const common::TrackEstimate* findTrack(const std::vector<common::TrackEstimate>& tracks, common::TrackId id) {
-  for (const auto& t : tracks)
-    if (t.track == id) return &t;
-  return nullptr;
-}
-
-double distance(const common::TrackEstimate& e, common::Vec2 p) { return std::hypot(e.x - p.x, e.y - p.y); }
+using namespace support;
 
 TEST_CASE("sbmht is registered with its parameters", "[sbmht]") {
   const auto& spec = engineRegistry().at("sbmht");
@@ -87,31 +55,6 @@ TEST_CASE("sbmht confirms a straight target and tracks it under one id", "[sbmht
   CHECK(last.vx == Approx(1.0).margin(0.05));
   CHECK(last.vy == Approx(0.5).margin(0.05));
 }
-
-/// What a sensor at `pose` measures of the target at p moving at v, noise-free, as an observation
-/// of tick t carrying its noise R (diagonal `variances`) and clutter density.
-common::Observation sensed(std::int32_t t, common::SensorId sensor, common::SensorPose pose, common::MeasurementKind kind,
-                           common::Vec2 p, common::Vec2 v, std::vector<double> variances, double clutter_density) {
-  MeasurementModel model;
-  model.kind = kind;
-  model.sensor = pose;
-  common::StateVector x;
-  x << p.x, p.y, v.x, v.y;
-  const MeasurementVector z = model.predict(x);
-  common::Measurement m;
-  m.kind = kind;
-  m.values.assign(z.data(), z.data() + z.size());
-  const std::size_t n = variances.size();
-  m.noise.assign(n * n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) m.noise[i * n + i] = variances[i];
-  m.sensor = pose;
-  m.clutter_density = clutter_density;
-  common::Observation o{t, t, sensor, pose.x, pose.y, 0};
-  o.measurement = common::MeasurementRef(std::move(m));
-  return o;
-}
-
-constexpr double kDegree = 3.14159265358979323846 / 180.0;
 
 TEST_CASE("sbmht starts and follows a track on radar plots alone", "[sbmht]") {
   // A radar at the origin facing +x: (rho, theta, rho_dot) with the spec's sigmas (5, 1 deg, 0.3) and
