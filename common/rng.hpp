@@ -32,6 +32,7 @@ enum class Purpose : std::uint64_t {
   kMlmcParticles = 20,         ///< per (attached sensor, tick x 16 + sweep): ADMAN's MLMC particles
   kFieldSensorDetection = 21,  ///< per (sensor x 2^32 + target, tick): a field sensor's detection and noise
   kFieldSensorFalseAlarm = 22,  ///< per (sensor, tick): a field sensor's false alarms
+  kFieldSensorClass = 23,      ///< per (sensor x 2^32 + target, tick): the class a field sensor declares (ONERA eq. 19)
 };
 
 /// SplitMix64 finaliser: a bijective 64-bit mix with full avalanche.

@@ -8,6 +8,10 @@ namespace {
 class AcousticAntenna final : public SensorType {
  public:
   std::string_view name() const override { return "acoustic_antenna"; }
+  std::vector<double> classLikelihoods(const FieldSensor&, common::TargetClass truth,
+                                       common::Stream& draw) const override {
+    return declaredClassLikelihoods(common::Classifier::kAcoustic, truth, draw);  // spec §4 PROP: a = 0.6
+  }
   common::MeasurementKind kind() const override { return common::MeasurementKind::bearing; }
   std::string_view description() const override {
     return "acoustic antenna: bearing θ (Table I, < 200 m, all round); σθ 3° (small arrays give 2–5°), PD 0.8 and "

@@ -8,6 +8,10 @@ namespace {
 class AcousticBeacon final : public PresenceType {
  public:
   std::string_view name() const override { return "acoustic_beacon"; }
+  std::vector<double> classLikelihoods(const FieldSensor&, common::TargetClass truth,
+                                       common::Stream& draw) const override {
+    return declaredClassLikelihoods(common::Classifier::kAcoustic, truth, draw);  // spec §4 PROP: a = 0.6
+  }
   std::string_view description() const override {
     return "acoustic beacon: presence within range (Table I, < 200 m), reported at the sensor with R = (range/2)² I "
            "(a uniform disc's); PD 0.8 and 0.01 false alarms per tick proposed";

@@ -11,6 +11,10 @@ namespace {
 class Camera final : public SensorType {
  public:
   std::string_view name() const override { return "camera"; }
+  std::vector<double> classLikelihoods(const FieldSensor&, common::TargetClass truth,
+                                       common::Stream& draw) const override {
+    return declaredClassLikelihoods(common::Classifier::kCamera, truth, draw);  // spec §4 PROP: a = 0.85
+  }
   common::MeasurementKind kind() const override { return common::MeasurementKind::azimuth_elevation; }
   // An optical sensor: buildings and vegetation both hide a target.
   common::SightBlockers blockers() const override { return common::SightBlockers::buildings_and_vegetation; }

@@ -80,8 +80,10 @@ std::vector<common::Report> FieldSensors::detect(std::int32_t tick) const {
       const std::uint64_t pair = (static_cast<std::uint64_t>(sensor.id) << 32) | static_cast<std::uint32_t>(target.id);
       common::Stream draw(seed_, common::Purpose::kFieldSensorDetection, pair, tick);
       if (!draw.bernoulli(sensor.settings->detection_probability)) continue;
+      // The declared class has a stream of its own, so that classifying changes no other draw.
+      common::Stream class_draw(seed_, common::Purpose::kFieldSensorClass, pair, tick);
       out.push_back(reportOf(tick, sensor, type.perturb(type.measure(sensor, view), sensor, draw), target.id,
-                             type.classLikelihoods(sensor, target)));
+                             type.classLikelihoods(sensor, truth_->targetClass(target.id), class_draw)));
     }
     if (sensor.settings->false_alarms_per_tick <= 0.0) continue;
     common::Stream clutter(seed_, common::Purpose::kFieldSensorFalseAlarm, sensor.id, tick);

@@ -23,9 +23,11 @@ FieldSensor fieldSensorOf(const common::SensorLayout& layout, common::SensorId i
 
 /// The tile's sensors. At tick t, sensor s reports target k (in id order) when it covers k
 /// (covers()), k is in its line of sight, and a draw of PD succeeds: z = h(x) + b from the stream
-/// (seed, kFieldSensorDetection, s x 2^32 + k, t). Then Poisson(false_alarms_per_tick) false
-/// alarms from (seed, kFieldSensorFalseAlarm, s, t). Every draw is keyed by its sensor, so the
-/// reports do not depend on the tiling or on the other targets.
+/// (seed, kFieldSensorDetection, s x 2^32 + k, t), and the class likelihoods of k's class (the
+/// type's classLikelihoods()) from (seed, kFieldSensorClass, s x 2^32 + k, t). Then
+/// Poisson(false_alarms_per_tick) false alarms from (seed, kFieldSensorFalseAlarm, s, t), with no
+/// class likelihoods. Every draw is keyed by its sensor, so the reports do not depend on the tiling
+/// or on the other targets.
 class FieldSensors {
  public:
   FieldSensors(const FieldSensorsSettings& settings, std::uint64_t seed, const common::SensorLayout& layout,

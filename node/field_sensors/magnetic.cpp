@@ -8,6 +8,10 @@ namespace {
 class Magnetic final : public PresenceType {
  public:
   std::string_view name() const override { return "magnetic"; }
+  std::vector<double> classLikelihoods(const FieldSensor&, common::TargetClass truth,
+                                       common::Stream& draw) const override {
+    return declaredClassLikelihoods(common::Classifier::kMagnetic, truth, draw);  // spec §4 PROP: a = 0.9 per block
+  }
   std::string_view description() const override {
     return "magnetic detector: presence within range (Table I, < 2 m), reported at the sensor (eq. 3: h_mag) with "
            "R = σ² I; σ 1 m, PD 0.95 (vehicles) and no false alarms (§V) proposed";

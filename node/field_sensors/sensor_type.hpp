@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/class_evidence.hpp"
 #include "common/geometry.hpp"
 #include "common/measurement.hpp"
 #include "common/messages.hpp"
@@ -95,8 +96,13 @@ class SensorType {
   /// The volume of the space falseAlarm() draws from (rad for a bearing, m x rad x m/s for a radar,
   /// m^2 for a presence): the false alarms per tick over it are the clutter density its reports carry.
   virtual double falseAlarmVolume(const FieldSensor& sensor) const = 0;
-  /// c_k of a detection (ONERA eq. 19-20); empty until targets have classes.
-  virtual std::vector<double> classLikelihoods(const FieldSensor&, const common::TargetState&) const { return {}; }
+  /// c_k of a detection of a target of class `truth` (ONERA eq. 19-20, spec §4 PROP): c = CM[., d]
+  /// with the declared class d ~ CM[truth, .] drawn from `draw`. Empty for a type that does not
+  /// classify (the default) and for a target of unknown class.
+  virtual std::vector<double> classLikelihoods(const FieldSensor&, common::TargetClass /*truth*/,
+                                               common::Stream& /*draw*/) const {
+    return {};
+  }
   /// The masks that hide a target from it (eq. 15's line of sight); presence and acoustic
   /// sensors are hidden by none.
   virtual common::SightBlockers blockers() const { return common::SightBlockers::none; }
@@ -119,6 +125,12 @@ class PresenceType : public SensorType {
     return std::numbers::pi * sensor.range * sensor.range;
   }
 };
+
+/// c = CM[., d], d ~ CM[truth, .] by one uniform of `draw`, with the PROP confusion matrix of
+/// `classifier` (common/class_evidence.hpp): what a classifying type's classLikelihoods() returns.
+/// Empty for Classifier::kNone and for a truth of kUnknown.
+std::vector<double> declaredClassLikelihoods(common::Classifier classifier, common::TargetClass truth,
+                                             common::Stream& draw);
 
 /// Degrees to radians.
 constexpr double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }

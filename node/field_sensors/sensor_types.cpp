@@ -48,6 +48,19 @@ std::vector<double> SensorType::perturb(std::vector<double> h, const FieldSensor
   return h;
 }
 
+std::vector<double> declaredClassLikelihoods(common::Classifier classifier, common::TargetClass truth,
+                                             common::Stream& draw) {
+  if (classifier == common::Classifier::kNone || truth == common::TargetClass::kUnknown) return {};
+  // The matrices are constants: built once, not at every detection.
+  static const common::ConfusionMatrix camera = common::confusionMatrix(common::Classifier::kCamera);
+  static const common::ConfusionMatrix acoustic = common::confusionMatrix(common::Classifier::kAcoustic);
+  static const common::ConfusionMatrix magnetic = common::confusionMatrix(common::Classifier::kMagnetic);
+  const common::ConfusionMatrix& cm = classifier == common::Classifier::kCamera     ? camera
+                                      : classifier == common::Classifier::kAcoustic ? acoustic
+                                                                                    : magnetic;
+  return common::reportedClassLikelihoods(cm, truth, draw.uniform());
+}
+
 const std::vector<std::unique_ptr<const SensorType>>& sensorTypes() {
   static const std::vector<std::unique_ptr<const SensorType>> types = [] {
     std::vector<std::unique_ptr<const SensorType>> all;

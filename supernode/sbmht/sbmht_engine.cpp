@@ -205,11 +205,25 @@ struct SbmhtEngine::ReportTerms {
   double clutter_density = 0.0;
   double gate = 0.0;
   std::optional<PositionFix> fix;
+  /// Its class likelihoods c (eqs. 19-23), one per common::kClassCount class; empty when it
+  /// carries none or a c the engine cannot use (another class count, a negative entry, all zero).
+  std::span<const double> classes;
 };
 
 namespace {
 
 using ReportTerms = SbmhtEngine::ReportTerms;
+
+/// c of a measurement when it is one class likelihood per class, finite, non-negative and not all
+/// zero (what common::updateClassVector takes); else empty: the report then says nothing about
+/// class, as a radar's does.
+std::span<const double> classLikelihoodsOf(const common::Measurement& m) {
+  const auto& c = m.class_likelihoods;
+  if (c.size() != common::kClassCount) return {};
+  if (!std::all_of(c.begin(), c.end(), [](double v) { return std::isfinite(v) && v >= 0.0; })) return {};
+  if (std::none_of(c.begin(), c.end(), [](double v) { return v > 0.0; })) return {};
+  return c;
+}
 
 /// The terms of observation o. A plain position (the position engines' reports) has the engine's
 /// own noise (measurement_sigma) and clutter density (per area). Any other measurement must carry
@@ -242,6 +256,7 @@ ReportTerms termsOf(const common::Observation& o, double r2, double lambda_fa, c
   t.position = t.model.kind == common::MeasurementKind::position;
   t.gate = gates[static_cast<std::size_t>(t.model.dimension())];
   t.fix = positionFix(t.model, t.z, t.R);
+  if (o.measurement) t.classes = classLikelihoodsOf(*o.measurement);
   t.usable = true;
   return t;
 }
@@ -496,6 +511,13 @@ void SbmhtEngine::runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::spa
       }
       ImmUpdate hit = imm_.report(prediction, t.model, t.z, t.R, seen);
       if (!(hit.likelihood > 0.0) || !(hit.gate_distance <= t.gate)) continue;
+      // Eqs. 19 and 23: a report whose class the track cannot be (c'beta = 0, Delta L^c = -inf)
+      // is not this track's, whatever its kinematics, and makes no branch.
+      std::optional<common::ClassUpdate> classified;
+      if (!t.classes.empty()) {
+        classified = common::updateClassVector(leaf.classes, t.classes);
+        if (std::isinf(classified->score_increment) && classified->score_increment < 0.0) continue;
+      }
       Leaf child;
       child.tree = leaf.tree;
       child.first_tick = leaf.first_tick;
@@ -503,7 +525,10 @@ void SbmhtEngine::runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::spa
       child.history.push_back(static_cast<std::int32_t>(j));
       gated[j] = 1;
       child.imm = std::move(hit.state);
-      child.score = leaf.score.after(reportScoreIncrement(hit.likelihood, t.clutter_density), sprt);
+      // Eqs. 21-22: L = L + Delta L + Delta L^c (Delta L^c = 0 for a report without c).
+      const double class_increment = classified ? classified->score_increment : 0.0;
+      child.score = leaf.score.after(reportScoreIncrement(hit.likelihood, t.clutter_density) + class_increment, sprt);
+      child.classes = classified ? ClassVector(classified->beta) : leaf.classes;
       child.last_seen_tick = tick;
       child.hits = leaf.hits + 1;
       confirmByCount(child);
@@ -558,6 +583,7 @@ void SbmhtEngine::runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::spa
     leaf.history = {static_cast<std::int32_t>(j)};
     leaf.imm = ImmState::startAt(start, initial_probabilities_);
     leaf.score = TrackScore::start(initial_score_);
+    leaf.classes = common::initialClassVector(terms[j].classes);  // eq. 20; uniform without c
     leaf.last_seen_tick = tick;
     leaf.hits = 1;
     confirmByCount(leaf);
@@ -867,6 +893,26 @@ std::vector<common::TrackEstimate> SbmhtEngine::confirmedTracks() const {
     if (!leaf.best || leaf.score.status != TrackStatus::confirmed) continue;
     const GaussianState s = leaf.imm.combined();
     out.push_back({leaf.tree, s.x(kX), s.x(kY), s.x(kVx), s.x(kVy), common::toRowMajor(s.P), leaf.last_seen_tick});
+  }
+  return out;
+}
+
+std::vector<TrackClass> SbmhtEngine::confirmedClasses() const {
+  std::vector<TrackClass> out;
+  for (const auto& leaf : current_) {
+    if (!leaf.best || leaf.score.status != TrackStatus::confirmed) continue;  // as confirmedTracks()
+    TrackClass c{leaf.tree, common::TargetClass::kUnknown, 0.0};
+    const Eigen::Index n = leaf.classes.size();
+    if (n == 0) {
+      out.push_back(c);
+      continue;
+    }
+    const std::size_t best = common::mostLikelyClass(leaf.classes);
+    c.probability = leaf.classes(static_cast<Eigen::Index>(best));
+    // A uniform vector (no classifying report yet) names no class.
+    const bool uniform = (leaf.classes.array() == leaf.classes(0)).all();
+    if (!uniform && n == static_cast<Eigen::Index>(common::kClassCount)) c.target_class = common::classAt(best);
+    out.push_back(c);
   }
   return out;
 }

@@ -14,6 +14,7 @@
 #include <span>
 #include <vector>
 
+#include "common/class_evidence.hpp"
 #include "supernode/engine.hpp"
 #include "supernode/sbmht/imm.hpp"
 #include "supernode/sbmht/track_score.hpp"
@@ -52,6 +53,15 @@ struct SbmhtParams {
   static SbmhtParams fromContext(const EngineContext& context);
 };
 
+/// A confirmed track's class (ONERA eq. 19-23, docs/ONERA.md §4): argmax of its leaf's class vector.
+struct TrackClass {
+  common::TrackId track = 0;
+  /// The most probable class; kUnknown while the vector is uniform (no classifying report yet).
+  common::TargetClass target_class = common::TargetClass::kUnknown;
+  double probability = 0.0;  ///< its probability in the class vector
+  friend bool operator==(const TrackClass&, const TrackClass&) = default;
+};
+
 /// The parameters' one description: key, member, unit, range, default (SbmhtParams{}) and meaning.
 const config::FieldTable<SbmhtParams>& paramTable();
 
@@ -68,6 +78,8 @@ class SbmhtEngine final : public Engine {
   void step(const ObservationWindow& window) override;
   std::vector<common::TrackEstimate> confirmedTracks() const override;
   std::vector<TrackPrediction> predictions() const override;
+  /// The class of each track of confirmedTracks(), in the same order.
+  std::vector<TrackClass> confirmedClasses() const;
   common::TrackHandoff release(common::TrackId track, std::uint32_t to_supernode) override;
 
   /// A track hypothesis: one leaf of a track tree.
@@ -87,6 +99,10 @@ class SbmhtEngine final : public Engine {
     std::int32_t unseen_ticks = 0;   ///< consecutive ticks without a report that no sensor could see it
     bool perceivable = false;        ///< some sensor could have seen it at the current tick
     double probability = 1.0;        ///< P(T) over the cluster's k best hypotheses
+    /// beta of eqs. 19-20 over common::kClassCount classes: eq. 20 from its first report's class
+    /// likelihoods (uniform without them), then eq. 19 at every report that carries them.
+    /// Fixed capacity (no allocation), as leaves are copied at every branch.
+    ClassVector classes = common::uniformClassVector();
     bool best = false;               ///< in the best global hypothesis
 
     /// The reports it took at `tick` (empty: a miss, or a tick outside its history).

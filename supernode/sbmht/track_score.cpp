@@ -52,41 +52,4 @@ TrackScore TrackScore::after(double increment, const SprtThresholds& thresholds)
   return next;
 }
 
-ClassVector initialClassProbabilities(const ClassVector& likelihoods) {
-  const double total = likelihoods.sum();
-  if (!(total > 0.0)) return uniformClassProbabilities(static_cast<int>(likelihoods.size()));
-  return likelihoods / total;
-}
-
-ClassUpdate updateClass(const ClassVector& probabilities, const ClassVector& likelihoods,
-                        const ClassVector& extraneous_probabilities) {
-  ClassUpdate out{probabilities, 0.0};
-  if (likelihoods.size() == 0) return out;  // the sensor does not classify
-  if (likelihoods.size() != probabilities.size() || likelihoods.size() != extraneous_probabilities.size())
-    throw std::invalid_argument("updateClass: c, beta and beta_e must have one entry per class");
-  if (!(likelihoods.sum() > 0.0)) return out;
-  if (!(likelihoods.dot(extraneous_probabilities) > 0.0))
-    throw std::invalid_argument("updateClass: beta_e gives the report's class likelihoods no weight");
-  const double track_evidence = likelihoods.dot(probabilities);
-  if (!(track_evidence > 0.0)) {
-    out.score_increment = -std::numeric_limits<double>::infinity();
-    return out;
-  }
-  out.probabilities = likelihoods.cwiseProduct(probabilities) / track_evidence;
-  out.score_increment = std::log(track_evidence / likelihoods.dot(extraneous_probabilities));
-  return out;
-}
-
-ClassVector uniformClassProbabilities(int classes) {
-  return ClassVector::Constant(classes, classes > 0 ? 1.0 / classes : 0.0);
-}
-
-int mostProbableClass(const ClassVector& probabilities) {
-  if (probabilities.size() == 0) return -1;
-  Eigen::Index best = 0;
-  for (Eigen::Index i = 1; i < probabilities.size(); ++i)
-    if (probabilities(i) > probabilities(best)) best = i;
-  return static_cast<int>(best);
-}
-
 }  // namespace wsn::supernode::sbmht

@@ -66,31 +66,8 @@ struct TrackScore {
 /// The SPRT's decision for a track of status `current` now at `score`, best so far `best_score`.
 TrackStatus decide(TrackStatus current, double score, double best_score, const SprtThresholds& thresholds);
 
-/// Class probabilities or likelihoods, one per class of the scenario.
+/// A track's class probabilities beta (common/class_evidence.hpp has eqs. 19, 20 and 23) in a
+/// vector of fixed capacity, so that copying a leaf allocates nothing for it.
 using ClassVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, static_cast<int>(common::kMaxClasses), 1>;
-
-/// Eq. 20: beta_0 = c / sum c. Uniform over c's classes when c sums to 0 (no information).
-ClassVector initialClassProbabilities(const ClassVector& likelihoods);
-
-/// One classifier report applied to a track's class probabilities.
-struct ClassUpdate {
-  /// Eq. 19: c (x) beta / c'beta.
-  ClassVector probabilities;
-  /// Eq. 23: Delta L^c = ln(c'beta / c'beta_e), added to the kinematic Delta L (eq. 22).
-  double score_increment = 0.0;
-};
-
-/// Eqs. 19 and 23 for likelihoods c against the track's beta and an extraneous target's beta_e.
-/// An empty or all-zero c (a sensor that does not classify) changes nothing. If c'beta = 0 the
-/// report contradicts the track: beta stays and Delta L^c = -inf. Throws std::invalid_argument when
-/// a non-empty c, beta and beta_e differ in size.
-ClassUpdate updateClass(const ClassVector& probabilities, const ClassVector& likelihoods,
-                        const ClassVector& extraneous_probabilities);
-
-/// beta_e as docs/ONERA.md §4 proposes: uniform over n classes.
-ClassVector uniformClassProbabilities(int classes);
-
-/// The class a track is labelled with: argmax beta (the first on ties); -1 without classes.
-int mostProbableClass(const ClassVector& probabilities);
 
 }  // namespace wsn::supernode::sbmht

@@ -14,13 +14,6 @@ namespace {
 
 using common::GaussianState;
 
-ClassVector classes(std::initializer_list<double> values) {
-  ClassVector v(static_cast<Eigen::Index>(values.size()));
-  Eigen::Index i = 0;
-  for (double value : values) v(i++) = value;
-  return v;
-}
-
 TEST_CASE("C4 the SPRT thresholds for alpha 1e-3 and beta 0.1", "[sbmht]") {
   // T1 = ln(.9 / .001) = ln 900 = 6.802395; T2 = ln(.1 / .999) = -2.301585.
   const SprtThresholds t = SprtThresholds::fromErrorRates(1e-3, 0.1);
@@ -112,46 +105,6 @@ TEST_CASE("the SPRT deletes tentative tracks at T2 and confirmed ones T_drop bel
   CHECK(t.best_score == 8.0);
   t = t.after(-0.6, sprt);  // 10.1 below
   CHECK(t.status == TrackStatus::deleted);
-}
-
-TEST_CASE("C5 a classifier report sharpens the class vector and scores ln 1.35", "[sbmht]") {
-  // beta = (.5, .3, .2), c = (.8, .1, .1): c'beta = .4 + .03 + .02 = .45;
-  // beta+ = (.4, .03, .02) / .45 = (.888889, .066667, .044444).
-  // beta_e uniform: c'beta_e = 1 / 3, Delta L^c = ln(.45 * 3) = ln 1.35 = .300105.
-  const ClassVector beta = classes({0.5, 0.3, 0.2});
-  const ClassUpdate u = updateClass(beta, classes({0.8, 0.1, 0.1}), uniformClassProbabilities(3));
-  CHECK(u.probabilities(0) == Approx(0.888889));
-  CHECK(u.probabilities(1) == Approx(0.066667));
-  CHECK(u.probabilities(2) == Approx(0.044444));
-  CHECK(u.probabilities.sum() == Approx(1.0));
-  CHECK(u.score_increment == Approx(std::log(1.35)));
-  CHECK(u.score_increment == Approx(0.3001).margin(5e-5));
-  CHECK(mostProbableClass(u.probabilities) == 0);
-
-  // c = 1 (radar, PIR) carries no class information: beta unchanged, Delta L^c = ln(1 / 1) = 0.
-  const ClassUpdate flat = updateClass(beta, classes({1.0, 1.0, 1.0}), uniformClassProbabilities(3));
-  CHECK(flat.probabilities.isApprox(beta));
-  CHECK(flat.score_increment == Approx(0.0).margin(1e-15));
-  // Nor does a sensor that gives no likelihoods at all.
-  const ClassUpdate none = updateClass(beta, ClassVector(), uniformClassProbabilities(3));
-  CHECK(none.probabilities == beta);
-  CHECK(none.score_increment == 0.0);
-}
-
-TEST_CASE("the first class vector is the normalised likelihood and contradictions score minus infinity",
-          "[sbmht]") {
-  // Eq. 20: (.8, .1, .1) / 1 and (2, 1, 1) / 4.
-  CHECK(initialClassProbabilities(classes({2.0, 1.0, 1.0})).isApprox(classes({0.5, 0.25, 0.25})));
-  CHECK(initialClassProbabilities(classes({0.0, 0.0})).isApprox(classes({0.5, 0.5})));
-  // A report that gives the track's only possible class likelihood 0.
-  const ClassUpdate u = updateClass(classes({1.0, 0.0}), classes({0.0, 1.0}), uniformClassProbabilities(2));
-  CHECK(u.score_increment == -std::numeric_limits<double>::infinity());
-  CHECK(u.probabilities == classes({1.0, 0.0}));
-  CHECK_THROWS_AS(updateClass(classes({0.5, 0.5}), classes({1.0, 1.0, 1.0}), uniformClassProbabilities(2)),
-                  std::invalid_argument);
-  // An extraneous-target prior that gives the report's classes no weight: ln(x / 0) has no value.
-  CHECK_THROWS_AS(updateClass(classes({0.5, 0.5}), classes({1.0, 0.0}), classes({0.0, 1.0})), std::invalid_argument);
-  CHECK(mostProbableClass(ClassVector()) == -1);
 }
 
 }  // namespace
