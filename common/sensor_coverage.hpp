@@ -25,6 +25,9 @@ struct SensorCoverage {
   double range = 0.0;                 ///< ground range it covers
   double detection_probability = 0.0; ///< PD of a covered target in its sight, each tick
   SightBlockers blockers = SightBlockers::none;
+  /// A presence ("volume") sensor: its report says a target is within its coverage and places it
+  /// at the sensor. ONERA lets such reports update tracks but start none.
+  bool presence = false;
   friend bool operator==(const SensorCoverage&, const SensorCoverage&) = default;
 };
 

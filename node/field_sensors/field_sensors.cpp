@@ -38,7 +38,7 @@ std::vector<common::SensorCoverage> FieldSensorsSettings::coverage(const common:
   for (common::SensorId id = 0; id < layout.size(); ++id) {
     const FieldSensor sensor = fieldSensorOf(layout, id, *this);
     out.push_back({id, {sensor.pose.x, sensor.pose.y}, sensor.heading, sensor.fov, sensor.range,
-                   sensor.settings->detection_probability, sensor.type->blockers()});
+                   sensor.settings->detection_probability, sensor.type->blockers(), sensor.type->presence()});
   }
   return out;
 }

@@ -106,6 +106,8 @@ class SensorType {
   /// The masks that hide a target from it (eq. 15's line of sight); presence and acoustic
   /// sensors are hidden by none.
   virtual common::SightBlockers blockers() const { return common::SightBlockers::none; }
+  /// Whether its report only says that a target is within its coverage (PresenceType).
+  virtual bool presence() const { return false; }
 };
 
 /// The value of z = h at a presence type's sensor: its believed position, which is what ONERA's
@@ -113,6 +115,7 @@ class SensorType {
 class PresenceType : public SensorType {
  public:
   common::MeasurementKind kind() const override { return common::MeasurementKind::position; }
+  bool presence() const override { return true; }
   std::vector<double> measure(const FieldSensor& sensor, const TargetView&) const override {
     return {sensor.pose.x, sensor.pose.y};
   }

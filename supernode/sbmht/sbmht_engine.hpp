@@ -3,9 +3,10 @@
 // track tree branches on every gated report and on a miss; its leaves are scored by the IMM's
 // likelihood ratio (track_score.hpp), judged by Wald's SPRT, clustered when they share reports, and
 // combined into the k best global hypotheses per cluster; the tracks' posteriors prune the leaves,
-// N-scan pruning keeps the branches that agree with the best hypothesis N scans back, and duplicate
+// N-scan pruning keeps the branches that agree with the best hypothesis N ticks back, and duplicate
 // leaves are merged. Reports are positions, bearings, radar plots or camera angles (docs/ONERA.md
-// §3 and §8); every kind but a bearing can start a track.
+// §3 and §8); every kind but a bearing can start a track. Where the scenario lists its sensors,
+// each sensor is a scan of its own, its silence weighed by its coverage (common/sensor_coverage.hpp).
 #pragma once
 
 #include <array>
@@ -46,9 +47,9 @@ struct SbmhtParams {
   double slow_time_constant = 30.0;
   double fast_time_constant = 10.0;
   double merge_radius = 0.0;
-  std::int32_t confirm_reports = 3;
+  std::int32_t confirm_reports = 3;   ///< a tentative track that took reports at this many ticks is confirmed
   double delivery_probability = 1.0;  ///< scales each sensor's PD where the engine has coverage
-  std::int32_t max_coast_ticks = 60;  ///< a leaf no sensor could see is kept this long  ///< a tentative track with this many reports is confirmed
+  std::int32_t max_coast_ticks = 60;  ///< a leaf no sensor could see for this many ticks running is deleted
 
   static SbmhtParams fromContext(const EngineContext& context);
 };
@@ -94,14 +95,15 @@ class SbmhtEngine final : public Engine {
     ImmState imm;
     TrackScore score;
     std::int32_t last_seen_tick = 0;
-    std::int32_t hits = 0;
+    std::int32_t hits = 0;           ///< ticks at which it took a report
     std::int32_t misses = 0;         ///< consecutive ticks without a report
     std::int32_t unseen_ticks = 0;   ///< consecutive ticks without a report that no sensor could see it
     bool perceivable = false;        ///< some sensor could have seen it at the current tick
+    bool born_this_tick = false;     ///< its tree started in a scan of the current tick
     double probability = 1.0;        ///< P(T) over the cluster's k best hypotheses
     /// beta of eqs. 19-20 over common::kClassCount classes: eq. 20 from its first report's class
     /// likelihoods (uniform without them), then eq. 19 at every report that carries them.
-    /// Fixed capacity (no allocation), as leaves are copied at every branch.
+    /// Of fixed capacity, so that copying a leaf at every branch allocates nothing for it.
     ClassVector classes = common::uniformClassVector();
     bool best = false;               ///< in the best global hypothesis
 
@@ -148,8 +150,9 @@ class SbmhtEngine final : public Engine {
                const std::vector<ReportTerms>& terms, const Scan& scan) const;
   /// PD and per-model Pe of the scan's sensor for the leaf's (time-updated) estimate.
   Detectability detectabilityOf(const Scan& scan, const ImmState& imm) const;
-  /// Closes the tick in every leaf's history; drops leaves whose run of misses is too unlikely or
-  /// that coasted out of the region.
+  /// Closes the tick in every leaf's history; drops leaves that missed max_misses ticks running
+  /// (without coverage), that no sensor could see for max_coast_ticks (with coverage), or that
+  /// coasted out of the region.
   void endTick(std::vector<Leaf>& leaves, std::int32_t tick) const;
   /// Of leaves whose last n_scan ticks took the same reports, keeps the best-scoring one.
   void mergeDuplicates(std::vector<Leaf>& leaves) const;

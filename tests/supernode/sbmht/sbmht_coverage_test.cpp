@@ -26,13 +26,6 @@ common::Observation fix(std::int32_t t, common::SensorId sensor, Vec2 at, Vec2 p
   return sensed(t, sensor, {at.x, at.y, 0.0, 0.0}, common::MeasurementKind::position, p, {0.0, 0.0}, {1.0, 1.0}, 1e-4);
 }
 
-/// The leaf in the best hypothesis of tree `id`, or null.
-const SbmhtEngine::Leaf* bestLeaf(const SbmhtEngine& engine, common::TrackId id) {
-  for (const auto& leaf : engine.leaves())
-    if (leaf.tree == id && leaf.best) return &leaf;
-  return nullptr;
-}
-
 TEST_CASE("sbmht fuses two sensors that report one target each tick into one track", "[sbmht]") {
   // Two all-round sensors of PD 0.9 both place the target every tick. Each sensor is a scan, so the
   // tree that took the first sensor's report takes the second's too, and the second sensor's birth
@@ -190,6 +183,45 @@ TEST_CASE("sbmht lets a sensor that cannot see the track leave its score alone",
   const double single = bestLeaf(alone.engine, alone.engine.confirmedTracks().at(0).track)->score.score;
   CHECK(run(std::numbers::pi) == single);  // facing away
   CHECK(run(0.0) < single - 5.0);          // facing the target: about ln 0.1 a tick
+}
+
+TEST_CASE("sbmht ends a track no sensor could see after max_coast_ticks", "[sbmht]") {
+  // One sensor covers a disc of radius 45 about (10, 50). The target runs east at 2 a tick from
+  // x = 12, 2t from the sensor: reported through tick 22 (44 <= 45), out of range from tick 23.
+  // The moving models' predictions follow it out (the stop model's lags, but its silence is no
+  // evidence), so ticks 23-32 are 10 unseen ticks: with max_coast_ticks = 10 the track is present
+  // through tick 31 and gone from tick 32, though the target is still in the region.
+  Harness h(sbmhtScenario({{"max_coast_ticks", 10}}), [&](EngineContext& c) {
+    c.coverage = {SensorCoverage{1, {10, 50}, 0.0, kAllRound, 45.0, 0.9, SightBlockers::none}};
+  });
+  auto truth = [](std::int32_t t) { return Vec2{10.0 + 2.0 * t, 50.0}; };
+  for (std::int32_t t = 1; t <= 35; ++t) {
+    const Vec2 p = truth(t);
+    if (std::hypot(p.x - 10.0, p.y - 50.0) <= 45.0)
+      h.step(t, {fix(t, 1, {10, 50}, p)});
+    else
+      h.step(t);
+    INFO("tick " << t);
+    if (t >= 5 && t <= 31) CHECK(h.engine.confirmedTracks().size() == 1);
+    if (t >= 32) CHECK(h.engine.confirmedTracks().empty());
+  }
+}
+
+/// A sensor model's settings that list one sensor, for the scenario check.
+struct OneListedSensor : common::SensorModelSettingsOf<OneListedSensor> {
+  std::vector<SensorCoverage> coverage(const common::Scenario&) const override {
+    return {SensorCoverage{0, {50, 50}, 0.0, kAllRound, 100.0, 0.9, SightBlockers::none}};
+  }
+  friend bool operator==(const OneListedSensor&, const OneListedSensor&) = default;
+};
+
+TEST_CASE("sbmht rejects listed sensors with more than one supernode", "[sbmht]") {
+  common::Scenario s = sbmhtScenario();
+  s.sensor_model.settings = std::make_shared<const OneListedSensor>();
+  CHECK_NOTHROW(resolveEngineParams(s, common::kNoStatistics));
+  s.supernodes = {{25.0, 50.0}, {75.0, 50.0}};
+  CHECK_THROWS_WITH(resolveEngineParams(s, common::kNoStatistics),
+                    Catch::Contains("scans each listed sensor, which needs one supernode for now"));
 }
 
 }  // namespace

@@ -58,6 +58,13 @@ inline const common::TrackEstimate* findTrack(const std::vector<common::TrackEst
   return nullptr;
 }
 
+/// The leaf of tree `tree` in the best hypothesis, or nullptr.
+inline const SbmhtEngine::Leaf* bestLeaf(const SbmhtEngine& engine, common::TrackId tree) {
+  for (const auto& leaf : engine.leaves())
+    if (leaf.tree == tree && leaf.best) return &leaf;
+  return nullptr;
+}
+
 inline double distance(const common::TrackEstimate& e, common::Vec2 p) { return std::hypot(e.x - p.x, e.y - p.y); }
 
 /// What a sensor at `pose` measures of the target at p moving at v, noise-free, as an observation
