@@ -36,11 +36,20 @@ void TrackQualityAccumulator::add(const std::vector<common::TargetState>& truth,
   }
   const auto assignment = common::solveAssignment(cost, rows, cols);
 
+  const std::int64_t call = calls_++;
   std::int64_t associated = 0;
   for (std::size_t i = 0; i < rows; ++i) {
     Sums& s = sums_[truth[i].id];
     ++s.alive;
+    // The segment ending at this tick, when the target was alive at the previous one too.
+    const double segment =
+        s.last_call == call - 1 ? std::hypot(truth[i].x - s.last_x, truth[i].y - s.last_y) : 0.0;
+    s.path += segment;
+    s.last_call = call;
+    s.last_x = truth[i].x;
+    s.last_y = truth[i].y;
     if (assignment[i] < 0) continue;
+    s.path_associated += segment;
     const auto& h = tracks[static_cast<std::size_t>(assignment[i])];
     const double ex = h.x - truth[i].x;
     const double ey = h.y - truth[i].y;
@@ -66,6 +75,9 @@ TrackQualitySummary TrackQualityAccumulator::summary() const {
     q.ticks_alive = s.alive;
     q.ticks_associated = s.associated;
     q.tlr = static_cast<double>(s.associated) / static_cast<double>(s.alive);  // alive >= 1 by construction
+    q.path_length = s.path;
+    q.path_length_associated = s.path_associated;
+    q.tlr_length = s.path > 0.0 ? s.path_associated / s.path : q.tlr;  // a target that never moved: its TLR
     q.errors_defined = s.associated > 0;
     if (q.errors_defined) {
       const double a = static_cast<double>(s.associated);
@@ -78,13 +90,17 @@ TrackQualitySummary TrackQualityAccumulator::summary() const {
   std::int64_t with_errors = 0;
   for (const auto& q : out.targets) {
     out.mean_tlr += q.tlr;
+    out.mean_tlr_length += q.tlr_length;
     if (!q.errors_defined) continue;
     ++with_errors;
     out.mean_rse_position += q.rse_position;
     out.mean_rse_velocity += q.rse_velocity;
     out.mean_position_error += q.mean_position_error;
   }
-  if (!out.targets.empty()) out.mean_tlr /= static_cast<double>(out.targets.size());
+  if (!out.targets.empty()) {
+    out.mean_tlr /= static_cast<double>(out.targets.size());
+    out.mean_tlr_length /= static_cast<double>(out.targets.size());
+  }
   out.means_defined = with_errors > 0;
   if (out.means_defined) {
     const auto n = static_cast<double>(with_errors);

@@ -26,6 +26,14 @@
 //   durations: TLR(j) = A_j / L_j, with A_j the number of ticks target j is associated with some
 //   track (any track: continuity, not identity) and L_j the number of ticks it is alive. 1 is a
 //   target tracked all its life.
+//   The paper's words ("associated track length / trajectory length") are also read literally,
+//   as path lengths: TLR_len(j) = P^A_j / P_j, with P_j = Σ ‖x*_t(j) − x*_{t−1}(j)‖ over the pairs
+//   of consecutive ticks (consecutive add() calls) at which j is alive, and P^A_j the same sum over
+//   the pairs whose later tick t has j associated. A tick's segment is the one that ends at it.
+//   The two differ when the target's speed varies: ticks of a slow or stopped target weigh as much
+//   as fast ones in TLR but little or nothing in TLR_len. A target that never moves (P_j = 0,
+//   including one alive a single tick) has no trajectory length to divide by: its TLR_len is
+//   defined as its duration TLR.
 //
 // ⟨dx⟩ (An et al., seeds/000 §5.2 and seeds/002): "the averaged position track error, ⟨dx⟩",
 //   given per target and per run without a formula. Read as the mean Euclidean position error
@@ -59,6 +67,9 @@ struct TargetQuality {
   double rse_position = 0.0;  ///< metres
   double rse_velocity = 0.0;  ///< metres per second
   double tlr = 0.0;  ///< A_j / L_j
+  double path_length = 0.0;  ///< P_j, metres
+  double path_length_associated = 0.0;  ///< P^A_j, metres
+  double tlr_length = 0.0;  ///< P^A_j / P_j, or tlr when P_j = 0
   double mean_position_error = 0.0;  ///< ⟨dx⟩, metres
 };
 
@@ -70,6 +81,7 @@ struct TrackQualitySummary {
   double mean_rse_velocity = 0.0;
   double mean_position_error = 0.0;
   double mean_tlr = 0.0;  ///< over every target; 0 without targets
+  double mean_tlr_length = 0.0;  ///< likewise
   std::int64_t false_track_ticks = 0;  ///< track-ticks left unassociated
   std::int64_t tracks_ignored_nonfinite = 0;
 };
@@ -81,8 +93,9 @@ class TrackQualityAccumulator {
   /// may be +infinity), else std::invalid_argument.
   explicit TrackQualityAccumulator(double association_gate);
 
-  /// Scores one tick: the targets alive and the tracks reported. Ticks are independent, so
-  /// their order does not matter.
+  /// Scores one tick: the targets alive and the tracks reported. Ticks must come in time order
+  /// (as RunScorer guarantees): the path-length TLR sums the target's moves between consecutive
+  /// calls; every other score is independent of the order.
   void add(const std::vector<common::TargetState>& truth, const std::vector<common::TrackEstimate>& tracks);
 
   /// The per-target scores of everything added so far.
@@ -95,12 +108,20 @@ class TrackQualityAccumulator {
     double squared_position = 0.0;
     double squared_velocity = 0.0;
     double position = 0.0;
+    double path = 0.0;
+    double path_associated = 0.0;
+    /// The add() call (0, 1, ...) at which the target was last alive; -2 before its first, so that
+    /// its first tick (even call 0) ends no segment.
+    std::int64_t last_call = -2;
+    double last_x = 0.0;
+    double last_y = 0.0;
   };
 
   double gate_;
   std::map<common::TargetId, Sums> sums_;
   std::int64_t false_track_ticks_ = 0;
   std::int64_t ignored_nonfinite_ = 0;
+  std::int64_t calls_ = 0;  ///< add() calls so far
 };
 
 }  // namespace wsn::aggregator

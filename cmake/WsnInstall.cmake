@@ -9,7 +9,7 @@ install(TARGETS wsntrack-node wsntrack-network wsntrack-supernode wsntrack-aggre
         RUNTIME DESTINATION ${WSN_INSTALL_ROLE_DIR})
 
 # The run loader is imported, and run alone it prints what a run directory holds.
-install(PROGRAMS tools/plot_run.py tools/sweep.py tools/wsntrack_run.py DESTINATION ${WSN_INSTALL_TOOLS_DIR})
+install(PROGRAMS tools/plot_run.py tools/sweep.py tools/wsntrack_run.py tools/onera_table.py DESTINATION ${WSN_INSTALL_TOOLS_DIR})
 
 install(DIRECTORY scenarios/ DESTINATION ${WSN_INSTALL_SCENARIO_DIR} FILES_MATCHING PATTERN "*.yaml")
 # The sweep specs name their scenario relative to the data directory, where the scenarios are too.

@@ -44,6 +44,7 @@ METRIC_SOURCES = {
     "boundary_id_switches": ("boundary IDsw", ("boundary", "boundary", "id_switches"), None),
     "boundary_fragmentations": ("boundary frag", ("boundary", "boundary", "fragmentations"), None),
     "tlr": ("TLR", ("track_quality", "mean_tlr"), ("track_quality", "means_defined")),
+    "tlr_length": ("TLR length", ("track_quality", "mean_tlr_length"), ("track_quality", "means_defined")),
     "position_error": ("<dx>", ("track_quality", "mean_position_error"), ("track_quality", "means_defined")),
 }
 # The same metrics of the settled stream (the fixed-lag, smoothed estimate; docs/METRICS.md, "Track

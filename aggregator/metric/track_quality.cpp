@@ -1,5 +1,5 @@
-// Plugin of the per-target track quality RSE, TLR and <dx> (aggregator/track_quality.hpp):
-// metrics.json's "track_quality" block.
+// Plugin of the per-target track quality RSE, TLR (of duration and of path length) and <dx>
+// (aggregator/track_quality.hpp): metrics.json's "track_quality" block.
 #include <memory>
 
 #include "aggregator/metric/metric.hpp"
@@ -28,12 +28,16 @@ class TrackQualityMetric final : public Metric {
                              {"rse_position", t.rse_position},
                              {"rse_velocity", t.rse_velocity},
                              {"tlr", t.tlr},
+                             {"path_length", t.path_length},
+                             {"path_length_associated", t.path_length_associated},
+                             {"tlr_length", t.tlr_length},
                              {"mean_position_error", t.mean_position_error}});
     return {Json{{"gate", gate_},
                  {"means_defined", q.means_defined},
                  {"mean_rse_position", q.mean_rse_position},
                  {"mean_rse_velocity", q.mean_rse_velocity},
                  {"mean_tlr", q.mean_tlr},
+                 {"mean_tlr_length", q.mean_tlr_length},
                  {"mean_position_error", q.mean_position_error},
                  {"false_track_ticks", q.false_track_ticks},
                  {"targets", std::move(targets)}}};
@@ -47,7 +51,8 @@ class TrackQualityMetric final : public Metric {
 }  // namespace
 
 MetricSpec trackQualityMetric() {
-  return {"track_quality", "per-target RSE of position and velocity, TLR and <dx>, and their run means",
+  return {"track_quality",
+          "per-target RSE of position and velocity, TLR (duration and path length) and <dx>, and their run means",
           {"quality_gate"},
           [](const common::MetricsConfig& config, const std::vector<common::Vec2>&) -> std::unique_ptr<Metric> {
             return std::make_unique<TrackQualityMetric>(config.quality_gate);

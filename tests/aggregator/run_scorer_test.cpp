@@ -128,6 +128,7 @@ TEST_CASE("a perfect tracker over a real truth with births and deaths scores no 
   REQUIRE(targets.size() == ever.size());
   for (const auto& q : targets) {
     CHECK(q.at("tlr").get<double>() == 1.0);
+    CHECK(q.at("tlr_length").get<double>() == 1.0);
     CHECK(q.at("rse_position").get<double>() == 0.0);
     CHECK(q.at("rse_velocity").get<double>() == 0.0);
     CHECK(q.at("mean_position_error").get<double>() == 0.0);

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
@@ -150,6 +151,8 @@ TEST_CASE("run means weigh every target once: RSE and dx over tracked targets, T
   CHECK(s.mean_rse_velocity == Approx(0.0).margin(1e-12));
   CHECK(s.mean_position_error == Approx(2.25).margin(1e-12));
   CHECK(s.mean_tlr == Approx(0.5).margin(1e-12));
+  // No target moves, so each path-length TLR is its duration TLR.
+  CHECK(s.mean_tlr_length == Approx(0.5).margin(1e-12));
 }
 
 TEST_CASE("run means are undefined when no target was ever tracked", "[track_quality]") {
@@ -162,4 +165,80 @@ TEST_CASE("run means are undefined when no target was ever tracked", "[track_qua
   CHECK_FALSE(s.means_defined);
   CHECK(s.mean_rse_position == 0.0);
   CHECK(s.mean_tlr == 0.0);
+  CHECK(s.mean_tlr_length == 0.0);
+}
+
+TEST_CASE("path-length TLR weighs each tick by the distance the target moved, unlike duration TLR", "[track_quality]") {
+  // Target 1 moves along x through 0, 1, 2, 3, 4, 8 at ticks 1-6 (1 m/s, then 4 m/s): the segments
+  // ending at ticks 2-6 are 1, 1, 1, 1, 4, path P = 8. A track sits on it at ticks 1-5 only.
+  //   TLR     = 5 / 6 = 0.833333
+  //   TLR_len = (1 + 1 + 1 + 1) / 8 = 0.5  (tick 1 ends no segment, tick 6's 4 m is unassociated)
+  // Target 2 follows the same path 100 m higher, tracked at tick 6 only: the fast last segment.
+  //   TLR     = 1 / 6 = 0.166667
+  //   TLR_len = 4 / 8 = 0.5
+  const std::vector<double> xs{0, 1, 2, 3, 4, 8};
+  TrackQualityAccumulator acc(1.0);
+  for (std::size_t k = 0; k < xs.size(); ++k) {
+    std::vector<TrackEstimate> tracks;
+    if (k < 5) tracks.push_back(track(1, xs[k], 0));
+    if (k == 5) tracks.push_back(track(2, xs[k], 100));
+    acc.add({target(1, xs[k], 0), target(2, xs[k], 100)}, tracks);
+  }
+  const TrackQualitySummary s = acc.summary();
+  REQUIRE(s.targets.size() == 2);
+  const TargetQuality& a = s.targets[0];
+  CHECK(a.tlr == Approx(5.0 / 6.0).margin(1e-12));
+  CHECK(a.path_length == Approx(8.0).margin(1e-12));
+  CHECK(a.path_length_associated == Approx(4.0).margin(1e-12));
+  CHECK(a.tlr_length == Approx(0.5).margin(1e-12));
+  const TargetQuality& b = s.targets[1];
+  CHECK(b.tlr == Approx(1.0 / 6.0).margin(1e-12));
+  CHECK(b.path_length == Approx(8.0).margin(1e-12));
+  CHECK(b.path_length_associated == Approx(4.0).margin(1e-12));
+  CHECK(b.tlr_length == Approx(0.5).margin(1e-12));
+  CHECK(s.mean_tlr == Approx(0.5).margin(1e-12));
+  CHECK(s.mean_tlr_length == Approx(0.5).margin(1e-12));
+}
+
+TEST_CASE("path-length TLR of a stopped target is its duration TLR and 0 for one tracked only while stopped",
+          "[track_quality]") {
+  // Target 1 stands at (5, 5) for 4 ticks, tracked at the first only: P = 0, so TLR_len = TLR = 0.25.
+  // Target 2 moves 3 m then 4 m (ticks 1-3: (50, 0), (53, 0), (53, 4)) and stands there at ticks
+  // 4-5; tracked at ticks 1, 4 and 5, the ticks at which it ends no move: P = 7, P^A = 0,
+  // TLR = 3 / 5 = 0.6, TLR_len = 0.
+  TrackQualityAccumulator acc(1.0);
+  acc.add({target(1, 5, 5), target(2, 50, 0)}, {track(1, 5, 5), track(2, 50, 0)});
+  acc.add({target(1, 5, 5), target(2, 53, 0)}, {});
+  acc.add({target(1, 5, 5), target(2, 53, 4)}, {});
+  acc.add({target(1, 5, 5), target(2, 53, 4)}, {track(2, 53, 4)});
+  acc.add({target(2, 53, 4)}, {track(2, 53, 4)});
+  const TrackQualitySummary s = acc.summary();
+  REQUIRE(s.targets.size() == 2);
+  CHECK(s.targets[0].path_length == 0.0);
+  CHECK(s.targets[0].tlr == Approx(0.25).margin(1e-12));
+  CHECK(s.targets[0].tlr_length == Approx(0.25).margin(1e-12));
+  CHECK(s.targets[1].path_length == Approx(7.0).margin(1e-12));
+  CHECK(s.targets[1].path_length_associated == 0.0);
+  CHECK(s.targets[1].tlr == Approx(0.6).margin(1e-12));
+  CHECK(s.targets[1].tlr_length == 0.0);
+  CHECK(s.mean_tlr_length == Approx(0.125).margin(1e-12));
+}
+
+TEST_CASE("path-length TLR counts no segment across ticks at which the target is absent", "[track_quality]") {
+  // Target 1 at (0, 0), (3, 4), absent one tick, then (100, 0) and (106, 8), tracked throughout:
+  // P = 5 + 10 = 15 (the jump over the gap is no segment), P^A = 15, TLR_len = 1. Untracked at the
+  // last tick instead: P^A = 5, TLR_len = 1/3.
+  for (const bool last_tracked : {true, false}) {
+    TrackQualityAccumulator acc(1.0);
+    acc.add({target(1, 0, 0)}, {track(1, 0, 0)});
+    acc.add({target(1, 3, 4)}, {track(1, 3, 4)});
+    acc.add({}, {});
+    acc.add({target(1, 100, 0)}, {track(1, 100, 0)});
+    acc.add({target(1, 106, 8)}, last_tracked ? std::vector<TrackEstimate>{track(1, 106, 8)}
+                                               : std::vector<TrackEstimate>{});
+    const TrackQualitySummary s = acc.summary();
+    REQUIRE(s.targets.size() == 1);
+    CHECK(s.targets[0].path_length == Approx(15.0).margin(1e-12));
+    CHECK(s.targets[0].tlr_length == Approx(last_tracked ? 1.0 : 5.0 / 15.0).margin(1e-12));
+  }
 }

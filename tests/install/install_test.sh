@@ -30,7 +30,7 @@ check_tree() {
     [ -x "$root/$WSN_ROLE_DIR/wsntrack-$name" ] || fail "$root/$WSN_ROLE_DIR/wsntrack-$name missing or not executable"
     [ ! -e "$root/$WSN_BINDIR/wsntrack-$name" ] || fail "wsntrack-$name is in $WSN_BINDIR as well as $WSN_ROLE_DIR"
   done
-  for name in plot_run.py sweep.py; do
+  for name in plot_run.py sweep.py onera_table.py; do
     [ -x "$root/$WSN_DATA_DIR/tools/$name" ] || fail "$root/$WSN_DATA_DIR/tools/$name missing or not executable"
   done
   [ -x "$root/$WSN_DATA_DIR/tools/wsntrack_run.py" ] || fail "$root/$WSN_DATA_DIR/tools/wsntrack_run.py missing or not executable"

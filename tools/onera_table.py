@@ -1,0 +1,285 @@
+#!/usr/bin/python3
+"""Table II of Pannetier et al. (FUSION 2014) beside our runs: per target RSE and TLR of algorithm 1
+(with the road network) and algorithm 2 (without), as a Markdown table on stdout.
+
+  onera_table.py --a1 RUN_DIR... --a2 RUN_DIR...   both algorithms, with the A1 - A2 deltas
+  onera_table.py --a2 RUN_DIR...                   algorithm 2 only, beside the paper's A1 and A2
+  onera_table.py RUN_DIR...                        the same as --a2 RUN_DIR...
+
+Standard library only, like tools/sweep.py's flag form, so that it runs with any python3.
+"""
+
+import argparse
+import json
+import math
+import statistics
+import sys
+from pathlib import Path
+
+# Table II of Benjamin Pannetier, Jean Dezert and Genevieve Sella, "Multiple target tracking with
+# wireless sensor network for ground battlefield surveillance", Proceedings of the 17th International
+# Conference on Information Fusion (FUSION 2014), Salamanca, Spain, July 2014 (hal-01070361), §V:
+# per target (1-20), (RSE in metres, TLR) of algorithm 1 (with roads) and of algorithm 2 (without).
+PAPER_A1 = [(10.48, 0.99), (7.43, 1.0), (5.32, 1.0), (6.20, 0.88), (6.35, 1.0),
+            (5.66, 0.68), (22.45, 0.60), (3.43, 1.0), (7.07, 0.86), (12.79, 0.63),
+            (6.72, 0.82), (6.58, 0.81), (8.56, 0.51), (1.91, 1.0), (10.39, 0.37),
+            (12.77, 0.34), (6.44, 0.78), (9.30, 0.48), (7.06, 0.60), (18.55, 0.38)]
+PAPER_A2 = [(19.43, 0.80), (7.70, 1.0), (12.00, 1.0), (6.08, 0.90), (11.74, 0.59),
+            (5.20, 0.68), (16.11, 0.85), (7.42, 0.90), (10.28, 0.50), (12.52, 0.45),
+            (8.42, 0.85), (7.71, 0.89), (9.87, 0.61), (4.19, 1.0), (9.02, 0.51),
+            (12.67, 0.31), (9.33, 0.51), (8.87, 0.46), (7.56, 0.44), (13.40, 0.88)]
+
+DESCRIPTION = __doc__ + """
+Each RUN_DIR is a run directory written by 'wsntrack run' (or its metrics.json itself). The tool reads
+metrics.json's track_quality block (docs/METRICS.md): per target, in file order (increasing target id),
+rse_position, tlr (associated ticks / alive ticks) and tlr_length (associated path length / path
+length). Target N of the table is the N-th target of the file, which onera2014_like numbers as the
+paper does. Several runs of an algorithm (one per seed, say) are averaged per target: RSE over the
+runs in which the target was ever associated (errors_defined), TLR over every run. Every run must
+have the same number of targets.
+
+The table lists the paper's A1 and A2 values, ours (RSE, TLR, TLR_len), and the A1 - A2 deltas of
+the paper and, with both --a1 and --a2, of ours. Below it, the statistics the paper's text draws from
+Table II: mean and median RSE and TLR, the number of targets on which A1's RSE is lower, and on which
+A1's TLR is higher, equal or lower (compared at the paper's two decimals, as its table gives them).
+Targets whose RSE is undefined in every run are left out of the RSE statistics and shown as '-'.
+
+Exit status: 0, 1 when a run directory or its metrics.json is missing or malformed (the message
+names the file and what was expected), 2 on a usage error."""
+
+PAPER_TARGETS = len(PAPER_A1)
+
+
+class RunError(Exception):
+    """A run directory that cannot be tabulated; the message names the file."""
+
+
+def _number(value, where, path):
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise RunError(f"{path}: {where}: expected a finite number, got {json.dumps(value)}")
+    return float(value)
+
+
+def read_run(arg):
+    """The per-target (rse or None, tlr, tlr_length or None) of one run, in file order."""
+    path = Path(arg)
+    if path.is_dir():
+        path = path / "metrics.json"
+    elif not path.exists():
+        raise RunError(f"{arg}: no such run directory (expected a directory written by 'wsntrack run')")
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise RunError(f"{path}: missing (expected the metrics.json 'wsntrack run' writes at the end of a run; "
+                       "did the run finish?)") from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise RunError(f"{path}: cannot read ({error})") from None
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as error:
+        raise RunError(f"{path}: not JSON (line {error.lineno}, column {error.colno}: {error.msg})") from None
+    if not isinstance(data, dict) or not isinstance(data.get("track_quality"), dict):
+        raise RunError(f"{path}: no track_quality object (expected metrics.json with the track_quality "
+                       "metric's block, docs/METRICS.md)")
+    targets = data["track_quality"].get("targets")
+    if not isinstance(targets, list):
+        raise RunError(f"{path}: track_quality.targets: expected a list of targets, got {json.dumps(targets)}")
+    rows = []
+    for i, entry in enumerate(targets):
+        where = f"track_quality.targets[{i}]"
+        if not isinstance(entry, dict):
+            raise RunError(f"{path}: {where}: expected an object, got {json.dumps(entry)}")
+        for key in ("errors_defined", "rse_position", "tlr"):
+            if key not in entry:
+                raise RunError(f"{path}: {where}: no '{key}' (expected errors_defined, rse_position, tlr)")
+        if not isinstance(entry["errors_defined"], bool):
+            raise RunError(f"{path}: {where}.errors_defined: expected true or false, "
+                           f"got {json.dumps(entry['errors_defined'])}")
+        rse = _number(entry["rse_position"], where + ".rse_position", path)
+        tlr = _number(entry["tlr"], where + ".tlr", path)
+        # Runs scored before the path-length TLR existed have no tlr_length: shown as '-'.
+        tlr_length = _number(entry["tlr_length"], where + ".tlr_length", path) if "tlr_length" in entry else None
+        rows.append((rse if entry["errors_defined"] else None, tlr, tlr_length))
+    return rows
+
+
+def mean_or_none(values):
+    values = [v for v in values if v is not None]
+    return sum(values) / len(values) if values else None
+
+
+def average_runs(runs, label):
+    """Per target (rse, tlr, tlr_length) averaged over the runs; every run must have the same targets."""
+    counts = {len(rows) for _, rows in runs}
+    if len(counts) != 1:
+        listing = ", ".join(f"{arg} ({len(rows)})" for arg, rows in runs)
+        raise RunError(f"{label} runs disagree on the number of targets: {listing}")
+    n = counts.pop()
+    out = []
+    for j in range(n):
+        rse = mean_or_none([rows[j][0] for _, rows in runs])
+        tlr = mean_or_none([rows[j][1] for _, rows in runs])
+        lengths = [rows[j][2] for _, rows in runs]
+        tlr_length = None if any(v is None for v in lengths) else mean_or_none(lengths)
+        out.append((rse, tlr, tlr_length))
+    return out
+
+
+def fmt(value, digits):
+    return "-" if value is None else f"{value:.{digits}f}"
+
+
+def fmt_delta(a, b, digits):
+    return "-" if a is None or b is None else f"{a - b:+.{digits}f}"
+
+
+def stats(values):
+    """(mean, median) of the defined values, or (None, None)."""
+    values = [v for v in values if v is not None]
+    if not values:
+        return None, None
+    return sum(values) / len(values), statistics.median(values)
+
+
+def compare(a1, a2, k=1):
+    """For the targets both define: (number, A1 RSE lower) and (A1 TLR higher, equal, lower target
+    numbers), TLR being column k of the rows (1 duration, 2 path length)."""
+    rse_pairs = [(a[0], b[0]) for a, b in zip(a1, a2) if a[0] is not None and b[0] is not None]
+    rse_lower = sum(1 for x, y in rse_pairs if x < y)
+    higher = equal = 0
+    lower = []
+    for j, (a, b) in enumerate(zip(a1, a2)):
+        x, y = round(a[k], 2), round(b[k], 2)  # at the paper's precision
+        if x > y:
+            higher += 1
+        elif x == y:
+            equal += 1
+        else:
+            lower.append(j + 1)
+    return len(rse_pairs), rse_lower, higher, equal, lower
+
+
+def table(a1, a2, n_a1, n_a2):
+    """The Markdown lines: per-target table, its mean and median rows, then the comparisons."""
+    n = max(PAPER_TARGETS, len(a1 or []), len(a2 or []))
+    ours = [(name, rows) for name, rows in (("A1", a1), ("A2", a2)) if rows is not None]
+    header = ["target", "paper A1 RSE", "paper A1 TLR", "paper A2 RSE", "paper A2 TLR",
+              "paper Δ RSE", "paper Δ TLR"]
+    for name, _ in ours:
+        header += [f"{name} RSE", f"{name} TLR", f"{name} TLR_len"]
+    if a1 is not None and a2 is not None:
+        header += ["Δ RSE", "Δ TLR", "Δ TLR_len"]
+
+    def cell(rows, j, k):
+        return rows[j][k] if rows is not None and j < len(rows) else None
+
+    def paper(rows, j, k):
+        return rows[j][k] if j < PAPER_TARGETS else None
+
+    # The numeric columns, per target: (values, digits, is a delta).
+    columns = [([paper(PAPER_A1, j, 0) for j in range(n)], 2, False),
+               ([paper(PAPER_A1, j, 1) for j in range(n)], 2, False),
+               ([paper(PAPER_A2, j, 0) for j in range(n)], 2, False),
+               ([paper(PAPER_A2, j, 1) for j in range(n)], 2, False)]
+    for k in (0, 1):
+        columns.append(([None if j >= PAPER_TARGETS else PAPER_A1[j][k] - PAPER_A2[j][k] for j in range(n)], 2, True))
+    for _, rows in ours:
+        for k in (0, 1, 2):
+            columns.append(([cell(rows, j, k) for j in range(n)], 2, False))
+    if a1 is not None and a2 is not None:
+        for k in (0, 1, 2):
+            columns.append(([None if cell(a1, j, k) is None or cell(a2, j, k) is None
+                             else cell(a1, j, k) - cell(a2, j, k) for j in range(n)], 2, True))
+
+    def show(value, digits, delta):
+        if value is None:
+            return "-"
+        if delta and abs(value) < 0.5 * 10 ** -digits:
+            value = 0.0  # no "-0.00" from rounding
+        return f"{value:+.{digits}f}" if delta else f"{value:.{digits}f}"
+
+    lines = ["| " + " | ".join(header) + " |", "|" + "|".join("---:" for _ in header) + "|"]
+    for j in range(n):
+        lines.append("| " + " | ".join([str(j + 1)] + [show(values[j], d, delta) for values, d, delta in columns]) + " |")
+    for label, which in (("mean", 0), ("median", 1)):
+        cells = []
+        for values, d, delta in columns:
+            cells.append(show(stats(values)[which], d + 1, delta))
+        lines.append("| **" + label + "** | " + " | ".join(cells) + " |")
+
+    lines.append("")
+    runs = ", ".join(f"{name} {count} run{'s' if count != 1 else ''}"
+                     for name, count in (("A1", n_a1), ("A2", n_a2)) if count)
+    lines.append(f"Ours: {runs}, each target's values the mean over them. TLR = associated ticks / alive "
+                 "ticks; TLR_len = associated path length / path length. Means and medians over the targets "
+                 "(RSE over those with a defined RSE).")
+    lines.append("")
+
+    def describe(pairs_a1, pairs_a2, who, key=1, what="TLR"):
+        count, rse_lower, higher, equal, lower = compare(pairs_a1, pairs_a2, key)
+        lower_ids = ", ".join(str(j) for j in lower) or "none"
+        return (f"- {who}: A1's RSE lower on {rse_lower}/{count} targets; A1's {what} higher on {higher}, "
+                f"equal on {equal}, lower on {len(lower)} (targets {lower_ids})")
+
+    paper_mean_a1, paper_median_a1 = stats([r[0] for r in PAPER_A1])
+    paper_mean_a2, paper_median_a2 = stats([r[0] for r in PAPER_A2])
+    lines.append(f"- paper: mean RSE {paper_mean_a1:.2f} vs {paper_mean_a2:.2f} m (medians {paper_median_a1:.3f}, "
+                 f"{paper_median_a2:.3f}); mean TLR {stats([r[1] for r in PAPER_A1])[0]:.3f} vs "
+                 f"{stats([r[1] for r in PAPER_A2])[0]:.3f}")
+    lines.append(describe(PAPER_A1, PAPER_A2, "paper"))
+    for name, rows in ours:
+        mean_rse, median_rse = stats([r[0] for r in rows])
+        mean_tlr, median_tlr = stats([r[1] for r in rows])
+        mean_len, median_len = stats([r[2] for r in rows])
+        lines.append(f"- ours {name}: mean RSE {fmt(mean_rse, 2)} m (median {fmt(median_rse, 3)}); mean TLR "
+                     f"{fmt(mean_tlr, 3)} (median {fmt(median_tlr, 3)}); mean TLR_len {fmt(mean_len, 3)} "
+                     f"(median {fmt(median_len, 3)})")
+    if a1 is not None and a2 is not None:
+        lines.append(describe(a1, a2, "ours"))
+        if all(r[2] is not None for r in a1 + a2):
+            lines.append(describe(a1, a2, "ours, path length", key=2, what="TLR_len"))
+    return lines
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(prog="onera_table.py", description=DESCRIPTION,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("runs", nargs="*", metavar="RUN_DIR",
+                        help="algorithm 2 runs (the engine has no road model yet), as with --a2")
+    parser.add_argument("--a1", nargs="+", metavar="RUN_DIR", default=[],
+                        help="runs of algorithm 1 (with the road network)")
+    parser.add_argument("--a2", nargs="+", metavar="RUN_DIR", default=[],
+                        help="runs of algorithm 2 (without the road network)")
+    args = parser.parse_args(argv)
+    if args.runs and args.a2:
+        parser.error("give algorithm 2's runs either as RUN_DIR... or after --a2, not both")
+    a2_args = args.a2 or args.runs
+    if not args.a1 and not a2_args:
+        parser.error("no run directories: give RUN_DIR..., --a2 RUN_DIR... and/or --a1 RUN_DIR...")
+    try:
+        a1_runs = [(arg, read_run(arg)) for arg in args.a1]
+        a2_runs = [(arg, read_run(arg)) for arg in a2_args]
+        a1 = average_runs(a1_runs, "--a1") if a1_runs else None
+        a2 = average_runs(a2_runs, "--a2") if a2_runs else None
+        if a1 is not None and a2 is not None and len(a1) != len(a2):
+            raise RunError(f"the A1 runs have {len(a1)} targets and the A2 runs {len(a2)}: they must be "
+                           "runs of the same scenario")
+    except RunError as error:
+        print(f"onera_table.py: {error}", file=sys.stderr)
+        return 1
+    for name, rows in (("A1", a1), ("A2", a2)):
+        if rows is not None and len(rows) != PAPER_TARGETS:
+            print(f"onera_table.py: note: the {name} runs have {len(rows)} targets, Table II has {PAPER_TARGETS}; "
+                  "rows are matched by position", file=sys.stderr)
+        if rows is not None and any(r[2] is None for r in rows):
+            print(f"onera_table.py: note: some {name} run has no tlr_length (scored before it existed): "
+                  "TLR_len is shown as '-'", file=sys.stderr)
+    print("\n".join(table(a1, a2, len(a1_runs), len(a2_runs))))
+    return 0
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main(sys.argv[1:]))
+    except KeyboardInterrupt:
+        sys.exit(130)
