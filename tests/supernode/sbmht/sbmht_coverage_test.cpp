@@ -185,6 +185,31 @@ TEST_CASE("sbmht lets a sensor that cannot see the track leave its score alone",
   CHECK(run(0.0) < single - 5.0);          // facing the target: about ln 0.1 a tick
 }
 
+TEST_CASE("sbmht starts no tree from a presence sensor but lets it update one", "[sbmht]") {
+  // Sensor 1 is a presence sensor (a beacon): its report of the target starts nothing. Sensor 2
+  // places the target from tick 6 on and starts its track; from then on the beacon's reports are
+  // taken by that track as well (two reports a tick in its best leaf).
+  const Vec2 beacon{30, 50};
+  const Vec2 other{90, 10};
+  Harness h(sbmhtScenario(), [&](EngineContext& c) {
+    SensorCoverage presence{1, beacon, 0.0, kAllRound, 60.0, 0.9, SightBlockers::none};
+    presence.presence = true;
+    c.coverage = {presence, SensorCoverage{2, other, 0.0, kAllRound, 200.0, 0.9, SightBlockers::none}};
+  });
+  auto truth = [](std::int32_t t) { return Vec2{20.0 + t, 50.0}; };
+  for (std::int32_t t = 1; t <= 5; ++t) {
+    h.step(t, {fix(t, 1, beacon, truth(t))});
+    CHECK(h.engine.leaves().empty());
+  }
+  for (std::int32_t t = 6; t <= 15; ++t) h.step(t, {fix(t, 1, beacon, truth(t)), fix(t, 2, other, truth(t))});
+  const auto tracks = h.engine.confirmedTracks();
+  REQUIRE(tracks.size() == 1);
+  CHECK(tracks[0].track == common::track_id::birth(0, 6, 2));
+  const auto* leaf = bestLeaf(h.engine, tracks[0].track);
+  REQUIRE(leaf != nullptr);
+  CHECK(leaf->reportsAt(15).size() == 2);
+}
+
 TEST_CASE("sbmht ends a track no sensor could see after max_coast_ticks", "[sbmht]") {
   // One sensor covers a disc of radius 45 about (10, 50). The target runs east at 2 a tick from
   // x = 12, 2t from the sensor: reported through tick 22 (44 <= 45), out of range from tick 23.
