@@ -321,7 +321,7 @@ const config::FieldTable<SbmhtParams>& paramTable() {
                   "mean sojourn in the manoeuvring constant-velocity model"),
           real<P>("merge_radius", &P::merge_radius, config::closed(0.0, 1e6), "separations",
                   common::kMergeRadiusMeaning),
-          integer<P>("confirm_reports", &P::confirm_reports, 1.0, 1000.0, "reports",
+          integer<P>("confirm_reports", &P::confirm_reports, 1.0, 1000.0, "ticks",
                      "a tentative track that took reports at this many ticks is confirmed, even before its score reaches the "
                      "SPRT's threshold: the evidence the scenario's clutter makes decisive (1 without clutter)"),
           real<P>("delivery_probability", &P::delivery_probability, config::closed(0.001, 1.0), "",
