@@ -88,6 +88,7 @@ TEST_CASE("sbmht classes: a report with class likelihoods adds ln 1.35 to the sc
     REQUIRE(born != nullptr);
     REQUIRE(born->classes.size() == 6);
     for (int i = 0; i < 6; ++i) CHECK(born->classes(i) == Approx(c0[static_cast<std::size_t>(i)]).margin(1e-15));
+    const ClassVector born_classes = born->classes;  // the next step replaces the engine's leaves
     const std::vector<double> c = with_c ? std::vector<double>{0.8, 0.1, 0.1, 0.8, 0.1, 0.1} : std::vector<double>{};
     h.step(2, {classified(2, sensor, 20.5, 50.0, c)});
     const auto* hit = leafTaking(h.engine, tree, 2, {0});
@@ -100,7 +101,7 @@ TEST_CASE("sbmht classes: a report with class likelihoods adds ln 1.35 to the sc
       for (int i = 3; i < 6; ++i) CHECK(hit->classes(i) == 0.0);
     } else {
       // A report without c changes nothing: beta stays eq. 20's.
-      for (int i = 0; i < 6; ++i) CHECK(hit->classes(i) == born->classes(i));
+      for (int i = 0; i < 6; ++i) CHECK(hit->classes(i) == born_classes(i));
     }
   }
   CHECK(score_with - score_without == Approx(std::log(1.35)).margin(1e-9));
