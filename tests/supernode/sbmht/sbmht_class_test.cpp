@@ -152,26 +152,23 @@ TEST_CASE("sbmht classes: class evidence picks the right one of two reports in t
   // .85 / .03 = 28.3), so the human report scores Delta L^c = ln(c_h'beta / c_h'beta_e) ~
   // ln(.85 / (1/6)) = 1.63 and the other ln(.03 / (1/6)) = -1.71: 3.3 apart.
   const common::TrackId tree = common::track_id::birth(0, 1, 1);
-  auto run = [&](bool with_classes, bool human_first) {
+  auto run = [&](bool human_first) {
     Harness h(sbmhtScenario());
-    auto c = [&](common::TargetClass declared) {
-      return with_classes ? cameraDeclaring(declared) : std::vector<double>{};
-    };
     for (std::int32_t t = 1; t <= 7; ++t)
-      h.step(t, {classified(t, 1, 20.0 + t, 50.0, c(common::TargetClass::kHuman))});
+      h.step(t, {classified(t, 1, 20.0 + t, 50.0, cameraDeclaring(common::TargetClass::kHuman))});
     const std::int32_t t = 8;
     const auto first = human_first ? common::TargetClass::kHuman : common::TargetClass::kWheeledLight;
     const auto second = human_first ? common::TargetClass::kWheeledLight : common::TargetClass::kHuman;
     // Sensors 2 and 3: canonical order puts sensor 2's report first (index 0).
-    h.step(t, {classified(t, 2, 28.0, 50.5, c(first)), classified(t, 3, 28.0, 49.5, c(second))});
+    h.step(t, {classified(t, 2, 28.0, 50.5, cameraDeclaring(first)), classified(t, 3, 28.0, 49.5, cameraDeclaring(second))});
     const auto* best = bestLeaf(h.engine, tree);
     REQUIRE(best != nullptr);
     const auto took = best->reportsAt(t);
     return took.size() == 1 ? took[0] : -1;
   };
   // With classes the track takes the human report, whichever comes first.
-  CHECK(run(true, true) == 0);
-  CHECK(run(true, false) == 1);
+  CHECK(run(true) == 0);
+  CHECK(run(false) == 1);
 }
 
 TEST_CASE("sbmht classes: two targets of different classes keep their identities where they meet",

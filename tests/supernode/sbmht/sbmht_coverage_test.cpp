@@ -240,6 +240,14 @@ struct OneListedSensor : common::SensorModelSettingsOf<OneListedSensor> {
   friend bool operator==(const OneListedSensor&, const OneListedSensor&) = default;
 };
 
+TEST_CASE("sbmht rejects a sensor listed twice in its coverage", "[sbmht]") {
+  const SensorCoverage sensor{3, {50, 50}, 0.0, kAllRound, 100.0, 0.9, SightBlockers::none};
+  const common::Scenario s = sbmhtScenario();
+  EngineContext context = engineContext(s, 0);
+  context.coverage = {sensor, sensor};
+  CHECK_THROWS_WITH(SbmhtEngine(context), Catch::Contains("sensor 3 is listed twice"));
+}
+
 TEST_CASE("sbmht rejects listed sensors with more than one supernode", "[sbmht]") {
   common::Scenario s = sbmhtScenario();
   s.sensor_model.settings = std::make_shared<const OneListedSensor>();
