@@ -16,7 +16,10 @@
 #include "common/shared_derivations.hpp"
 #include "common/track_confirmation.hpp"
 #include "common/track_id.hpp"
+#include "common/terrain.hpp"
 #include "supernode/sbmht/measurement_models.hpp"
+#include "supernode/sbmht/reach.hpp"
+#include "supernode/sbmht/road.hpp"
 
 namespace wsn::supernode::sbmht {
 namespace {
@@ -94,6 +97,16 @@ std::map<std::string, common::ParamDerivation> derivations() {
                         [](const common::StatisticsSource& stats, const Resolved&) {
                           return Derived{stats().process_noise_sigma, "q"};
                         }};
+  // docs/ONERA.md §2 proposes sigma_d = 1.0 and sigma_n = 0.1 m/s^2 beside sigma_a = 0.3: a road lets a
+  // target change speed along it more freely than a quiet CV model, and hardly leave it.
+  d["road_along_sigma"] = {"10/3 x the targets' process noise q (docs/ONERA.md §2: 1.0 against 0.3 m/s^2)",
+                           [](const common::StatisticsSource& stats, const Resolved&) {
+                             return Derived{10.0 / 3.0 * stats().process_noise_sigma, "10/3 q"};
+                           }};
+  d["road_across_sigma"] = {"q / 3 (docs/ONERA.md §2: 0.1 against 0.3 m/s^2)",
+                            [](const common::StatisticsSource& stats, const Resolved&) {
+                              return Derived{stats().process_noise_sigma / 3.0, "q / 3"};
+                            }};
   d["cv_fast_sigma"] = {"5 x the targets' process noise q (docs/ONERA.md §2: 1.5 against 0.3 m/s^2)",
                         [](const common::StatisticsSource& stats, const Resolved&) {
                           return Derived{5.0 * stats().process_noise_sigma, "5 q"};
@@ -262,6 +275,25 @@ ReportTerms termsOf(const common::Observation& o, double r2, double lambda_fa, c
   return t;
 }
 
+/// A bearing says nothing along its line, but its sensor sees no farther than its range: each
+/// model's estimate is conditioned on the target lying within reach, and the report's likelihood
+/// gains P(within reach) (reach.hpp). Without it a track fed bearings alone drifts along the line
+/// of sight for as long as the bearings last (docs/ONERA.md §5). False when no model could be in
+/// reach: the report is not this track's.
+bool constrainToSensorReach(ImmUpdate& hit, const common::SensorCoverage& sensor) {
+  ModeVector weights = hit.state.probabilities;
+  for (std::size_t i = 0; i < hit.state.modes.size(); ++i) {
+    const ReachUpdate r = constrainToReach(hit.state.modes[i], sensor.position, sensor.range);
+    hit.state.modes[i] = r.state;
+    weights(static_cast<Eigen::Index>(i)) *= r.probability;
+  }
+  const double within = weights.sum();
+  if (!(within > 0.0)) return false;
+  hit.state.probabilities = weights / within;
+  hit.likelihood *= within;
+  return true;
+}
+
 void unite(std::vector<std::size_t>& parent, std::size_t a, std::size_t b) {
   a = findRoot(parent, a);
   b = findRoot(parent, b);
@@ -330,6 +362,24 @@ const config::FieldTable<SbmhtParams>& paramTable() {
           integer<P>("max_coast_ticks", &P::max_coast_ticks, 1.0, 1e6, "ticks",
                      "where sensors are listed: a leaf that no sensor could see (behind a mask, in a gap between "
                      "sensor areas) for this many ticks running is deleted; a miss costs nothing there"),
+          integer<P>("use_road_network", &P::use_road_network, 0.0, 1.0, "",
+                     "1: algorithm 1 of Pannetier et al., where the scenario has roads: a road-constrained model in the "
+                     "IMM near a road, its estimate projected onto the road, and N-scan pruning that keeps the best "
+                     "branch per road section; 0: algorithm 2, the roads unused"),
+          real<P>("road_along_sigma", &P::road_along_sigma, config::closed(1e-3, 100.0), "separations/tick²",
+                  "road model (eq. 6): acceleration std. deviation along the road"),
+          real<P>("road_across_sigma", &P::road_across_sigma, config::closed(1e-4, 100.0), "separations/tick²",
+                  "road model (eq. 6): acceleration std. deviation across the road"),
+          real<P>("road_location_sigma", &P::road_location_sigma, config::closed(0.0, 1e6), "separations",
+                  "how well the scenario's road centre lines are known: added across the road to a projected "
+                  "estimate's position variance"),
+          real<P>("road_gate_distance", &P::road_gate_distance, config::closed(0.0, 1e6), "separations",
+                  "the road model is active while a track's predicted position lies this close to a road section"),
+          real<P>("road_time_constant", &P::road_time_constant, config::closed(1e-3, 1e6), "ticks",
+                  "mean sojourn in the road model"),
+          integer<P>("road_sections_kept", &P::road_sections_kept, 1.0, 100.0, "",
+                     "Nk of algorithm 1: N-scan pruning keeps, beside the branches that agree with the best "
+                     "hypothesis, the best branch on each other road section, up to this many sections a tree"),
       }};
   return table;
 }
@@ -338,7 +388,8 @@ EngineSpec engineSpec() {
   EngineSpec spec;
   spec.name = "sbmht";
   spec.description =
-      "ONERA structured-branching MHT (Pannetier et al. 2014): IMM (stop + two CV models), track trees with a "
+      "ONERA structured-branching MHT (Pannetier et al. 2014): IMM (stop, two CV models and, near the "
+      "scenario's roads, a road model), track trees with a "
       "miss branch, LLR scores and SPRT, k best hypotheses per cluster, N-scan pruning; replays the window";
   spec.params = common::paramSpecs(paramTable(), derivations());
   spec.create = [](const EngineContext& context) -> std::unique_ptr<Engine> {
@@ -363,11 +414,46 @@ SbmhtParams SbmhtParams::fromContext(const EngineContext& context) {
 
 namespace {
 
-Imm makeImm(const SbmhtParams& p, double delta) {
+/// Algorithm 2's models: stop, quiet CV and manoeuvring CV. With roads (algorithm 1) the road model
+/// is appended, here as it is off road: nothing switches into it (VS-IMM: the model set follows
+/// the roads), a track that leaves the road hands its probability to the two CV models evenly, and
+/// it predicts as the manoeuvring model does (the engine then copies that model's estimate).
+Imm makeImm(const SbmhtParams& p, double delta, bool roads) {
   const std::array<double, 3> taus{p.stop_time_constant, p.slow_time_constant, p.fast_time_constant};
+  std::vector<MotionModel> models{stopModel(delta, p.stop_sigma), constantVelocityModel(delta, p.cv_slow_sigma),
+                                  constantVelocityModel(delta, p.cv_fast_sigma)};
+  TransitionMatrix pi = transitionMatrix(delta, taus);
+  if (!roads) return Imm(std::move(models), std::move(pi));
+  MotionModel off_road = constantVelocityModel(delta, p.cv_fast_sigma);
+  off_road.kind = MotionKind::road;
+  models.push_back(off_road);
+  TransitionMatrix off_road_pi = TransitionMatrix::Zero(4, 4);
+  off_road_pi.topLeftCorner(3, 3) = pi;
+  off_road_pi(3, 1) = 0.5;
+  off_road_pi(3, 2) = 0.5;
+  return Imm(std::move(models), std::move(off_road_pi));
+}
+
+/// Algorithm 1's models on a road segment of direction `heading`: the three of algorithm 2 and the
+/// road model of eq. 6, all four switching with p_ii = exp(-delta / tau_i).
+Imm makeRoadImm(const SbmhtParams& p, double delta, double heading) {
+  const std::array<double, 4> taus{p.stop_time_constant, p.slow_time_constant, p.fast_time_constant,
+                                   p.road_time_constant};
   return Imm({stopModel(delta, p.stop_sigma), constantVelocityModel(delta, p.cv_slow_sigma),
-              constantVelocityModel(delta, p.cv_fast_sigma)},
+              constantVelocityModel(delta, p.cv_fast_sigma),
+              roadModel(delta, heading, p.road_along_sigma, p.road_across_sigma)},
              transitionMatrix(delta, taus));
+}
+
+/// The history up to and including `tick`'s kTickEnd (the whole history when it ends sooner).
+std::span<const std::int32_t> historyThrough(const Leaf& leaf, std::int32_t tick) {
+  std::int32_t t = leaf.first_tick;
+  for (std::size_t k = 0; k < leaf.history.size(); ++k) {
+    if (leaf.history[k] != SbmhtEngine::kTickEnd) continue;
+    if (t == tick) return std::span(leaf.history).first(k + 1);
+    ++t;
+  }
+  return leaf.history;
 }
 
 }  // namespace
@@ -379,7 +465,8 @@ SbmhtEngine::SbmhtEngine(const EngineContext& context)
       terrain_(context.terrain),
       params_(SbmhtParams::fromContext(context)),
       delta_(context.dynamics.delta),
-      imm_(makeImm(params_, context.dynamics.delta)),
+      roads_(params_.use_road_network == 1 && context.terrain && !context.terrain->sections().empty()),
+      imm_(makeImm(params_, context.dynamics.delta, roads_)),
       sprt_(SprtThresholds::fromErrorRates(params_.sprt_alpha, params_.sprt_beta, params_.drop_score)),
       initial_score_(initialScore(params_.initial_score == 1 ? InitialScore::paper : InitialScore::blackman,
                                   params_.detection_probability, params_.false_alarm_density,
@@ -387,8 +474,19 @@ SbmhtEngine::SbmhtEngine(const EngineContext& context)
   birth_tick_sprt_ = sprt_;
   birth_tick_sprt_.delete_tentative = -std::numeric_limits<double>::infinity();
   // A report rules out the stop model (eq. 9): a new track moves, model unknown.
-  initial_probabilities_ = ModeVector(3);
-  initial_probabilities_ << 0.0, 0.5, 0.5;
+  initial_probabilities_ = ModeVector::Zero(static_cast<Eigen::Index>(imm_.size()));
+  initial_probabilities_(1) = 0.5;
+  initial_probabilities_(2) = 0.5;
+  if (roads_) {
+    for (const auto& section : terrain_->sections()) {
+      road_imms_.emplace_back();
+      for (std::size_t g = 0; g + 1 < section.points.size(); ++g) {
+        const common::Vec2 a = section.points[g];
+        const common::Vec2 b = section.points[g + 1];
+        road_imms_.back().push_back(makeRoadImm(params_, delta_, std::atan2(b.y - a.y, b.x - a.x)));
+      }
+    }
+  }
   for (int m = 0; m < static_cast<int>(gates_.size()); ++m)
     gates_[static_cast<std::size_t>(m)] = gateOfSameProbability(params_.gate_chi2, m);
   // Scans run in sensor-id order; a sensor listed twice would be two scans of one sensor.
@@ -536,6 +634,9 @@ void SbmhtEngine::runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::spa
       }
       ImmUpdate hit = imm_.report(prediction, t.model, t.z, t.R, seen);
       if (!(hit.likelihood > 0.0) || !(hit.gate_distance <= t.gate)) continue;
+      if (t.model.kind == common::MeasurementKind::bearing && scan.coverage != nullptr &&
+          scan.coverage->range > 0.0 && !constrainToSensorReach(hit, *scan.coverage))
+        continue;
       // Eqs. 19 and 23: a report whose class the track cannot be (c'beta = 0, Delta L^c = -inf)
       // is not this track's, whatever its kinematics, and makes no branch.
       std::optional<common::ClassUpdate> classified;
@@ -550,6 +651,8 @@ void SbmhtEngine::runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::spa
       child.history.push_back(static_cast<std::int32_t>(j));
       gated[j] = 1;
       child.imm = std::move(hit.state);
+      child.road_section = leaf.road_section;
+      projectRoadMode(child);
       // Eqs. 21-22: L = L + Delta L + Delta L^c (Delta L^c = 0 for a report without c).
       const double class_increment = classified ? classified->score_increment : 0.0;
       child.score = leaf.score.after(reportScoreIncrement(hit.likelihood, t.clutter_density) + class_increment, sprt);
@@ -694,6 +797,42 @@ void SbmhtEngine::mergeDuplicates(std::vector<Leaf>& leaves) const {
   keepMarked(leaves, keep);
 }
 
+void SbmhtEngine::timeUpdate(Leaf& leaf) const {
+  const Imm* imm = &imm_;
+  leaf.road_section = -1;
+  if (roads_) {
+    // The section is chosen where the target will be: the combined estimate one tick ahead.
+    const GaussianState c = leaf.imm.combined();
+    const common::Vec2 ahead{c.x(kX) + delta_ * c.x(kVx), c.x(kY) + delta_ * c.x(kVy)};
+    const auto near = terrain_->project(ahead);
+    if (near && near->distance <= params_.road_gate_distance) {
+      const auto foot = common::footPoint(terrain_->sections()[near->section].points, ahead);
+      if (foot) {
+        leaf.road_section = static_cast<std::int32_t>(near->section);
+        imm = &road_imms_[near->section][foot->segment];
+      }
+    }
+  }
+  ImmPrediction p = imm->predict(leaf.imm);
+  leaf.imm.modes = std::move(p.modes);
+  leaf.imm.probabilities = std::move(p.probabilities);
+  if (!roads_) return;
+  if (leaf.road_section < 0)
+    // Off road the road model holds no probability; a copy of a moving model's estimate keeps its
+    // gate and its Pe where the other models' are, rather than wherever it left the road.
+    leaf.imm.modes[kRoadMode] = leaf.imm.modes[kFastMode];
+  else
+    projectRoadMode(leaf);
+}
+
+void SbmhtEngine::projectRoadMode(Leaf& leaf) const {
+  if (!roads_ || leaf.road_section < 0) return;
+  GaussianState& mode = leaf.imm.modes[kRoadMode];
+  const auto& section = terrain_->sections()[static_cast<std::size_t>(leaf.road_section)];
+  const auto foot = common::footPoint(section.points, {mode.x(kX), mode.x(kY)});
+  if (foot) mode = projectOntoRoad(mode, *foot, params_.road_location_sigma);
+}
+
 void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot) {
   for (const auto& adoption : adoptions_)
     if (adoption.tick == tick) inject(leaves, adoption.leaf);
@@ -709,9 +848,7 @@ void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std:
   // The time update, once per tick: mixing and each model's prediction (mu becomes cbar).
   for (Leaf& leaf : leaves) {
     leaf.perceivable = false;
-    ImmPrediction p = imm_.predict(leaf.imm);
-    leaf.imm.modes = std::move(p.modes);
-    leaf.imm.probabilities = std::move(p.probabilities);
+    timeUpdate(leaf);
   }
 
   const std::vector<Scan> scans = scansOf(slot);
@@ -808,8 +945,10 @@ void SbmhtEngine::manageHypotheses(std::vector<Leaf>& leaves, std::int32_t tick,
   }
 
   // Hypothesis pruning (P(T) below 1e-3), then N-scan pruning: a tree keeps the branches that agree,
-  // N scans back, with its leaf in the best hypothesis (or its most probable leaf when it has none).
-  // The leaves of a tree already agree on every older scan, so one entry decides.
+  // through the tick N scans back, with its leaf in the best hypothesis (or its most probable leaf
+  // when it has none). Algorithm 1 also keeps, of the branches that do not, the best-scoring one on
+  // each other road section, up to road_sections_kept sections a tree (Pannetier et al., Fig. 2
+  // step 5): at a junction the other road stays a hypothesis until the reports decide (C7).
   std::erase_if(leaves, [](const Leaf& l) { return !l.best && l.probability < kMinTrackProbability; });
   if (!n_scan_pruning) return;
   std::vector<char> keep(leaves.size(), 1);
@@ -828,15 +967,38 @@ void SbmhtEngine::manageHypotheses(std::vector<Leaf>& leaves, std::int32_t tick,
     }
     const std::int32_t back = tick - params_.n_scan;
     if (back >= leaves[ref].first_tick) {
-      const auto agreed = leaves[ref].reportsAt(back);
+      const auto agreed = historyThrough(leaves[ref], back);
       for (std::size_t k = begin; k < end; ++k) {
-        const auto here = leaves[k].reportsAt(back);
+        const auto here = historyThrough(leaves[k], back);
         keep[k] = std::equal(here.begin(), here.end(), agreed.begin(), agreed.end());
       }
+      if (roads_) keepOtherSections(leaves, begin, end, keep);
     }
     begin = end;
   }
   keepMarked(leaves, keep);
+}
+
+void SbmhtEngine::keepOtherSections(const std::vector<Leaf>& leaves, std::size_t begin, std::size_t end,
+                                    std::vector<char>& keep) const {
+  std::vector<std::int32_t> sections;  // the sections the tree keeps a branch on
+  for (std::size_t k = begin; k < end; ++k)
+    if (keep[k] && leaves[k].road_section >= 0) sections.push_back(leaves[k].road_section);
+  std::vector<std::size_t> others;
+  for (std::size_t k = begin; k < end; ++k)
+    if (!keep[k] && leaves[k].road_section >= 0) others.push_back(k);
+  std::stable_sort(others.begin(), others.end(), [&](std::size_t a, std::size_t b) {
+    return leaves[a].score.score > leaves[b].score.score;
+  });
+  // The agreeing branches are one of the Nk, whether on a road or not.
+  std::size_t kept = 1;
+  for (const std::size_t k : others) {
+    if (kept >= static_cast<std::size_t>(params_.road_sections_kept)) break;
+    if (std::find(sections.begin(), sections.end(), leaves[k].road_section) != sections.end()) continue;
+    keep[k] = 1;
+    sections.push_back(leaves[k].road_section);
+    ++kept;
+  }
 }
 
 void SbmhtEngine::confirmByCount(Leaf& leaf) const {
@@ -871,11 +1033,7 @@ void SbmhtEngine::step(const ObservationWindow& window) {
   for (const auto& adoption : adoptions_) {
     if (adoption.tick > anchor_tick_) continue;
     Leaf leaf = adoption.leaf;
-    for (std::int32_t t = adoption.tick; t <= anchor_tick_; ++t) {
-      const ImmPrediction p = imm_.predict(leaf.imm);
-      leaf.imm.modes = p.modes;
-      leaf.imm.probabilities = p.probabilities;
-    }
+    for (std::int32_t t = adoption.tick; t <= anchor_tick_; ++t) timeUpdate(leaf);
     leaf.first_tick = anchor_tick_ + 1;
     inject(anchor_, leaf);
   }

@@ -50,6 +50,13 @@ struct SbmhtParams {
   std::int32_t confirm_reports = 3;   ///< a tentative track that took reports at this many ticks is confirmed
   double delivery_probability = 1.0;  ///< scales each sensor's PD where the engine has coverage
   std::int32_t max_coast_ticks = 60;  ///< a leaf no sensor could see for this many ticks running is deleted
+  std::int32_t use_road_network = 1;  ///< 1: algorithm 1 (the scenario's roads in the IMM and N-scan), 0: algorithm 2
+  double road_along_sigma = 1.0;      ///< sigma_d of eq. 6
+  double road_across_sigma = 0.1;     ///< sigma_n of eq. 6
+  double road_location_sigma = 1.0;   ///< the road map's own error across the road
+  double road_gate_distance = 15.0;   ///< the road model is active within this distance of a road
+  double road_time_constant = 30.0;   ///< mean sojourn in the road model
+  std::int32_t road_sections_kept = 3;  ///< Nk: N-scan keeps the best branch of up to this many road sections
 
   static SbmhtParams fromContext(const EngineContext& context);
 };
@@ -106,12 +113,19 @@ class SbmhtEngine final : public Engine {
     /// Of fixed capacity, so that copying a leaf at every branch allocates nothing for it.
     ClassVector classes = common::uniformClassVector();
     bool best = false;               ///< in the best global hypothesis
+    /// Algorithm 1: the road section (index into common::Terrain::sections()) its road model
+    /// follows this tick, or -1 when no section is within road_gate_distance (the model is off).
+    std::int32_t road_section = -1;
 
     /// The reports it took at `tick` (empty: a miss, or a tick outside its history).
     std::span<const std::int32_t> reportsAt(std::int32_t tick) const;
   };
   /// Ends a tick's entries in Leaf::history.
   static constexpr std::int32_t kTickEnd = -1;
+  /// The IMM's models: stop, quiet CV, manoeuvring CV and, with roads, the road model.
+  static constexpr std::size_t kStopMode = 0;
+  static constexpr std::size_t kFastMode = 2;
+  static constexpr std::size_t kRoadMode = 3;
   /// One report as a scan uses it (its measurement model, value, noise, clutter density, gate).
   struct ReportTerms;
 
@@ -150,12 +164,22 @@ class SbmhtEngine final : public Engine {
                const std::vector<ReportTerms>& terms, const Scan& scan) const;
   /// PD and per-model Pe of the scan's sensor for the leaf's (time-updated) estimate.
   Detectability detectabilityOf(const Scan& scan, const ImmState& imm) const;
+  /// The time update of one leaf: mixing and each model's prediction. Algorithm 1 first picks the
+  /// road section nearest the leaf's predicted position; within road_gate_distance the road model
+  /// follows that section's segment and its estimate is projected onto it, else it is off.
+  void timeUpdate(Leaf& leaf) const;
+  /// Algorithm 1: the road model's estimate moved onto the leaf's road section (C8).
+  void projectRoadMode(Leaf& leaf) const;
   /// Closes the tick in every leaf's history; drops leaves that missed max_misses ticks running
   /// (without coverage), that no sensor could see for max_coast_ticks (with coverage), or that
   /// coasted out of the region.
   void endTick(std::vector<Leaf>& leaves, std::int32_t tick) const;
   /// Of leaves whose last n_scan ticks took the same reports, keeps the best-scoring one.
   void mergeDuplicates(std::vector<Leaf>& leaves) const;
+  /// Algorithm 1's N-scan rule for the tree in leaves[begin, end): of the branches `keep` drops,
+  /// keeps the best-scoring one on each road section no kept branch is on, up to road_sections_kept.
+  void keepOtherSections(const std::vector<Leaf>& leaves, std::size_t begin, std::size_t end,
+                         std::vector<char>& keep) const;
   /// Confirms a tentative leaf that holds confirm_reports reports (the SPRT may confirm it sooner).
   void confirmByCount(Leaf& leaf) const;
   /// Clusters, k best hypotheses, P(T), hypothesis pruning and (at a tick's end) N-scan pruning.
@@ -174,7 +198,14 @@ class SbmhtEngine final : public Engine {
   std::shared_ptr<const common::Terrain> terrain_;
   SbmhtParams params_;
   double delta_ = 1.0;
+  /// Algorithm 1: use_road_network and a terrain with roads. The IMM then has a fourth model, the
+  /// road model (MotionKind::road), at index kRoadMode.
+  bool roads_ = false;
+  /// The IMM's updates (report, miss) and, off road, its time update: with roads the road model
+  /// is off there (no model switches into it; its probability flows to the CV models).
   Imm imm_;
+  /// Algorithm 1: the time update on road section s, segment g: road_imms_[s][g].
+  std::vector<std::vector<Imm>> road_imms_;
   SprtThresholds sprt_;
   /// The SPRT for a tree's birth tick: it confirms but does not delete, since L(1) may lie below
   /// T2 (track_score.hpp) and another sensor's scan of the same tick is not yet its next scan.
