@@ -487,6 +487,7 @@ SbmhtEngine::SbmhtEngine(const EngineContext& context)
       }
     }
   }
+  gate_probability_ = 1.0 - std::exp(-params_.gate_chi2 / 2.0);
   for (int m = 0; m < static_cast<int>(gates_.size()); ++m)
     gates_[static_cast<std::size_t>(m)] = gateOfSameProbability(params_.gate_chi2, m);
   // Scans run in sensor-id order; a sensor listed twice would be two scans of one sensor.
@@ -671,7 +672,12 @@ void SbmhtEngine::runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::spa
     // The miss branch last: the leaf itself becomes it. Where the sensor could not see it the miss
     // is no evidence (Lambda = 1) and the leaf stays exactly as it was.
     if (perceivable) {
-      ImmUpdate miss = imm_.miss(prediction, detectability);
+      // A target that was detected but whose report fell outside the gate looks like a miss too:
+      // the miss has probability 1 - PD P_G (Blackman and Popoli), so even a sensor of PD 1 leaves
+      // a track alive after a report in the gate's 1 - P_G tail.
+      Detectability missed = detectability;
+      missed.detection_probability *= gate_probability_;
+      ImmUpdate miss = imm_.miss(prediction, missed);
       leaf.imm = std::move(miss.state);
       leaf.score = leaf.score.after(missScoreIncrement(miss.likelihood), sprt);
     }

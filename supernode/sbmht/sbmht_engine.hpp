@@ -6,7 +6,9 @@
 // N-scan pruning keeps the branches that agree with the best hypothesis N ticks back, and duplicate
 // leaves are merged. Reports are positions, bearings, radar plots or camera angles (docs/ONERA.md
 // §3 and §8); every kind but a bearing can start a track. Where the scenario lists its sensors,
-// each sensor is a scan of its own, its silence weighed by its coverage (common/sensor_coverage.hpp).
+// each sensor is a scan of its own, its silence weighed by its coverage (common/sensor_coverage.hpp),
+// and a bearing keeps the track within its sensor's reach (reach.hpp). Where it has roads, the
+// paper's algorithm 1 adds a road model to the IMM and keeps a branch per road section (§2, §3).
 #pragma once
 
 #include <array>
@@ -226,6 +228,8 @@ class SbmhtEngine final : public Engine {
   std::uint64_t unusable_reports_ = 0;
   /// The gate on d^2 per report dimension 0..3, all of the probability gate_chi2 has in 2-D.
   std::array<double, 4> gates_{};
+  /// P_G: the probability that a target's report falls in its gate, the same for every dimension.
+  double gate_probability_ = 1.0;
 };
 
 }  // namespace wsn::supernode::sbmht
