@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Table II of Pannetier et al. (FUSION 2014) beside our runs: per target RSE and TLR of algorithm 1
-(with the road network) and algorithm 2 (without), as a Markdown table on stdout.
+(with the road network) and algorithm 2 (without), and the share of the target's life in which the
+sensors reported it at all, as a Markdown table on stdout.
 
   onera_table.py --a1 RUN_DIR... --a2 RUN_DIR...   both algorithms, with the A1 - A2 deltas
   onera_table.py --a2 RUN_DIR...                   algorithm 2 only, beside the paper's A1 and A2
@@ -10,6 +11,7 @@ Standard library only, like tools/sweep.py's flag form, so that it runs with any
 """
 
 import argparse
+import csv
 import json
 import math
 import statistics
@@ -38,11 +40,24 @@ paper does. Several runs of an algorithm (one per seed, say) are averaged per ta
 runs in which the target was ever associated (errors_defined), TLR over every run. Every run must
 have the same number of targets.
 
+The "reported" column tells how much of a target's life the sensors covered at all: the share of its
+alive ticks (the distinct ticks of truth.csv's rows with that target) in which at least one report of
+it was delivered (the distinct tick_generated of observations.csv's rows with that target and fate
+'delivered'; lost reports and false alarms, target -1, do not count). It is read from the run
+directory's truth.csv and observations.csv, those of the A2 runs when given, else of the A1 runs (runs
+of the same seeds have the same reports), computed per run and averaged over the runs. Target N is the
+N-th target id of truth.csv in increasing order. It explains a low TLR but does not bound it (a track
+can coast through unreported ticks). When a run has no truth.csv or observations.csv (or a metrics.json
+path was given), a malformed one, or truth.csv's number of targets differs from metrics.json's, a note
+on stderr names the file and the column is '-'.
+
 The table lists the paper's A1 and A2 values, ours (RSE, TLR, TLR_len), and the A1 - A2 deltas of
-the paper and, with both --a1 and --a2, of ours. Below it, the statistics the paper's text draws from
+the paper and, with both --a1 and --a2, of ours; between the two, "reported". Below it, the statistics the paper's text draws from
 Table II: mean and median RSE and TLR, the number of targets on which A1's RSE is lower, and on which
-A1's TLR is higher, equal or lower (compared at the paper's two decimals, as its table gives them).
-Targets whose RSE is undefined in every run are left out of the RSE statistics and shown as '-'.
+A1's TLR is higher, equal or lower (compared at the paper's two decimals, as its table gives them);
+and, when every target's "reported" is defined, its mean and median and, per algorithm, the mean TLR
+divided by the mean reported share. Targets whose RSE is undefined in every run are left out of the
+RSE statistics and shown as '-'.
 
 Exit status: 0, 1 when a run directory or its metrics.json is missing or malformed (the message
 names the file and what was expected), 2 on a usage error."""
@@ -103,6 +118,82 @@ def read_run(arg):
     return rows
 
 
+class ReportError(Exception):
+    """A run whose reported shares cannot be computed; the message names the file."""
+
+
+def _csv_rows(path, columns, integers):
+    """The given columns of each row of a CSV file with a header, the first `integers` of them as int."""
+    try:
+        handle = path.open(newline="", encoding="utf-8")
+    except FileNotFoundError:
+        raise ReportError(f"{path}: missing") from None
+    except OSError as error:
+        raise ReportError(f"{path}: cannot read ({error})") from None
+    with handle:
+        reader = csv.reader(handle)
+        try:
+            head = next(reader, None)
+            if head is None:
+                raise ReportError(f"{path}: empty (expected the header line, with {', '.join(columns)})")
+            missing = [c for c in columns if c not in head]
+            if missing:
+                raise ReportError(f"{path}: line 1: header has no column {', '.join(missing)} "
+                                  f"(expected {', '.join(columns)})")
+            index = [head.index(c) for c in columns]
+            for row in reader:
+                if not row:
+                    continue  # a blank line
+                if max(index) >= len(row):
+                    raise ReportError(f"{path}: line {reader.line_num}: {len(row)} fields, expected {len(head)}")
+                values = [row[i] for i in index]
+                for k in range(integers):
+                    try:
+                        values[k] = int(values[k])
+                    except ValueError:
+                        raise ReportError(f"{path}: line {reader.line_num}: {columns[k]}: expected an integer, "
+                                          f"got {values[k]!r}") from None
+                yield values
+        except csv.Error as error:
+            raise ReportError(f"{path}: line {reader.line_num}: not CSV ({error})") from None
+        except UnicodeDecodeError as error:
+            raise ReportError(f"{path}: not UTF-8 after line {reader.line_num} ({error.reason})") from None
+
+
+def read_reported(arg, targets):
+    """Per target, in increasing id order: the share of its alive ticks (truth.csv) with at least one
+    delivered report of it (observations.csv). `targets` is the run's number of targets in metrics.json."""
+    path = Path(arg)
+    if not path.is_dir():
+        raise ReportError(f"{arg}: not a run directory, so no truth.csv and observations.csv beside it")
+    truth = path / "truth.csv"
+    alive = {}
+    for tick, target in _csv_rows(truth, ("tick", "target"), 2):
+        alive.setdefault(target, set()).add(tick)
+    if len(alive) != targets:
+        raise ReportError(f"{truth}: {len(alive)} targets, but its metrics.json has {targets}")
+    reported = {target: set() for target in alive}
+    for tick, target, fate in _csv_rows(path / "observations.csv", ("tick_generated", "target", "fate"), 2):
+        if fate == "delivered" and target in reported:
+            reported[target].add(tick)
+    return [len(reported[t] & alive[t]) / len(alive[t]) for t in sorted(alive)]
+
+
+def average_reported(runs):
+    """Per target the reported share averaged over the runs [(arg, metrics rows)], or None when some
+    run's cannot be computed (each such run noted on stderr)."""
+    shares = []
+    for arg, rows in runs:
+        try:
+            shares.append(read_reported(arg, len(rows)))
+        except ReportError as error:
+            print(f"onera_table.py: note: {error}; the reported column is shown as '-'", file=sys.stderr)
+            shares.append(None)
+    if not shares or any(s is None for s in shares):
+        return None
+    return [sum(s[j] for s in shares) / len(shares) for j in range(len(shares[0]))]
+
+
 def mean_or_none(values):
     values = [v for v in values if v is not None]
     return sum(values) / len(values) if values else None
@@ -159,14 +250,16 @@ def compare(a1, a2, k=1):
     return len(rse_pairs), rse_lower, higher, equal, lower
 
 
-def table(a1, a2, n_a1, n_a2):
-    """The Markdown lines: per-target table, its mean and median rows, then the comparisons."""
+def table(a1, a2, n_a1, n_a2, reported=None, reported_from="A2"):
+    """The Markdown lines: per-target table, its mean and median rows, then the comparisons.
+    `reported` is the per-target reported share (None: '-'), read from the `reported_from` runs."""
     n = max(PAPER_TARGETS, len(a1 or []), len(a2 or []))
     ours = [(name, rows) for name, rows in (("A1", a1), ("A2", a2)) if rows is not None]
     header = ["target", "paper A1 RSE", "paper A1 TLR", "paper A2 RSE", "paper A2 TLR",
               "paper Δ RSE", "paper Δ TLR"]
     for name, _ in ours:
         header += [f"{name} RSE", f"{name} TLR", f"{name} TLR_len"]
+    header.append("reported")
     if a1 is not None and a2 is not None:
         header += ["Δ RSE", "Δ TLR", "Δ TLR_len"]
 
@@ -186,6 +279,7 @@ def table(a1, a2, n_a1, n_a2):
     for _, rows in ours:
         for k in (0, 1, 2):
             columns.append(([cell(rows, j, k) for j in range(n)], 2, False))
+    columns.append(([reported[j] if reported is not None and j < len(reported) else None for j in range(n)], 2, False))
     if a1 is not None and a2 is not None:
         for k in (0, 1, 2):
             columns.append(([None if cell(a1, j, k) is None or cell(a2, j, k) is None
@@ -211,8 +305,9 @@ def table(a1, a2, n_a1, n_a2):
     runs = ", ".join(f"{name} {count} run{'s' if count != 1 else ''}"
                      for name, count in (("A1", n_a1), ("A2", n_a2)) if count)
     lines.append(f"Ours: {runs}, each target's values the mean over them. TLR = associated ticks / alive "
-                 "ticks; TLR_len = associated path length / path length. Means and medians over the targets "
-                 "(RSE over those with a defined RSE).")
+                 "ticks; TLR_len = associated path length / path length; reported = share of the alive ticks with "
+                 f"at least one delivered report of the target (the {reported_from} runs' truth.csv and "
+                 "observations.csv). Means and medians over the targets (RSE over those with a defined RSE).")
     lines.append("")
 
     def describe(pairs_a1, pairs_a2, who, key=1, what="TLR"):
@@ -234,6 +329,11 @@ def table(a1, a2, n_a1, n_a2):
         lines.append(f"- ours {name}: mean RSE {fmt(mean_rse, 2)} m (median {fmt(median_rse, 3)}); mean TLR "
                      f"{fmt(mean_tlr, 3)} (median {fmt(median_tlr, 3)}); mean TLR_len {fmt(mean_len, 3)} "
                      f"(median {fmt(median_len, 3)})")
+    if reported is not None and len(reported) == n and all(v is not None for v in reported):
+        mean_rep, median_rep = stats(reported)
+        ratios = ", ".join(f"{name} {fmt(stats([r[1] for r in rows])[0] / mean_rep if mean_rep else None, 3)}"
+                           for name, rows in ours)
+        lines.append(f"- reported share: mean {mean_rep:.3f} (median {median_rep:.3f}); TLR / reported: {ratios}")
     if a1 is not None and a2 is not None:
         lines.append(describe(a1, a2, "ours"))
         if all(r[2] is not None for r in a1 + a2):
@@ -245,7 +345,7 @@ def main(argv):
     parser = argparse.ArgumentParser(prog="onera_table.py", description=DESCRIPTION,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("runs", nargs="*", metavar="RUN_DIR",
-                        help="algorithm 2 runs (the engine has no road model yet), as with --a2")
+                        help="runs of algorithm 2 (without the road network), as with --a2")
     parser.add_argument("--a1", nargs="+", metavar="RUN_DIR", default=[],
                         help="runs of algorithm 1 (with the road network)")
     parser.add_argument("--a2", nargs="+", metavar="RUN_DIR", default=[],
@@ -274,7 +374,9 @@ def main(argv):
         if rows is not None and any(r[2] is None for r in rows):
             print(f"onera_table.py: note: some {name} run has no tlr_length (scored before it existed): "
                   "TLR_len is shown as '-'", file=sys.stderr)
-    print("\n".join(table(a1, a2, len(a1_runs), len(a2_runs))))
+    reported_from = "A2" if a2_runs else "A1"
+    reported = average_reported(a2_runs or a1_runs)
+    print("\n".join(table(a1, a2, len(a1_runs), len(a2_runs), reported, reported_from)))
     return 0
 
 

@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """Tests of tools/onera_table.py (Table II of Pannetier et al. 2014 beside our runs) on hand-written
-run directories (only metrics.json's track_quality block): per-target means over runs against a hand
-computation, the paper's statistics, the A1 - A2 deltas and comparisons, undefined RSEs, runs without
-tlr_length, and the errors for missing or malformed metrics.json.
+run directories (metrics.json's track_quality block, and for the "reported" column truth.csv and
+observations.csv): per-target means over runs against a hand computation, the paper's statistics, the
+A1 - A2 deltas and comparisons, undefined RSEs, runs without tlr_length, the reported share and its
+notes for missing, inconsistent or malformed CSV files, and the errors for missing or malformed
+metrics.json.
 
 Usage: onera_table_test.py SOURCE_DIR WORK_DIR
 """
@@ -27,15 +29,31 @@ def target(i, rse, tlr, tlr_length=None, defined=True):
     return entry
 
 
-def run_dir(name, targets=None, text=None):
-    """A run directory holding metrics.json with these targets (or this raw text; neither: no file)."""
+def run_dir(name, targets=None, text=None, files=None):
+    """A run directory holding metrics.json with these targets (or this raw text; neither: no file),
+    and the other files {name: text} given."""
     path = WORK / name
     path.mkdir(parents=True)
     if text is None and targets is not None:
         text = json.dumps({"eps_k": 0.0, "track_quality": {"gate": 50.0, "targets": targets}})
     if text is not None:
         (path / "metrics.json").write_text(text, encoding="utf-8")
+    for file, content in (files or {}).items():
+        (path / file).write_text(content, encoding="utf-8")
     return path
+
+
+def truth_csv(alive):
+    """truth.csv for {target id: alive ticks}, tick by tick, the targets of a tick in decreasing id order
+    (the table must sort them)."""
+    rows = sorted(((tick, i) for i, ticks in alive.items() for tick in ticks), key=lambda r: (r[0], -r[1]))
+    return "tick,target,x,y,vx,vy\n" + "".join(f"{tick},{i},1.5,2.5,1.0,0.0\n" for tick, i in rows)
+
+
+def observations_csv(reports):
+    """observations.csv for [(tick_generated, tick_delivered, target, fate)]."""
+    return ("tick_generated,tick_delivered,sensor,supernode,hops,delay,x,y,target,fate,level\n"
+            + "".join(f"{g},{d},7,0,1,{d - g},1.0,2.0,{t},{fate},0\n" for g, d, t, fate in reports))
 
 
 def tool(*args):
@@ -75,15 +93,20 @@ class OneAlgorithm(unittest.TestCase):
         self.assertEqual(self.result.returncode, 0, self.result.stderr)
         self.assertEqual(header(self.result.stdout),
                          ["target", "paper A1 RSE", "paper A1 TLR", "paper A2 RSE", "paper A2 TLR", "paper Δ RSE",
-                          "paper Δ TLR", "A2 RSE", "A2 TLR", "A2 TLR_len"])
-        self.assertEqual(self.result.stderr, "")
+                          "paper Δ TLR", "A2 RSE", "A2 TLR", "A2 TLR_len", "reported"])
+        # No truth.csv in these runs: one note per run, and "reported" is '-'.
+        self.assertEqual(self.result.stderr.count("onera_table.py: note: "), 2, self.result.stderr)
+        for seed in (self.seed1, self.seed2):
+            self.assertIn(f"note: {seed / 'truth.csv'}: missing; the reported column is shown as '-'",
+                          self.result.stderr)
+        self.assertNotIn("reported share", self.result.stdout)
 
     def test_per_target_means_over_runs(self):
         out = self.result.stdout
-        self.assertEqual(cells(out, "1"), ["1", "10.48", "0.99", "19.43", "0.80", "-8.95", "+0.19", "5.00", "0.60", "0.40"])
-        self.assertEqual(cells(out, "2")[7:], ["8.00", "0.20", "0.20"])
-        self.assertEqual(cells(out, "3")[7:], ["-", "0.00", "0.00"])
-        self.assertEqual(cells(out, "20")[7:], ["10.00", "1.00", "1.00"])
+        self.assertEqual(cells(out, "1"), ["1", "10.48", "0.99", "19.43", "0.80", "-8.95", "+0.19", "5.00", "0.60", "0.40", "-"])
+        self.assertEqual(cells(out, "2")[7:], ["8.00", "0.20", "0.20", "-"])
+        self.assertEqual(cells(out, "3")[7:], ["-", "0.00", "0.00", "-"])
+        self.assertEqual(cells(out, "20")[7:], ["10.00", "1.00", "1.00", "-"])
         self.assertEqual(cells(out, "14")[5:7], ["-2.28", "+0.00"])  # the paper's equal TLR: no "-0.00"
 
     def test_summary_rows(self):
@@ -92,9 +115,9 @@ class OneAlgorithm(unittest.TestCase):
         # TLR over all 20: (0.6 + 0.2 + 0 + 17) / 20 = 0.89; TLR_len (0.4 + 0.2 + 0 + 17) / 20 = 0.88.
         mean = cells(out, "**mean**")
         self.assertEqual(mean[1:5], ["8.773", "0.737", "9.976", "0.707"])
-        self.assertEqual(mean[7:], ["9.632", "0.890", "0.880"])
+        self.assertEqual(mean[7:], ["9.632", "0.890", "0.880", "-"])
         self.assertEqual(cells(out, "**median**")[1:4], ["7.065", "0.795", "9.175"])
-        self.assertEqual(cells(out, "**median**")[7:], ["10.000", "1.000", "1.000"])
+        self.assertEqual(cells(out, "**median**")[7:], ["10.000", "1.000", "1.000", "-"])
 
     def test_paper_statistics(self):
         out = self.result.stdout
@@ -112,7 +135,9 @@ class OneAlgorithm(unittest.TestCase):
 
     def test_metrics_json_path_is_accepted(self):
         result = tool("--a2", self.seed1 / "metrics.json", self.seed2)
+        self.assertEqual(result.returncode, 0, result.stderr)
         self.assertEqual(result.stdout, self.result.stdout)
+        self.assertIn(f"note: {self.seed1 / 'metrics.json'}: not a run directory, so no truth.csv", result.stderr)
 
 
 class TwoAlgorithms(unittest.TestCase):
@@ -128,10 +153,11 @@ class TwoAlgorithms(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         out = result.stdout
         self.assertEqual(header(out)[7:], ["A1 RSE", "A1 TLR", "A1 TLR_len", "A2 RSE", "A2 TLR", "A2 TLR_len",
-                                           "Δ RSE", "Δ TLR", "Δ TLR_len"])
-        self.assertEqual(cells(out, "1")[7:], ["5.00", "0.90", "0.50", "7.00", "0.80", "0.70", "-2.00", "+0.10", "-0.20"])
-        self.assertEqual(cells(out, "2")[13:], ["+2.00", "-0.30", "+0.00"])
-        self.assertEqual(cells(out, "5")[13:], ["+0.00", "+0.00", "+0.00"])
+                                           "reported", "Δ RSE", "Δ TLR", "Δ TLR_len"])
+        self.assertEqual(cells(out, "1")[7:], ["5.00", "0.90", "0.50", "7.00", "0.80", "0.70", "-", "-2.00", "+0.10",
+                                               "-0.20"])
+        self.assertEqual(cells(out, "2")[14:], ["+2.00", "-0.30", "+0.00"])
+        self.assertEqual(cells(out, "5")[14:], ["+0.00", "+0.00", "+0.00"])
         self.assertIn("- ours: A1's RSE lower on 1/20 targets; A1's TLR higher on 1, equal on 18, lower on 1 "
                       "(targets 2)", out)
         self.assertIn("- ours, path length: A1's RSE lower on 1/20 targets; A1's TLR_len higher on 0, equal on 19, "
@@ -142,14 +168,128 @@ class Oddities(unittest.TestCase):
     def test_runs_without_tlr_length(self):
         result = tool(run_dir("old/s1", [target(i, 3.0, 0.5) for i in range(20)]))
         self.assertEqual(result.returncode, 0, result.stderr)
-        self.assertEqual(cells(result.stdout, "1")[7:], ["3.00", "0.50", "-"])
+        self.assertEqual(cells(result.stdout, "1")[7:], ["3.00", "0.50", "-", "-"])
         self.assertIn("no tlr_length", result.stderr)
 
     def test_other_target_count_is_noted(self):
         result = tool(run_dir("short/s1", [target(i, 3.0, 0.5, 0.5) for i in range(3)]))
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn("the A2 runs have 3 targets, Table II has 20", result.stderr)
-        self.assertEqual(cells(result.stdout, "4")[7:], ["-", "-", "-"])
+        self.assertEqual(cells(result.stdout, "4")[7:], ["-", "-", "-", "-"])
+
+
+# Two seeds of 20 targets. Target id 0 (table target 1) is alive at ticks 10-13, the others at 10-11.
+# Seed 1: target 0 reported at 10, twice at 11 (counted once) and at 12; its report of tick 13 is lost
+# and a false alarm (-1) is delivered at 13: 3/4 = 0.75. Target 1: reported at 11 only: 1/2.
+# Seed 2: target 0's reports generated at 11, 12 and 13 are delivered at 12, 14 and 13 (tick_generated
+# counts): 3/4 = 0.75. Target 1: one lost report, a false alarm: 0.
+# Means: target 1 (0.75 + 0.75) / 2 = 0.75, target 2 (0.5 + 0) / 2 = 0.25, targets 3-20: 1.
+ALIVE = {i: [10, 11, 12, 13] if i == 0 else [10, 11] for i in range(20)}
+OTHERS = [(t, t, i, "delivered") for i in range(2, 20) for t in (10, 11)]
+SEED1_REPORTS = [(10, 10, 0, "delivered"), (11, 11, 0, "delivered"), (11, 12, 0, "delivered"),
+                 (12, 12, 0, "delivered"), (13, 13, 0, "lost"), (13, 13, -1, "delivered"),
+                 (11, 11, 1, "delivered")] + OTHERS
+SEED2_REPORTS = [(11, 12, 0, "delivered"), (12, 14, 0, "delivered"), (13, 13, 0, "delivered"),
+                 (10, 10, 1, "dropped"), (11, 11, -1, "delivered")] + OTHERS
+# TLR 0.6, 0.2 and 0.9 for the others: mean (0.6 + 0.2 + 18 * 0.9) / 20 = 0.85.
+METRICS = [target(0, 5.0, 0.6, 0.6), target(1, 5.0, 0.2, 0.2)] + [target(i, 5.0, 0.9, 0.9) for i in range(2, 20)]
+
+
+def reported_run(name, reports, metrics=METRICS, alive=ALIVE, **replace):
+    files = {"truth.csv": truth_csv(alive), "observations.csv": observations_csv(reports)}
+    files.update(replace)
+    return run_dir(name, metrics, files={k: v for k, v in files.items() if v is not None})
+
+
+class Reported(unittest.TestCase):
+    """The "reported" column: share of a target's alive ticks with at least one delivered report."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.seed1 = reported_run("reported/s1", SEED1_REPORTS)
+        cls.seed2 = reported_run("reported/s2", SEED2_REPORTS)
+        cls.result = tool("--a2", cls.seed1, cls.seed2)
+
+    def test_shares_averaged_over_runs(self):
+        self.assertEqual(self.result.returncode, 0, self.result.stderr)
+        self.assertEqual(self.result.stderr, "")
+        out = self.result.stdout
+        self.assertEqual(header(out)[7:], ["A2 RSE", "A2 TLR", "A2 TLR_len", "reported"])
+        self.assertEqual(cells(out, "1")[7:], ["5.00", "0.60", "0.60", "0.75"])
+        self.assertEqual(cells(out, "2")[7:], ["5.00", "0.20", "0.20", "0.25"])
+        self.assertEqual(cells(out, "3")[10], "1.00")
+        self.assertEqual(cells(out, "20")[10], "1.00")
+
+    def test_single_runs(self):
+        out = tool("--a2", self.seed1).stdout
+        self.assertEqual([cells(out, str(j))[10] for j in (1, 2, 3)], ["0.75", "0.50", "1.00"])
+        out = tool("--a2", self.seed2).stdout
+        self.assertEqual([cells(out, str(j))[10] for j in (1, 2, 3)], ["0.75", "0.00", "1.00"])
+
+    def test_mean_and_median_rows(self):
+        # (0.75 + 0.25 + 18) / 20 = 0.95; median 1.
+        self.assertEqual(cells(self.result.stdout, "**mean**")[10], "0.950")
+        self.assertEqual(cells(self.result.stdout, "**median**")[10], "1.000")
+
+    def test_statistics_line(self):
+        # 0.85 / 0.95 = 0.8947.
+        self.assertIn("- reported share: mean 0.950 (median 1.000); TLR / reported: A2 0.895", self.result.stdout)
+
+    def test_a2_files_used_with_both_algorithms(self):
+        # The A1 runs have no CSV files: the column comes from the A2 runs' without a note. A1's TLR is
+        # 0.5 everywhere: 0.5 / 0.95 = 0.5263.
+        a1 = [run_dir(f"reported/a1-{k}", [target(i, 4.0, 0.5, 0.5) for i in range(20)]) for k in (1, 2)]
+        result = tool("--a1", *a1, "--a2", self.seed1, self.seed2)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(result.stderr, "")
+        self.assertEqual(header(result.stdout)[13:], ["reported", "Δ RSE", "Δ TLR", "Δ TLR_len"])
+        self.assertEqual(cells(result.stdout, "1")[13:], ["0.75", "-1.00", "-0.10", "-0.10"])
+        self.assertEqual(cells(result.stdout, "2")[13], "0.25")
+        self.assertIn("- reported share: mean 0.950 (median 1.000); TLR / reported: A1 0.526, A2 0.895",
+                      result.stdout)
+
+    def test_a1_files_without_a2(self):
+        result = tool("--a1", self.seed1, self.seed2)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(cells(result.stdout, "1")[7:], ["5.00", "0.60", "0.60", "0.75"])
+        self.assertIn("the A1 runs' truth.csv and observations.csv", result.stdout)
+        self.assertIn("TLR / reported: A1 0.895", result.stdout)
+
+    def check_dash(self, run, *notes):
+        """With `run` beside seed 1 the column is '-' (mean and median too), with these notes; the table
+        is still printed."""
+        result = tool("--a2", self.seed1, run)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(cells(result.stdout, "1")[7:], ["5.00", "0.60", "0.60", "-"])
+        self.assertEqual(cells(result.stdout, "**mean**")[10], "-")
+        self.assertEqual(cells(result.stdout, "**median**")[10], "-")
+        self.assertNotIn("reported share", result.stdout)
+        self.assertEqual(result.stderr.count("onera_table.py: note: "), 1, result.stderr)
+        for note in notes:
+            self.assertIn(note, result.stderr)
+
+    def test_missing_files(self):
+        run = reported_run("reported/no_obs", SEED2_REPORTS, **{"observations.csv": None})
+        self.check_dash(run, f"note: {run / 'observations.csv'}: missing; the reported column is shown as '-'")
+        run = reported_run("reported/no_truth", SEED2_REPORTS, **{"truth.csv": None})
+        self.check_dash(run, f"note: {run / 'truth.csv'}: missing")
+
+    def test_target_count_differs(self):
+        run = reported_run("reported/19", SEED2_REPORTS, alive={i: [10, 11] for i in range(19)})
+        self.check_dash(run, f"{run / 'truth.csv'}: 19 targets, but its metrics.json has 20")
+
+    def test_malformed_csv(self):
+        run = reported_run("reported/no_fate", SEED2_REPORTS, **{"observations.csv": observations_csv(
+            SEED2_REPORTS).replace(",fate,", ",what,", 1)})
+        self.check_dash(run, f"{run / 'observations.csv'}: line 1: header has no column fate")
+        run = reported_run("reported/bad_tick", SEED2_REPORTS, **{"truth.csv": truth_csv(ALIVE).replace(
+            "\n10,19,", "\nten,19,", 1)})
+        self.check_dash(run, f"{run / 'truth.csv'}: line 2: tick: expected an integer, got 'ten'")
+        run = reported_run("reported/bad_target", SEED2_REPORTS, **{"observations.csv": observations_csv(
+            SEED2_REPORTS).replace(",0,delivered,0\n", ",0.5,delivered,0\n", 1)})
+        self.check_dash(run, f"{run / 'observations.csv'}: line 2: target: expected an integer, got '0.5'")
+        run = reported_run("reported/short_row", SEED2_REPORTS, **{"truth.csv": "tick,target,x,y,vx,vy\n10\n"})
+        self.check_dash(run, f"{run / 'truth.csv'}: line 2: 1 fields, expected 6")
 
 
 class Errors(unittest.TestCase):
@@ -198,6 +338,8 @@ class Errors(unittest.TestCase):
         self.assertEqual(result.returncode, 0)
         self.assertIn("Table II", result.stdout)
         self.assertIn("--a1 RUN_DIR", result.stdout)
+        self.assertIn("observations.csv", result.stdout)
+        self.assertNotIn("no road model", result.stdout)
 
 
 if __name__ == "__main__":
