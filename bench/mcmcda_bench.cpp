@@ -8,14 +8,19 @@
 // reports arrive 1-3 ticks late, and ~1.1 false alarms per tick arrive, uniform over the quadrant.
 // A synthetic generator reproduces those rates, so that the benchmark needs neither the sensor
 // field nor the network model, and scales them (targets and false alarms alike) to 2x and 4x.
+//
+// The same supernode tick of the GNN and sbmht engines on the same loads (engineTick), so that
+// the engines' costs per supernode per tick compare at one load (docs/ONERA.md §8).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "common/messages.hpp"
@@ -150,23 +155,23 @@ Load makeLoad(std::int32_t scale, double process_noise_sigma) {
   return load;
 }
 
-/// One supernode (the quadrant's centre) running "mcmcda" with its defaults, as
-/// `wsntrack run scenarios/oh_quadrants.yaml --set tracker.engine=mcmcda` would, for one quadrant.
+/// One supernode (the quadrant's centre) running `engine` with its defaults, as
+/// `wsntrack run scenarios/oh_quadrants.yaml --set tracker.engine=ENGINE` would, for one quadrant.
 /// With a single supernode nothing is handed over: a target leaving the quadrant simply ends.
-const wsn::common::Scenario& benchScenario() {
-  static const wsn::common::Scenario scenario = [] {
-    wsn::common::Scenario s;
-    s.source_path = "mcmcda_bench";
-    s.region = {0.0, 0.0, kSide, kSide};
-    s.supernodes = {{kSide / 2, kSide / 2}};
-    s.run.seed = kSeed;
-    s.tracker.engine = "mcmcda";
-    s.tracker.window_size = kWindowSize;
-    s.tracker.params["iterations"] = {static_cast<double>(kIterations), 0};
-    wsn::supernode::resolveEngineParams(s, wsn::common::kNoStatistics);
-    return s;
-  }();
-  return scenario;
+const wsn::common::Scenario& benchScenario(const std::string& engine = "mcmcda") {
+  static std::map<std::string, wsn::common::Scenario> scenarios;
+  auto found = scenarios.find(engine);
+  if (found != scenarios.end()) return found->second;
+  wsn::common::Scenario s;
+  s.source_path = "mcmcda_bench";
+  s.region = {0.0, 0.0, kSide, kSide};
+  s.supernodes = {{kSide / 2, kSide / 2}};
+  s.run.seed = kSeed;
+  s.tracker.engine = engine;
+  s.tracker.window_size = kWindowSize;
+  if (engine == "mcmcda") s.tracker.params["iterations"] = {static_cast<double>(kIterations), 0};
+  wsn::supernode::resolveEngineParams(s, wsn::common::kNoStatistics);
+  return scenarios.emplace(engine, std::move(s)).first->second;
 }
 
 /// Loads are built once per scale and shared by every run and repetition of a benchmark.
@@ -178,17 +183,19 @@ const Load& loadAt(std::int32_t scale) {
 }
 
 /// A fresh tracker stepped through ticks 1..kWarmUpTicks; returns the next tick to step.
-std::int32_t warmUp(std::unique_ptr<wsn::supernode::SupernodeTracker>& tracker, const Load& load) {
-  tracker = std::make_unique<wsn::supernode::SupernodeTracker>(wsn::supernode::supernodeConfig(benchScenario(), 0));
+std::int32_t warmUp(std::unique_ptr<wsn::supernode::SupernodeTracker>& tracker, const Load& load,
+                    const std::string& engine) {
+  tracker =
+      std::make_unique<wsn::supernode::SupernodeTracker>(wsn::supernode::supernodeConfig(benchScenario(engine), 0));
   for (std::int32_t t = 1; t <= kWarmUpTicks; ++t) tracker->step(t, load.at(t), {});
   return kWarmUpTicks + 1;
 }
 
-void supernodeTick(benchmark::State& state) {
+void engineTick(benchmark::State& state, const std::string& engine) {
   const auto scale = static_cast<std::int32_t>(state.range(0));
   const Load& load = loadAt(scale);
   std::unique_ptr<wsn::supernode::SupernodeTracker> tracker;
-  std::int32_t tick = warmUp(tracker, load);
+  std::int32_t tick = warmUp(tracker, load, engine);
   double window_observations = 0.0;
   double tracks = 0.0;
   double targets = 0.0;
@@ -196,7 +203,7 @@ void supernodeTick(benchmark::State& state) {
     if (tick > kTicks) {
       // Ticks only move forward, so the load is replayed by a new tracker; its set-up is untimed.
       state.PauseTiming();
-      tick = warmUp(tracker, load);
+      tick = warmUp(tracker, load, engine);
       state.ResumeTiming();
     }
     const auto out = tracker->step(tick, load.at(tick), {});
@@ -210,9 +217,12 @@ void supernodeTick(benchmark::State& state) {
   state.counters["obs/window"] = Counter(window_observations, Counter::kAvgIterations);
   state.counters["tracks"] = Counter(tracks, Counter::kAvgIterations);
   state.counters["targets"] = Counter(targets, Counter::kAvgIterations);
-  state.counters["chain_it/s"] = Counter(static_cast<double>(kIterations * state.iterations()), Counter::kIsRate);
+  if (engine == "mcmcda")
+    state.counters["chain_it/s"] = Counter(static_cast<double>(kIterations * state.iterations()), Counter::kIsRate);
   state.counters["ticks/s"] = Counter(static_cast<double>(state.iterations()), Counter::kIsRate);
 }
+
+void supernodeTick(benchmark::State& state) { engineTick(state, "mcmcda"); }
 
 /// The window of the load at `scale` whose size is the median over ticks after the warm-up, as a
 /// Problem of its observations. Without the engine's anchors (the summaries of tracks older than
@@ -265,5 +275,8 @@ void samplerChain(benchmark::State& state) {
 
 // One iteration = one supernode tick at 1x, 2x and 4x the load of one oh_quadrants supernode.
 BENCHMARK(supernodeTick)->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
+// The same ticks of the other window engines.
+BENCHMARK_CAPTURE(engineTick, gnn, std::string("gnn"))->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(engineTick, sbmht, std::string("sbmht"))->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
 // One iteration = one chain of nmc iterations on the median window of the same loads.
 BENCHMARK(samplerChain)->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
