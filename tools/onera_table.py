@@ -6,14 +6,17 @@ sensors reported it at all, as a Markdown table on stdout.
   onera_table.py --a1 RUN_DIR... --a2 RUN_DIR...   both algorithms, with the A1 - A2 deltas
   onera_table.py --a2 RUN_DIR...                   algorithm 2 only, beside the paper's A1 and A2
   onera_table.py RUN_DIR...                        the same as --a2 RUN_DIR...
+  onera_table.py ... --plot FILE.png|FILE.svg       the table, and bar charts of it in FILE
 
-Standard library only, like tools/sweep.py's flag form, so that it runs with any python3.
+Standard library only, like tools/sweep.py's flag form, so that it runs with any python3; --plot
+alone needs matplotlib (Debian's python3-matplotlib, for /usr/bin/python3), imported only then.
 """
 
 import argparse
 import csv
 import json
 import math
+import os
 import statistics
 import sys
 from pathlib import Path
@@ -59,8 +62,18 @@ and, when every target's "reported" is defined, its mean and median and, per alg
 divided by the mean reported share. Targets whose RSE is undefined in every run are left out of the
 RSE statistics and shown as '-'.
 
+With --plot FILE (FILE ending .png or .svg, which chooses the format) the tool also draws the table
+in FILE: two panels stacked, per-target RSE (m) above and per-target TLR below, as grouped bars for
+targets 1..20 (more if the runs have more): ours A1 and ours A2 (those given), then the paper's A1 and
+A2, hatched and lighter. A target with an undefined RSE gets no RSE bar. The title gives the number
+of runs per algorithm. The figure is written under a temporary name in FILE's directory and renamed
+to FILE when complete, so a failure leaves no partial FILE; a line on stderr says where it was
+written. matplotlib is imported (with the Agg backend) only for --plot; when it cannot be, the tool
+says so before printing anything and exits with status 1.
+
 Exit status: 0, 1 when a run directory or its metrics.json is missing or malformed (the message
-names the file and what was expected), 2 on a usage error."""
+names the file and what was expected), when --plot is given but matplotlib cannot be imported, or
+when FILE cannot be written; 2 on a usage error (such as --plot FILE with another extension)."""
 
 PAPER_TARGETS = len(PAPER_A1)
 
@@ -341,6 +354,81 @@ def table(a1, a2, n_a1, n_a2, reported=None, reported_from="A2"):
     return lines
 
 
+PLOT_FORMATS = (".png", ".svg")
+
+
+def load_matplotlib():
+    """(matplotlib, None), or (None, the ImportError) when it cannot be imported. Only --plot calls
+    it: without --plot the tool needs nothing beyond the standard library."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.figure
+        from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: F401 (savefig's canvas)
+    except ImportError as error:
+        return None, error
+    # No pyplot: its figure manager is not needed to save a figure.
+    matplotlib.rcParams.update({"savefig.dpi": 120, "svg.fonttype": "none", "font.size": 10})
+    return matplotlib, None
+
+
+def plot(matplotlib, path, a1, a2, n_a1, n_a2):
+    """Draws per-target RSE and TLR, ours (the algorithms given) beside the paper's, as grouped bars
+    in two stacked panels, and saves the figure to `path` (its suffix gives the format) through a
+    temporary file in the same directory, renamed when complete. Raises OSError when it cannot."""
+    n = max(PAPER_TARGETS, len(a1 or []), len(a2 or []))
+    # (label, per-target (rse, tlr) rows, colour, paper's style)
+    series = []
+    if a1 is not None:
+        series.append((f"ours A1 (road network, mean of {n_a1} run{'s' if n_a1 != 1 else ''})", a1,
+                       "tab:blue", False))
+    if a2 is not None:
+        series.append((f"ours A2 (no road network, mean of {n_a2} run{'s' if n_a2 != 1 else ''})", a2,
+                       "tab:orange", False))
+    series.append(("paper A1 (Table II)", PAPER_A1, "tab:blue", True))
+    series.append(("paper A2 (Table II)", PAPER_A2, "tab:orange", True))
+    width = 0.84 / len(series)
+
+    fig = matplotlib.figure.Figure(figsize=(max(12.0, 0.6 * n), 8.0), constrained_layout=True)
+    rse_axes, tlr_axes = fig.subplots(2, 1, sharex=True)
+    for axes, k, ylabel in ((rse_axes, 0, "RSE (m)"), (tlr_axes, 1, "TLR")):
+        for i, (label, rows, colour, paper) in enumerate(series):
+            offset = (i - (len(series) - 1) / 2) * width
+            xs, heights = [], []
+            for j in range(min(n, len(rows))):
+                if rows[j][k] is not None:  # an undefined RSE: no bar
+                    xs.append(j + 1 + offset)
+                    heights.append(rows[j][k])
+            style = ({"color": colour, "alpha": 0.35, "hatch": "///", "edgecolor": colour, "linewidth": 0.6}
+                     if paper else {"color": colour, "edgecolor": "black", "linewidth": 0.4})
+            axes.bar(xs, heights, width, label=label, zorder=2, **style)
+        axes.set_ylabel(ylabel)
+        axes.grid(axis="y", color="0.85", zorder=0)
+        axes.set_axisbelow(True)
+        axes.set_xlim(0.4, n + 0.6)
+    tlr_axes.set_ylim(0, 1.05)
+    tlr_axes.set_xticks(range(1, n + 1))
+    tlr_axes.set_xlabel("target")
+    rse_axes.tick_params(labelbottom=True)
+    rse_axes.set_title("per-target position RSE (m); a target never associated has no bar", fontsize=10)
+    tlr_axes.set_title("per-target TLR (associated ticks / alive ticks)", fontsize=10)
+    runs = ", ".join(f"{name} {count} run{'s' if count != 1 else ''}"
+                     for name, count in (("A1", n_a1), ("A2", n_a2)) if count)
+    fig.suptitle(f"Ours ({runs}; per-target means) vs Pannetier, Dezert and Sella (FUSION 2014), Table II")
+    # Above the top panel, so that it hides no bar.
+    rse_axes.legend(loc="lower center", bbox_to_anchor=(0.5, 1.1), ncol=len(series), frameon=False,
+                    fontsize=9)
+
+    path = Path(path)
+    partial = path.with_name(f".{path.name}.{os.getpid()}.partial")
+    try:
+        fig.savefig(partial, format=path.suffix.lower()[1:])
+        os.replace(partial, path)
+    finally:
+        if partial.exists():
+            partial.unlink()
+
+
 def main(argv):
     parser = argparse.ArgumentParser(prog="onera_table.py", description=DESCRIPTION,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -350,7 +438,14 @@ def main(argv):
                         help="runs of algorithm 1 (with the road network)")
     parser.add_argument("--a2", nargs="+", metavar="RUN_DIR", default=[],
                         help="runs of algorithm 2 (without the road network)")
+    parser.add_argument("--plot", metavar="FILE",
+                        help="also draw per-target RSE and TLR, ours beside the paper's, in FILE "
+                             "(.png or .svg; needs matplotlib)")
     args = parser.parse_args(argv)
+    if args.plot is not None and Path(args.plot).suffix.lower() not in PLOT_FORMATS:
+        suffix = Path(args.plot).suffix
+        parser.error(f"--plot {args.plot}: " + (f"unknown extension '{suffix}'" if suffix else "no extension")
+                     + " (expected a file name ending .png or .svg)")
     if args.runs and args.a2:
         parser.error("give algorithm 2's runs either as RUN_DIR... or after --a2, not both")
     a2_args = args.a2 or args.runs
@@ -374,9 +469,24 @@ def main(argv):
         if rows is not None and any(r[2] is None for r in rows):
             print(f"onera_table.py: note: some {name} run has no tlr_length (scored before it existed): "
                   "TLR_len is shown as '-'", file=sys.stderr)
+    matplotlib = None
+    if args.plot is not None:
+        matplotlib, import_error = load_matplotlib()
+        if matplotlib is None:
+            print(f"onera_table.py: --plot: matplotlib is not available to {sys.executable} ({import_error}); "
+                  "on Debian: apt-get install python3-matplotlib (or leave out --plot)", file=sys.stderr)
+            return 1
     reported_from = "A2" if a2_runs else "A1"
     reported = average_reported(a2_runs or a1_runs)
-    print("\n".join(table(a1, a2, len(a1_runs), len(a2_runs), reported, reported_from)))
+    print("\n".join(table(a1, a2, len(a1_runs), len(a2_runs), reported, reported_from)), flush=True)
+    if matplotlib is not None:
+        try:
+            plot(matplotlib, args.plot, a1, a2, len(a1_runs), len(a2_runs))
+        except OSError as error:
+            print(f"onera_table.py: {args.plot}: cannot write the plot "
+                  f"({error.strerror or error})", file=sys.stderr)
+            return 1
+        print(f"onera_table.py: wrote the plot to {args.plot}", file=sys.stderr)
     return 0
 
 

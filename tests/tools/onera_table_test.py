@@ -3,13 +3,16 @@
 run directories (metrics.json's track_quality block, and for the "reported" column truth.csv and
 observations.csv): per-target means over runs against a hand computation, the paper's statistics, the
 A1 - A2 deltas and comparisons, undefined RSEs, runs without tlr_length, the reported share and its
-notes for missing, inconsistent or malformed CSV files, and the errors for missing or malformed
-metrics.json.
+notes for missing, inconsistent or malformed CSV files, the errors for missing or malformed
+metrics.json, and --plot: a PNG or SVG beside the unchanged table (skipped when /usr/bin/python3 has
+no matplotlib), a bad extension, a missing matplotlib (a stand-in package that raises ImportError)
+and an unwritable file.
 
 Usage: onera_table_test.py SOURCE_DIR WORK_DIR
 """
 
 import json
+import os
 import shutil
 import subprocess
 import sys
@@ -56,9 +59,17 @@ def observations_csv(reports):
             + "".join(f"{g},{d},7,0,1,{d - g},1.0,2.0,{t},{fate},0\n" for g, d, t, fate in reports))
 
 
-def tool(*args):
-    return subprocess.run(["/usr/bin/python3", "-B", str(TOOL), *map(str, args)], capture_output=True,
-                          text=True, timeout=60)
+PYTHON = "/usr/bin/python3"
+
+
+def tool(*args, env=None):
+    return subprocess.run([PYTHON, "-B", str(TOOL), *map(str, args)], capture_output=True,
+                          text=True, timeout=60, env=env)
+
+
+# The PNG and SVG tests need matplotlib for the python that runs the tool.
+HAVE_MATPLOTLIB = subprocess.run([PYTHON, "-c", "import matplotlib"], capture_output=True).returncode == 0
+NO_MATPLOTLIB = f"matplotlib is not installed for {PYTHON} (Debian: python3-matplotlib)"
 
 
 def cells(stdout, first):
@@ -290,6 +301,102 @@ class Reported(unittest.TestCase):
         self.check_dash(run, f"{run / 'observations.csv'}: line 2: target: expected an integer, got '0.5'")
         run = reported_run("reported/short_row", SEED2_REPORTS, **{"truth.csv": "tick,target,x,y,vx,vy\n10\n"})
         self.check_dash(run, f"{run / 'truth.csv'}: line 2: 1 fields, expected 6")
+
+
+class Plot(unittest.TestCase):
+    """--plot FILE: the same table on stdout, and the bar charts in FILE."""
+
+    @classmethod
+    def setUpClass(cls):
+        # A2: OneAlgorithm's kind of runs (target 3's RSE undefined in both: no bar); A1: 20 plain targets.
+        s1 = [target(0, 4.0, 0.5, 0.2), target(1, 0.0, 0.0, 0.0, defined=False), target(2, 0, 0.0, 0.0, False)]
+        rest = [target(i, 10.0, 1.0, 1.0) for i in range(3, 20)]
+        cls.a2 = [run_dir("plot/a2-s1", s1 + rest), run_dir("plot/a2-s2", s1 + rest)]
+        cls.a1 = [run_dir("plot/a1-s1", [target(i, 6.0, 0.8, 0.8) for i in range(20)])]
+        cls.args = ["--a1", *cls.a1, "--a2", *cls.a2]
+        cls.table = tool(*cls.args)
+        assert cls.table.returncode == 0, cls.table.stderr
+
+    def out_dir(self, name):
+        path = WORK / "plot" / name
+        path.mkdir(parents=True)
+        return path
+
+    def check_written(self, out, result):
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(result.stdout, self.table.stdout)  # the table as without --plot
+        self.assertIn(f"onera_table.py: wrote the plot to {out}\n", result.stderr)
+        self.assertEqual(os.listdir(out.parent), [out.name])  # no temporary file left behind
+        data = out.read_bytes()
+        self.assertGreater(len(data), 1000)
+        return data
+
+    @unittest.skipUnless(HAVE_MATPLOTLIB, NO_MATPLOTLIB)
+    def test_png(self):
+        out = self.out_dir("png") / "bars.png"
+        data = self.check_written(out, tool(*self.args, "--plot", out))
+        self.assertEqual(data[:8], b"\x89PNG\r\n\x1a\n")
+
+    @unittest.skipUnless(HAVE_MATPLOTLIB, NO_MATPLOTLIB)
+    def test_svg(self):
+        out = self.out_dir("svg") / "bars.svg"
+        text = self.check_written(out, tool("--plot", out, *self.args)).decode("utf-8")
+        self.assertTrue(text.startswith("<?xml") or "<svg" in text, text[:200])
+        self.assertIn("<svg", text)
+
+    @unittest.skipUnless(HAVE_MATPLOTLIB, NO_MATPLOTLIB)
+    def test_one_algorithm(self):
+        out = self.out_dir("a2") / "bars.png"
+        result = tool("--a2", *self.a2, "--plot", out)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(out.read_bytes()[:8], b"\x89PNG\r\n\x1a\n")
+
+    @unittest.skipUnless(HAVE_MATPLOTLIB, NO_MATPLOTLIB)
+    def test_unwritable(self):
+        out = WORK / "plot" / "nowhere" / "bars.png"
+        result = tool(*self.args, "--plot", out)
+        self.assertEqual(result.returncode, 1, result.stderr)
+        self.assertIn(f"onera_table.py: {out}: cannot write the plot", result.stderr)
+        self.assertFalse(out.parent.exists())
+
+    def test_bad_extension(self):
+        where = self.out_dir("bad")
+        for name, named in (("bars.jpg", "unknown extension '.jpg'"), ("bars.png.txt", "unknown extension '.txt'"),
+                            ("bars", "no extension")):
+            result = tool(*self.args, "--plot", where / name)
+            self.assertEqual(result.returncode, 2, result.stderr)
+            self.assertEqual(result.stdout, "")
+            self.assertIn(f"--plot {where / name}: {named} (expected a file name ending .png or .svg)",
+                          result.stderr)
+        self.assertEqual(os.listdir(where), [])
+
+    def fake_matplotlib(self):
+        """An environment whose PYTHONPATH shadows matplotlib with a package that cannot be imported."""
+        fake = WORK / "plot" / "fake"
+        if not fake.exists():
+            (fake / "matplotlib").mkdir(parents=True)
+            (fake / "matplotlib" / "__init__.py").write_text(
+                'raise ImportError("stand-in: no matplotlib here")\n', encoding="utf-8")
+        return dict(os.environ, PYTHONPATH=str(fake))
+
+    def test_matplotlib_missing(self):
+        where = self.out_dir("missing")
+        result = tool(*self.args, "--plot", where / "bars.png", env=self.fake_matplotlib())
+        self.assertEqual(result.returncode, 1, result.stderr)
+        self.assertEqual(result.stdout, "")
+        self.assertIn("matplotlib is not available", result.stderr)
+        self.assertIn("stand-in: no matplotlib here", result.stderr)
+        self.assertIn("apt-get install python3-matplotlib", result.stderr)
+        self.assertEqual(os.listdir(where), [])
+
+    def test_table_without_matplotlib(self):
+        # Without --plot matplotlib is never imported.
+        result = tool(*self.args, env=self.fake_matplotlib())
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(result.stdout, self.table.stdout)
+
+    def test_help(self):
+        self.assertIn("--plot FILE", tool("--help").stdout)
 
 
 class Errors(unittest.TestCase):
