@@ -37,6 +37,17 @@ common::GaussianState projectOntoRoad(const common::GaussianState& state, const 
   return out;
 }
 
+common::GaussianState moveOntoRoad(const common::GaussianState& state, const RoadFoot& foot) {
+  const Eigen::Vector2d u(foot.direction.x, foot.direction.y);
+  const double along = u.dot(Eigen::Vector2d(state.x(kVx), state.x(kVy)));
+  common::GaussianState out = state;
+  out.x(kX) = foot.point.x;
+  out.x(kY) = foot.point.y;
+  out.x(kVx) = along * u.x();
+  out.x(kVy) = along * u.y();
+  return out;
+}
+
 std::optional<common::GaussianState> projectOntoRoad(const common::GaussianState& state, const Road& road,
                                                      double road_location_sigma) {
   const auto foot = footPoint(road, {state.x(kX), state.x(kY)});

@@ -40,6 +40,11 @@ inline std::optional<RoadFoot> footPoint(const Road& road, common::Vec2 position
 common::GaussianState projectOntoRoad(const common::GaussianState& state, const RoadFoot& foot,
                                       double road_location_sigma);
 
+/// The mean of projectOntoRoad (position to the foot point, velocity along the segment) with the
+/// covariance left as it is: what a prediction needs to follow a bend without losing eq. 6's
+/// across-road process noise, which the full projection would remove.
+common::GaussianState moveOntoRoad(const common::GaussianState& state, const RoadFoot& foot);
+
 /// The same at the state's own foot point on `road`; nullopt when the road has no segment.
 std::optional<common::GaussianState> projectOntoRoad(const common::GaussianState& state, const Road& road,
                                                      double road_location_sigma);

@@ -653,7 +653,7 @@ void SbmhtEngine::runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::spa
       gated[j] = 1;
       child.imm = std::move(hit.state);
       child.road_section = leaf.road_section;
-      projectRoadMode(child);
+      projectRoadMode(child, true);
       // Eqs. 21-22: L = L + Delta L + Delta L^c (Delta L^c = 0 for a report without c).
       const double class_increment = classified ? classified->score_increment : 0.0;
       child.score = leaf.score.after(reportScoreIncrement(hit.likelihood, t.clutter_density) + class_increment, sprt);
@@ -828,15 +828,18 @@ void SbmhtEngine::timeUpdate(Leaf& leaf) const {
     // gate and its Pe where the other models' are, rather than wherever it left the road.
     leaf.imm.modes[kRoadMode] = leaf.imm.modes[kFastMode];
   else
-    projectRoadMode(leaf);
+    // The prediction's mean follows the road round a bend; its covariance keeps eq. 6's
+    // across-road noise until a report's update is projected.
+    projectRoadMode(leaf, false);
 }
 
-void SbmhtEngine::projectRoadMode(Leaf& leaf) const {
+void SbmhtEngine::projectRoadMode(Leaf& leaf, bool with_covariance) const {
   if (!roads_ || leaf.road_section < 0) return;
   GaussianState& mode = leaf.imm.modes[kRoadMode];
   const auto& section = terrain_->sections()[static_cast<std::size_t>(leaf.road_section)];
   const auto foot = common::footPoint(section.points, {mode.x(kX), mode.x(kY)});
-  if (foot) mode = projectOntoRoad(mode, *foot, params_.road_location_sigma);
+  if (!foot) return;
+  mode = with_covariance ? projectOntoRoad(mode, *foot, params_.road_location_sigma) : moveOntoRoad(mode, *foot);
 }
 
 void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot) {
@@ -954,7 +957,9 @@ void SbmhtEngine::manageHypotheses(std::vector<Leaf>& leaves, std::int32_t tick,
   // through the tick N scans back, with its leaf in the best hypothesis (or its most probable leaf
   // when it has none). Algorithm 1 also keeps, of the branches that do not, the best-scoring one on
   // each other road section, up to road_sections_kept sections a tree (Pannetier et al., Fig. 2
-  // step 5): at a junction the other road stays a hypothesis until the reports decide (C7).
+  // step 5): branches that took different reports near a junction and so follow different roads
+  // both stay until the reports decide (C7). A leaf is not split per road: its road model follows
+  // the section nearest its prediction.
   std::erase_if(leaves, [](const Leaf& l) { return !l.best && l.probability < kMinTrackProbability; });
   if (!n_scan_pruning) return;
   std::vector<char> keep(leaves.size(), 1);
@@ -996,8 +1001,10 @@ void SbmhtEngine::keepOtherSections(const std::vector<Leaf>& leaves, std::size_t
   std::stable_sort(others.begin(), others.end(), [&](std::size_t a, std::size_t b) {
     return leaves[a].score.score > leaves[b].score.score;
   });
-  // The agreeing branches are one of the Nk, whether on a road or not.
-  std::size_t kept = 1;
+  // The agreeing branches count as the sections they are on, and as one when they are off road.
+  std::sort(sections.begin(), sections.end());
+  sections.erase(std::unique(sections.begin(), sections.end()), sections.end());
+  std::size_t kept = std::max<std::size_t>(1, sections.size());
   for (const std::size_t k : others) {
     if (kept >= static_cast<std::size_t>(params_.road_sections_kept)) break;
     if (std::find(sections.begin(), sections.end(), leaves[k].road_section) != sections.end()) continue;

@@ -168,10 +168,11 @@ class SbmhtEngine final : public Engine {
   Detectability detectabilityOf(const Scan& scan, const ImmState& imm) const;
   /// The time update of one leaf: mixing and each model's prediction. Algorithm 1 first picks the
   /// road section nearest the leaf's predicted position; within road_gate_distance the road model
-  /// follows that section's segment and its estimate is projected onto it, else it is off.
+  /// follows that section's segment and its predicted mean is moved onto it, else it is off.
   void timeUpdate(Leaf& leaf) const;
-  /// Algorithm 1: the road model's estimate moved onto the leaf's road section (C8).
-  void projectRoadMode(Leaf& leaf) const;
+  /// Algorithm 1: the road model's estimate moved onto the leaf's road section, its covariance
+  /// projected too (C8, after a report) or left as it is (after a time update).
+  void projectRoadMode(Leaf& leaf, bool with_covariance) const;
   /// Closes the tick in every leaf's history; drops leaves that missed max_misses ticks running
   /// (without coverage), that no sensor could see for max_coast_ticks (with coverage), or that
   /// coasted out of the region.

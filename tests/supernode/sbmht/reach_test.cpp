@@ -82,9 +82,10 @@ TEST_CASE("sbmht keeps a track fed bearings alone within the antenna's reach", "
   // An all-round antenna at A = (10, 10) hears up to 50. A second sensor, not in the list (its
   // silence is no evidence), places the target for 10 ticks while it moves out along the diagonal
   // at 1 a tick; then it turns back and creeps towards the antenna at 0.3 a tick, heard by the
-  // antenna alone. Its bearing never changes, so nothing in the bearings says it turned: without
-  // the reach the track would run on outwards, 70 from A by tick 60. Each bearing proves the
-  // target within 50 of A, and the track stays there, confirmed under its id.
+  // antenna alone. Its bearing never changes, so nothing in the bearings says it turned: with the
+  // constraint switched off in the code, the track ran on outwards to 70 from A by tick 60 (this
+  // test then fails). Each bearing proves the target within 50 of A, and the track stays there,
+  // confirmed under its id.
   const Vec2 antenna{10.0, 10.0};
   const common::SensorId kAntenna = 1;
   const common::SensorId kLocator = 2;

@@ -91,6 +91,18 @@ TEST_CASE("C8 projection moves the position to the foot point and keeps the spee
   CHECK(std::hypot(onto->x(kVx), onto->x(kVy)) == Approx(2.0 * std::cos(std::numbers::pi / 4)));
 }
 
+TEST_CASE("moving onto the road moves the mean as the projection does and keeps the covariance", "[sbmht]") {
+  // The C8 case above: (30, 4), v = (3, 4) on the road east goes to (30, 0), v = (3, 0); P = I stays.
+  const auto foot = footPoint(kBend, {30.0, 4.0});
+  REQUIRE(foot);
+  const GaussianState moved = moveOntoRoad(at(30.0, 4.0, 3.0, 4.0), *foot);
+  CHECK(moved.x(kX) == Approx(30.0));
+  CHECK(moved.x(kY) == Approx(0.0).margin(1e-12));
+  CHECK(moved.x(kVx) == Approx(3.0));
+  CHECK(moved.x(kVy) == Approx(0.0).margin(1e-12));
+  CHECK(moved.P == at(30.0, 4.0, 3.0, 4.0).P);
+}
+
 TEST_CASE("projection keeps only the along-road covariance plus the road's own location error", "[sbmht]") {
   // Road east, P = I: T = diag(u u', u u') with u u' = diag(1, 0), so T P T' = diag(1, 0, 1, 0).
   const auto foot = footPoint(kBend, {30.0, 4.0});

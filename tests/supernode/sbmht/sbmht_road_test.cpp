@@ -94,9 +94,9 @@ TEST_CASE("sbmht algorithm 1 puts the road model on the road and follows a road 
   // the centre line, eq. 6 and C8), which pulls the combined estimate towards it. The paper finds
   // that roads improve precision only weakly. Here the road is known to 1 (road_location_sigma)
   // and the quiet CV model explains a steady speed along the road better than the road model's
-  // sigma_d = 1 does, so the road model holds 0.28 of the probability on average (its share at the
+  // sigma_d = 1 does, so the road model holds 0.24 of the probability on average (its share at the
   // chain's balance, tau 30 of 70 among the moving models, is 0.43), and the across-road error
-  // falls by about a quarter (0.82 against 1.08).
+  // falls by a fifth (0.85 against 1.08).
   const auto terrain = forkTerrain();
   auto truth = [](std::int32_t t) { return common::Vec2{2.0 + 1.5 * t, 30.0}; };
   auto run = [&](bool use_roads) {
@@ -117,11 +117,16 @@ TEST_CASE("sbmht algorithm 1 puts the road model on the road and follows a road 
       if (!use_roads) continue;
       for (const auto& leaf : h.engine.leaves()) {
         if (!leaf.best) continue;
-        // The road model's estimate lies on the road: on y = 30, its velocity along x.
+        // The road model's estimate lies on its section, its velocity along the segment there
+        // (past the junction at x = 50 a noisy estimate may be nearer the branch road).
         const auto& road_mode = leaf.imm.modes[SbmhtEngine::kRoadMode];
-        CHECK(leaf.road_section >= 0);
-        CHECK(road_mode.x(common::kY) == Approx(30.0).margin(1e-9));
-        CHECK(road_mode.x(common::kVy) == Approx(0.0).margin(1e-9));
+        REQUIRE(leaf.road_section >= 0);
+        const auto& section = terrain->sections()[static_cast<std::size_t>(leaf.road_section)];
+        const auto foot = common::footPoint(section.points, {road_mode.x(common::kX), road_mode.x(common::kY)});
+        REQUIRE(foot);
+        CHECK(foot->distance == Approx(0.0).margin(1e-9));
+        const double across = -foot->direction.y * road_mode.x(common::kVx) + foot->direction.x * road_mode.x(common::kVy);
+        CHECK(across == Approx(0.0).margin(1e-9));
         road_probability += leaf.imm.probabilities(static_cast<Eigen::Index>(SbmhtEngine::kRoadMode));
       }
     }
@@ -132,7 +137,9 @@ TEST_CASE("sbmht algorithm 1 puts the road model on the road and follows a road 
   const auto [a1_across, a1_road_probability] = run(true);
   INFO("RMS across-road error: algorithm 1 " << a1_across << ", algorithm 2 " << a2_across
                                              << "; mean road-model probability " << a1_road_probability);
-  CHECK(a1_across < 0.85 * a2_across);
+  CHECK(a1_road_probability > 0.1);
+  CHECK(a1_road_probability < 0.43);  // below its share at balance: the evidence favours the quiet CV model
+  CHECK(a1_across < 0.9 * a2_across);
 }
 
 TEST_CASE("sbmht algorithm 1 equals algorithm 2 away from the roads", "[sbmht]") {
@@ -188,7 +195,7 @@ TEST_CASE("sbmht follows a target round a bend hidden by a building, algorithm 1
   // While the models' predictions are hidden, Pe = 0: no likelihood moves (C2), the mode
   // probabilities follow the Markov chain alone and the track coasts. Algorithm 2's CV models run
   // straight on, out of the shadow while the target is still in it, where silence makes them
-  // unlikely and the stop model rises to 0.58; algorithm 1's road model follows the bend and stays
+  // unlikely and the stop model rises to 0.57; algorithm 1's road model follows the bend and stays
   // in the shadow with the target, and the stop model stays at 0.32 or less. Its estimate is nearer
   // the hidden target (mean 6.8 against 8.3 over the hidden ticks; the road model holds only what
   // the chain gives it) and keeps within the gate (TLR 1 against 0.96).
