@@ -179,7 +179,7 @@ std::optional<RoadProjection> Terrain::project(Vec2 position) const {
   for (std::size_t s = 0; s < sections_.size(); ++s) {
     const auto foot = footPoint(sections_[s].points, position);
     if (!foot || (best && !(foot->distance < best->distance))) continue;
-    best = RoadProjection{s, foot->point, foot->distance, foot->along, foot->direction};
+    best = RoadProjection{s, foot->segment, foot->point, foot->distance, foot->along, foot->direction};
   }
   return best;
 }

@@ -96,6 +96,7 @@ struct Junction {
 /// A position projected onto the nearest road section.
 struct RoadProjection {
   std::size_t section = 0;  ///< index into Terrain::sections()
+  std::size_t segment = 0;  ///< the foot's segment, from the section's points[segment] to points[segment + 1]
   Vec2 foot;
   double distance = 0.0;  ///< from the position to the foot point
   double along = 0.0;     ///< from the section's first point to the foot point

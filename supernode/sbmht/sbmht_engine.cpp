@@ -414,14 +414,19 @@ SbmhtParams SbmhtParams::fromContext(const EngineContext& context) {
 
 namespace {
 
-/// Algorithm 2's models: stop, quiet CV and manoeuvring CV. With roads (algorithm 1) the road model
-/// is appended, here as it is off road: nothing switches into it (VS-IMM: the model set follows
-/// the roads), a track that leaves the road hands its probability to the two CV models evenly, and
-/// it predicts as the manoeuvring model does (the engine then copies that model's estimate).
+/// Algorithm 2's models: stop, quiet CV and manoeuvring CV.
+std::vector<MotionModel> algorithm2Models(const SbmhtParams& p, double delta) {
+  return {stopModel(delta, p.stop_sigma), constantVelocityModel(delta, p.cv_slow_sigma),
+          constantVelocityModel(delta, p.cv_fast_sigma)};
+}
+
+/// Algorithm 2's IMM. With roads (algorithm 1) the road model is appended, here as it is off
+/// road: nothing switches into it (VS-IMM: the model set follows the roads), a track that leaves
+/// the road hands its probability to the two CV models evenly, and it predicts as the manoeuvring
+/// model does (the engine then copies that model's estimate).
 Imm makeImm(const SbmhtParams& p, double delta, bool roads) {
   const std::array<double, 3> taus{p.stop_time_constant, p.slow_time_constant, p.fast_time_constant};
-  std::vector<MotionModel> models{stopModel(delta, p.stop_sigma), constantVelocityModel(delta, p.cv_slow_sigma),
-                                  constantVelocityModel(delta, p.cv_fast_sigma)};
+  std::vector<MotionModel> models = algorithm2Models(p, delta);
   TransitionMatrix pi = transitionMatrix(delta, taus);
   if (!roads) return Imm(std::move(models), std::move(pi));
   MotionModel off_road = constantVelocityModel(delta, p.cv_fast_sigma);
@@ -439,10 +444,9 @@ Imm makeImm(const SbmhtParams& p, double delta, bool roads) {
 Imm makeRoadImm(const SbmhtParams& p, double delta, double heading) {
   const std::array<double, 4> taus{p.stop_time_constant, p.slow_time_constant, p.fast_time_constant,
                                    p.road_time_constant};
-  return Imm({stopModel(delta, p.stop_sigma), constantVelocityModel(delta, p.cv_slow_sigma),
-              constantVelocityModel(delta, p.cv_fast_sigma),
-              roadModel(delta, heading, p.road_along_sigma, p.road_across_sigma)},
-             transitionMatrix(delta, taus));
+  std::vector<MotionModel> models = algorithm2Models(p, delta);
+  models.push_back(roadModel(delta, heading, p.road_along_sigma, p.road_across_sigma));
+  return Imm(std::move(models), transitionMatrix(delta, taus));
 }
 
 /// The history up to and including `tick`'s kTickEnd (the whole history when it ends sooner).
@@ -812,11 +816,8 @@ void SbmhtEngine::timeUpdate(Leaf& leaf) const {
     const common::Vec2 ahead{c.x(kX) + delta_ * c.x(kVx), c.x(kY) + delta_ * c.x(kVy)};
     const auto near = terrain_->project(ahead);
     if (near && near->distance <= params_.road_gate_distance) {
-      const auto foot = common::footPoint(terrain_->sections()[near->section].points, ahead);
-      if (foot) {
-        leaf.road_section = static_cast<std::int32_t>(near->section);
-        imm = &road_imms_[near->section][foot->segment];
-      }
+      leaf.road_section = static_cast<std::int32_t>(near->section);
+      imm = &road_imms_[near->section][near->segment];
     }
   }
   ImmPrediction p = imm->predict(leaf.imm);

@@ -46,6 +46,20 @@ TEST_CASE("a projection finds the nearest section, the distance along it and its
   CHECK_FALSE(Terrain().project({0.0, 0.0}));
 }
 
+TEST_CASE("a projection names the segment of the section that holds the foot", "[terrain]") {
+  // One section that bends at (10, 0): (12, 5) is 2 from its second segment (foot (10, 5)) and
+  // 5.4 from the first's end, so the foot is on segment 1, 10 + 5 = 15 along the section.
+  TerrainConfig config;
+  config.roads.push_back({"bend", {{0.0, 0.0}, {10.0, 0.0}, {10.0, 10.0}}});
+  const Terrain terrain(config);
+  const auto p = terrain.project({12.0, 5.0});
+  REQUIRE(p);
+  CHECK(p->segment == 1);
+  CHECK(p->foot == Vec2{10.0, 5.0});
+  CHECK(p->along == Approx(15.0));
+  CHECK(terrain.project({4.0, -1.0})->segment == 0);
+}
+
 TEST_CASE("the foot point on a polyline measures its distance along from the first point", "[terrain]") {
   // East 100, then north 100: (97, 60) is 3 from the second segment, at 100 + 60 = 160 along.
   const std::vector<Vec2> bend{{0.0, 0.0}, {100.0, 0.0}, {100.0, 100.0}};

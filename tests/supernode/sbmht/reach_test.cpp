@@ -73,6 +73,11 @@ TEST_CASE("reach works along any line and leaves what lies well inside alone", "
   CHECK(inside.probability == 1.0);
   CHECK(inside.state.x == near.x);
   CHECK(inside.state.P == near.P);
+  // Far beyond reach, 1000 with s = 1 from a range of 5: Phi(-995) underflows, nothing is left of
+  // the estimate within reach, and it is returned unchanged with probability 0.
+  const ReachUpdate beyond = constrainToReach(near, {10.0, 20.0 - 1000.0}, 5.0);
+  CHECK(beyond.probability == 0.0);
+  CHECK(beyond.state.x == near.x);
   // Far beyond reach with no spread left: impossible.
   near.P.setZero();
   CHECK(constrainToReach(near, {10.0, 20.0}, 5.0).probability == 0.0);
