@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 
+#include "common/class_evidence.hpp"
 #include "common/shared_derivations.hpp"
 
 namespace wsn::aggregator {
@@ -171,6 +172,12 @@ std::vector<common::TrackEstimate> McmcdaAssociator::associate(std::int32_t tick
   for (std::size_t n = 0; n < chosen.size(); ++n) {
     common::TrackEstimate e = chosen[n]->now;
     e.track = ids.global[n];
+    // The track-level engine sees positions only; the class is fused from the supernode tracks
+    // it holds that were reported at this tick (in id order, so the result is canonical).
+    std::vector<std::span<const double>> classes;
+    for (const common::TrackId source : std::set<common::TrackId>(globals[n].sources.begin(), globals[n].sources.end()))
+      if (const auto it = reported.find(source); it != reported.end()) classes.emplace_back(it->second->class_probabilities);
+    e.class_probabilities = common::fuseClassVectors(classes);
     out.push_back(e);
   }
   for (std::size_t n = 0; n < passed.size(); ++n)

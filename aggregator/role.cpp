@@ -108,7 +108,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
       wsn_msg_GlobalTrackBatch sample{};
       sample.run_id = context.run_id;
       sample.tick = t;
-      sample.tracks = sequenceView<dds_sequence_wsn_msg_TrackEstimate>(encoded);
+      sample.tracks = sequenceView<dds_sequence_wsn_msg_TrackEstimate>(encoded.items);
       global_writer.write(sample);
 
       // Every metric's live values by name: a new metric goes out without an IDL change.

@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "common/assignment.hpp"
+#include "common/class_evidence.hpp"
 
 namespace wsn::aggregator {
 namespace {
@@ -69,6 +70,9 @@ TrackEstimate meanState(const Cluster& cluster, TrackId id) {
   // The members' mean covariance: conservative for a mean of estimates of one target (their
   // errors are correlated through shared observations, so the 1/n of independent ones would lie).
   for (auto& value : merged.covariance) value /= n;
+  std::vector<std::span<const double>> classes;
+  for (const auto& member : cluster.members) classes.emplace_back(member.track.class_probabilities);
+  merged.class_probabilities = common::fuseClassVectors(classes);
   return merged;
 }
 

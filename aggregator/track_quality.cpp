@@ -9,6 +9,20 @@
 
 namespace wsn::aggregator {
 
+std::vector<int> associateTargetsWithTracks(const std::vector<common::TargetState>& truth,
+                                                     const std::vector<common::TrackEstimate>& tracks, double gate) {
+  const std::size_t rows = truth.size();
+  const std::size_t cols = tracks.size();
+  std::vector<double> cost(rows * cols);
+  for (std::size_t i = 0; i < rows; ++i) {
+    for (std::size_t j = 0; j < cols; ++j) {
+      const double d = std::hypot(tracks[j].x - truth[i].x, tracks[j].y - truth[i].y);
+      cost[i * cols + j] = d <= gate ? d : common::kForbidden;
+    }
+  }
+  return common::solveAssignment(cost, rows, cols);
+}
+
 TrackQualityAccumulator::TrackQualityAccumulator(double association_gate) : gate_(association_gate) {
   if (!(gate_ > 0.0))  // +inf is allowed: no gate
     throw std::invalid_argument("track_quality: association_gate must be > 0, got " + common::fixed6(gate_));
@@ -27,14 +41,7 @@ void TrackQualityAccumulator::add(const std::vector<common::TargetState>& truth,
 
   const std::size_t rows = truth.size();
   const std::size_t cols = tracks.size();
-  std::vector<double> cost(rows * cols);
-  for (std::size_t i = 0; i < rows; ++i) {
-    for (std::size_t j = 0; j < cols; ++j) {
-      const double d = std::hypot(tracks[j].x - truth[i].x, tracks[j].y - truth[i].y);
-      cost[i * cols + j] = d <= gate_ ? d : common::kForbidden;
-    }
-  }
-  const auto assignment = common::solveAssignment(cost, rows, cols);
+  const auto assignment = associateTargetsWithTracks(truth, tracks, gate_);
 
   const std::int64_t call = calls_++;
   std::int64_t associated = 0;

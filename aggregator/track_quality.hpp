@@ -86,6 +86,11 @@ struct TrackQualitySummary {
   std::int64_t tracks_ignored_nonfinite = 0;
 };
 
+/// The paper's unique assignment of one tick: for each target of `truth`, the index of its track in
+/// `tracks` (finite ones), or -1; pairs farther apart than `gate` metres are never made.
+std::vector<int> associateTargetsWithTracks(const std::vector<common::TargetState>& truth,
+                                                     const std::vector<common::TrackEstimate>& tracks, double gate);
+
 /// Associates tracks to targets tick by tick and accumulates the per-target errors.
 class TrackQualityAccumulator {
  public:

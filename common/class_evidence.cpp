@@ -130,6 +130,56 @@ std::size_t mostLikelyClass(const ClassVector& beta) {
   return static_cast<std::size_t>(best);
 }
 
+std::optional<ClassVector> receivedClassVector(std::span<const double> beta, std::size_t class_count) {
+  // Looser than kSumTolerance: a vector fused from others, or written by another build, carries
+  // the rounding of its normalisation.
+  constexpr double kReceivedSumTolerance = 1e-6;
+  if (beta.size() != class_count || class_count == 0) return std::nullopt;
+  double sum = 0.0;
+  for (const double p : beta) {
+    if (!std::isfinite(p) || p < 0.0) return std::nullopt;
+    sum += p;
+  }
+  if (std::abs(sum - 1.0) > kReceivedSumTolerance) return std::nullopt;
+  return ClassVector(Eigen::Map<const ClassVector>(beta.data(), static_cast<Eigen::Index>(beta.size())));
+}
+
+DeclaredClass declaredTrackClass(std::span<const double> beta) {
+  const auto valid = receivedClassVector(beta);
+  if (!valid || (valid->array() == (*valid)(0)).all()) return {};
+  const std::size_t best = mostLikelyClass(*valid);
+  return {classAt(best), (*valid)(static_cast<Eigen::Index>(best))};
+}
+
+std::vector<double> fuseClassVectors(std::span<const std::span<const double>> members) {
+  std::vector<ClassVector> valid;
+  for (const auto member : members) {
+    if (member.empty()) continue;
+    if (auto beta = receivedClassVector(member, member.size())) valid.push_back(std::move(*beta));
+  }
+  if (valid.empty()) return {};
+  const Eigen::Index n = valid.front().size();
+  std::erase_if(valid, [n](const ClassVector& beta) { return beta.size() != n; });  // not one class set
+  if (valid.size() == 1) return {valid.front().begin(), valid.front().end()};
+  // In logs, so that many small probabilities neither underflow nor lose precision.
+  // std::log, not Eigen's vectorised log, whose log(0) is a large finite negative number rather than
+  // -infinity: a class a member excludes must stay excluded exactly.
+  ClassVector log_mean = ClassVector::Zero(n);
+  for (const auto& beta : valid)
+    for (Eigen::Index i = 0; i < n; ++i) log_mean(i) += std::log(beta(i));
+  log_mean /= static_cast<double>(valid.size());
+  ClassVector fused = ClassVector::Zero(n);
+  const double top = log_mean.maxCoeff();
+  if (std::isfinite(top)) {
+    for (Eigen::Index i = 0; i < n; ++i) fused(i) = std::exp(log_mean(i) - top);
+    fused /= fused.sum();
+  } else {
+    for (const auto& beta : valid) fused += beta;
+    fused /= static_cast<double>(valid.size());
+  }
+  return {fused.begin(), fused.end()};
+}
+
 ConfusionMatrix symmetricConfusionMatrix(double a, std::size_t class_count) {
   requireProbability(a, "symmetricConfusionMatrix");
   if (class_count < 2) throw std::invalid_argument("symmetricConfusionMatrix: fewer than 2 classes");

@@ -59,6 +59,30 @@ ClassUpdate updateClassVector(const ClassVector& beta, std::span<const double> c
 /// std::invalid_argument for an empty beta or one with a non-finite entry.
 std::size_t mostLikelyClass(const ClassVector& beta);
 
+/// A class vector that arrived from elsewhere (the wire, a handoff) as a ClassVector: nullopt unless
+/// it has class_count entries, each finite and non-negative, summing to 1 within 1e-6.
+std::optional<ClassVector> receivedClassVector(std::span<const double> beta, std::size_t class_count = kClassCount);
+
+/// What a track's class vector declares: its most likely class and that class's probability.
+struct DeclaredClass {
+  /// kUnknown for no evidence: beta empty, not a valid class vector, or uniform (no classifying
+  /// report yet). Then probability is 0.
+  TargetClass target_class = TargetClass::kUnknown;
+  double probability = 0.0;
+  friend bool operator==(const DeclaredClass&, const DeclaredClass&) = default;
+};
+DeclaredClass declaredTrackClass(std::span<const double> beta);
+
+/// One target's class vectors from several trackers, fused into one. How much evidence they share
+/// is unknown (a handed-over track carries its beta along; neighbouring supernodes may hear one
+/// sensor), so the product of independent opinions would count shared reports twice. The fusion is
+/// the normalised geometric mean, beta(i) ~ prod_k beta_k(i)^(1/n): the discrete form of covariance
+/// intersection with equal weights (docs/ONERA.md §4), never more certain than the most certain
+/// member. Invalid members (receivedClassVector) are left out; none left gives an empty vector. When
+/// every class is excluded by some member, the members contradict each other and their arithmetic
+/// mean is returned. The result depends on the order of `members` only through rounding.
+std::vector<double> fuseClassVectors(std::span<const std::span<const double>> members);
+
 /// PROP: the probability a camera declares the true class (spec §4).
 inline constexpr double kCameraCorrectClass = 0.85;
 /// PROP: the same for an acoustic antenna or beacon.

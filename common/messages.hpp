@@ -90,6 +90,9 @@ struct TrackEstimate {
   /// Tick of the track's latest observation (the state above is its filtered state there,
   /// predicted forward); 0 when unknown. Lets the aggregator tell observed from coasted ticks.
   std::int32_t last_seen_tick = 0;
+  /// The track's class vector beta over common/class_evidence.hpp's classes (ONERA eqs. 19-20);
+  /// empty when the engine does not classify. At most kMaxClasses entries go on the wire.
+  std::vector<double> class_probabilities;
   friend bool operator==(const TrackEstimate&, const TrackEstimate&) = default;
 };
 
@@ -108,6 +111,7 @@ struct TrackHandoff {
   std::int32_t hits = 0;
   std::int32_t misses = 0;
   bool confirmed = false;
+  std::vector<double> class_probabilities;  ///< the track's beta, as in TrackEstimate; empty: none
   friend bool operator==(const TrackHandoff&, const TrackHandoff&) = default;
 };
 

@@ -116,9 +116,18 @@ struct LocalisationConfig {
   friend bool operator==(const LocalisationConfig&, const LocalisationConfig&) = default;
 };
 
-/// What a target is: the classes of ONERA eq. (1), made exclusive (docs/ONERA.md §4). The order is
-/// the scenario's choice list (common/scenario_schema.cpp).
+/// What a target is: the classes of ONERA eq. (1), made exclusive (docs/ONERA.md §4).
 enum class TargetClass { kUnknown, kWheeledLight, kWheeledHeavy, kTracked, kHuman, kGroup, kAerial };
+
+/// The classes' names in the scenario (`class:`) and the output files, in the enum's order.
+inline const std::vector<std::string>& targetClassNames() {
+  static const std::vector<std::string> names{"unknown", "wheeled_light", "wheeled_heavy", "tracked",
+                                              "human",   "group",         "aerial"};
+  return names;
+}
+inline const std::string& targetClassName(TargetClass c) {
+  return targetClassNames().at(static_cast<std::size_t>(c));
+}
 
 /// A halt of a waypoint target: `ticks` ticks at rest at waypoints[at].
 struct WaypointStop {

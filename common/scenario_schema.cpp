@@ -175,9 +175,9 @@ const FieldTable<TargetSpec>& scriptedTarget() {
           nested<C>("stops", "list of `{at, ticks}`", "`[]`", "with `waypoints` only; `at` increasing",
                     "halts: `ticks` ticks at rest (velocity 0) at waypoint number `at` (from 0), after the tick "
                     "that reaches it; that tick ends at the waypoint"),
-          unsetWhenZero(choice<C>("class", &C::target_class,
-                                  {"unknown", "wheeled_light", "wheeled_heavy", "tracked", "human", "group", "aerial"},
-                                  "what the target is, ONERA eq. (1) (`docs/ONERA.md`). No output file shows it yet")),
+          unsetWhenZero(choice<C>("class", &C::target_class, targetClassNames(),
+                                  "what the target is, ONERA eq. (1) (`docs/ONERA.md`): truth.csv's `class`, "
+                                  "scored against the tracks' classes (metrics.json's `classification`)")),
       }};
   return table;
 }

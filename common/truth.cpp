@@ -226,7 +226,11 @@ Truth::Truth(const TruthConfig& config) {
     }
 
     auto& now = per_tick_[static_cast<std::size_t>(t)];
-    for (const auto& target : live) now.push_back(target.state);
+    for (const auto& target : live) {
+      now.push_back(target.state);
+      const auto id = static_cast<std::size_t>(target.state.id);
+      if (id < config.targets.scripted.size()) now.back().target_class = config.targets.scripted[id].target_class;
+    }
     std::sort(now.begin(), now.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
   }
   target_count_ = next_id;

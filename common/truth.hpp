@@ -17,6 +17,7 @@ struct TargetState {
   double y = 0.0;
   double vx = 0.0;
   double vy = 0.0;
+  TargetClass target_class = TargetClass::kUnknown;  ///< what the target is (its scripted class)
   friend bool operator==(const TargetState&, const TargetState&) = default;
 };
 

@@ -132,11 +132,12 @@ void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario
   common::writeTextFile(run_dir + "/cyclonedds.xml", dds::cycloneConfigTemplate(identity.run_id, participants));
 
   const common::Truth truth(truthConfig(scenario));
-  common::CsvFile csv(run_dir + "/truth.csv", "tick,target,x,y,vx,vy");
+  common::CsvFile csv(run_dir + "/truth.csv", "tick,target,x,y,vx,vy,class");
   for (std::int32_t t = 1; t <= scenario.run.ticks; ++t)
     for (const auto& target : truth.at(t))
       csv.row(std::to_string(t) + "," + std::to_string(target.id) + "," + common::fixed6(target.x) + "," +
-              common::fixed6(target.y) + "," + common::fixed6(target.vx) + "," + common::fixed6(target.vy));
+              common::fixed6(target.y) + "," + common::fixed6(target.vx) + "," + common::fixed6(target.vy) + "," +
+              common::targetClassName(target.target_class));
   csv.close();
 
   if (scenario.sensors.kind != common::SensorLayoutConfig::Kind::kGrid) {  // grids need no list

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "common/class_evidence.hpp"
 #include "launcher/watch.hpp"
 
 namespace wsn::launcher {
@@ -199,14 +200,25 @@ std::string frameHeadLine(const WatchFrame& frame, std::int32_t ticks) {
 }
 
 std::vector<std::string> frameRows(const WatchFrame& frame) {
+  // A class column only when the engine classifies, so that other runs' rows stay as they were.
+  const bool classified = std::any_of(frame.tracks.begin(), frame.tracks.end(),
+                                      [](const common::TrackEstimate& t) { return !t.class_probabilities.empty(); });
   std::vector<std::string> rows;
-  char buffer[160];
+  char buffer[200];
   std::snprintf(buffer, sizeof buffer, "  %-14s %9s %9s %8s %8s %7s", "track", "x", "y", "vx", "vy", "speed");
-  rows.emplace_back(buffer);
+  rows.emplace_back(std::string(buffer) + (classified ? "  class" : ""));
   for (const auto& t : frame.tracks) {
     std::snprintf(buffer, sizeof buffer, "  %-14s %9.2f %9.2f %8.3f %8.3f %7.3f", common::track_id::label(t.track).c_str(), t.x,
                   t.y, t.vx, t.vy, std::hypot(t.vx, t.vy));
-    rows.emplace_back(buffer);
+    std::string row = buffer;
+    if (classified) {
+      // name:probability, one field for readers that split on blanks; "-" without evidence.
+      const common::DeclaredClass declared = common::declaredTrackClass(t.class_probabilities);
+      row += declared.target_class == common::TargetClass::kUnknown
+                 ? "  -"
+                 : "  " + common::targetClassName(declared.target_class) + ":" + fixed(declared.probability, 2);
+    }
+    rows.push_back(std::move(row));
   }
   return rows;
 }

@@ -67,10 +67,10 @@ void runSupernodeRole(const dds::RoleContext& context) {
       track_sample.tick = t;
       track_sample.observations_in_window = output.observations_in_window;
       track_sample.observations_dropped_stale = static_cast<std::uint32_t>(output.observations_dropped_stale);
-      track_sample.tracks = sequenceView<dds_sequence_wsn_msg_TrackEstimate>(tracks);
+      track_sample.tracks = sequenceView<dds_sequence_wsn_msg_TrackEstimate>(tracks.items);
       track_sample.settled_first = output.settled.first;
       track_sample.settled_last = output.settled.last();
-      track_sample.settled = sequenceView<dds_sequence_wsn_msg_SettledTrack>(settled);
+      track_sample.settled = sequenceView<dds_sequence_wsn_msg_SettledTrack>(settled.items);
       track_writer.write(track_sample);
 
       auto outgoing = encode(output.handoffs);
@@ -78,7 +78,7 @@ void runSupernodeRole(const dds::RoleContext& context) {
       handoff_sample.run_id = context.run_id;
       handoff_sample.from_supernode = self;
       handoff_sample.tick = t;
-      handoff_sample.handoffs = sequenceView<dds_sequence_wsn_msg_TrackHandoff>(outgoing);
+      handoff_sample.handoffs = sequenceView<dds_sequence_wsn_msg_TrackHandoff>(outgoing.items);
       handoff_writer.write(handoff_sample);
     }
     progress.waitForCompleted(ticks);

@@ -11,6 +11,7 @@ MetricSpec gospaMetric();
 MetricSpec clearMotMetric();
 MetricSpec trackQualityMetric();
 MetricSpec boundaryMetric();
+MetricSpec classificationMetric();
 
 const MetricRegistry& metricRegistry() {
   // The order is that of metrics.json's blocks and of metrics_per_tick.csv's columns, which
@@ -21,6 +22,7 @@ const MetricRegistry& metricRegistry() {
       clearMotMetric(),
       trackQualityMetric(),
       boundaryMetric(),
+      classificationMetric(),
   });
   return registry;
 }

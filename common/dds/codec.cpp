@@ -45,7 +45,7 @@ std::size_t posesOf(const std::vector<Message>& messages) {
 dds_sequence_double appendDoubles(std::vector<double>& pool, const std::vector<double>& values, std::size_t bound,
                                   const char* what) {
   if (values.size() > bound)
-    throw std::length_error(std::string("measurement ") + what + ": " + std::to_string(values.size()) +
+    throw std::length_error(std::string(what) + ": " + std::to_string(values.size()) +
                             " values, the wire holds at most " + std::to_string(bound));
   dds_sequence_double seq{};
   if (values.empty()) return seq;
@@ -74,9 +74,9 @@ wsn_msg_Measurement encodeMeasurement(const common::MeasurementRef& ref, Encoded
                                 " measurement that is not well formed (wrong dimension, noise or pose)");
   w.kind = static_cast<wsn_msg_MeasurementKind>(m.kind);
   w.clutter_density = m.clutter_density;
-  w.values = appendDoubles(storage.doubles, m.values, common::kMaxMeasurementDimension, "values");
-  w.noise = appendDoubles(storage.doubles, m.noise, kMaxNoise, "noise");
-  w.class_likelihoods = appendDoubles(storage.doubles, m.class_likelihoods, common::kMaxClasses, "class likelihoods");
+  w.values = appendDoubles(storage.doubles, m.values, common::kMaxMeasurementDimension, "measurement values");
+  w.noise = appendDoubles(storage.doubles, m.noise, kMaxNoise, "measurement noise");
+  w.class_likelihoods = appendDoubles(storage.doubles, m.class_likelihoods, common::kMaxClasses, "measurement class likelihoods");
   if (m.sensor) {
     storage.poses.push_back(wsn_msg_SensorPose{m.sensor->x, m.sensor->y, m.sensor->heading, m.sensor->height});
     w.sensor._maximum = w.sensor._length = 1;
@@ -162,35 +162,55 @@ std::vector<common::Observation> decode(const dds_sequence_wsn_msg_Observation& 
 
 namespace {
 
-wsn_msg_TrackEstimate wireTrack(const common::TrackEstimate& t) {
-  wsn_msg_TrackEstimate w{t.track, t.x, t.y, t.vx, t.vy, {}, t.last_seen_tick};
+/// Room for every class vector of `items`, reserved up front so that the views into it stay valid.
+template <typename Wire, typename Message>
+Encoded<Wire> withRoomForClasses(const std::vector<Message>& items) {
+  Encoded<Wire> encoded;
+  std::size_t n = 0;
+  for (const auto& item : items) n += item.class_probabilities.size();
+  encoded.doubles.reserve(n);
+  encoded.items.reserve(items.size());
+  return encoded;
+}
+
+template <typename Wire>
+wsn_msg_TrackEstimate wireTrack(const common::TrackEstimate& t, Encoded<Wire>& storage) {
+  wsn_msg_TrackEstimate w{t.track, t.x, t.y, t.vx, t.vy, {}, t.last_seen_tick, {}};
   std::copy(t.covariance.begin(), t.covariance.end(), w.covariance);
+  w.class_probabilities = appendDoubles(storage.doubles, t.class_probabilities, common::kMaxClasses,
+                                        "track class probabilities");
   return w;
 }
 
 common::TrackEstimate trackOf(const wsn_msg_TrackEstimate& t) {
-  common::TrackEstimate e{t.track, t.x, t.y, t.vx, t.vy, {}, t.last_seen_tick};
+  common::TrackEstimate e{t.track, t.x, t.y, t.vx, t.vy, {}, t.last_seen_tick, copyOut(t.class_probabilities)};
   std::copy(std::begin(t.covariance), std::end(t.covariance), e.covariance.begin());
   return e;
 }
 
 }  // namespace
 
-std::vector<wsn_msg_TrackEstimate> encode(const std::vector<common::TrackEstimate>& tracks) {
-  return mapVector<wsn_msg_TrackEstimate>(tracks, [](const common::TrackEstimate& t) { return wireTrack(t); });
+Encoded<wsn_msg_TrackEstimate> encode(const std::vector<common::TrackEstimate>& tracks) {
+  auto encoded = withRoomForClasses<wsn_msg_TrackEstimate>(tracks);
+  for (const auto& track : tracks) encoded.items.push_back(wireTrack(track, encoded));
+  return encoded;
 }
 
 std::vector<common::TrackEstimate> decode(const dds_sequence_wsn_msg_TrackEstimate& seq) {
   return mapSequence<common::TrackEstimate>(seq, [](const wsn_msg_TrackEstimate& t) { return trackOf(t); });
 }
 
-
-std::vector<wsn_msg_SettledTrack> encodeSettled(std::int32_t first,
-                                                const std::vector<std::vector<common::TrackEstimate>>& by_tick) {
-  std::vector<wsn_msg_SettledTrack> out;
+Encoded<wsn_msg_SettledTrack> encodeSettled(std::int32_t first,
+                                            const std::vector<std::vector<common::TrackEstimate>>& by_tick) {
+  Encoded<wsn_msg_SettledTrack> encoded;
+  std::size_t doubles = 0;
+  for (const auto& tracks : by_tick)
+    for (const auto& track : tracks) doubles += track.class_probabilities.size();
+  encoded.doubles.reserve(doubles);
   for (std::size_t k = 0; k < by_tick.size(); ++k)
-    for (const auto& track : by_tick[k]) out.push_back({first + static_cast<std::int32_t>(k), wireTrack(track)});
-  return out;
+    for (const auto& track : by_tick[k])
+      encoded.items.push_back({first + static_cast<std::int32_t>(k), wireTrack(track, encoded)});
+  return encoded;
 }
 
 std::vector<std::vector<common::TrackEstimate>> decodeSettled(const dds_sequence_wsn_msg_SettledTrack& seq,
@@ -209,8 +229,9 @@ std::vector<std::vector<common::TrackEstimate>> decodeSettled(const dds_sequence
   return by_tick;
 }
 
-std::vector<wsn_msg_TrackHandoff> encode(const std::vector<common::TrackHandoff>& handoffs) {
-  return mapVector<wsn_msg_TrackHandoff>(handoffs, [](const common::TrackHandoff& h) {
+Encoded<wsn_msg_TrackHandoff> encode(const std::vector<common::TrackHandoff>& handoffs) {
+  auto encoded = withRoomForClasses<wsn_msg_TrackHandoff>(handoffs);
+  for (const auto& h : handoffs) {
     wsn_msg_TrackHandoff w{};
     w.track = h.track;
     w.to_supernode = h.to_supernode;
@@ -220,8 +241,11 @@ std::vector<wsn_msg_TrackHandoff> encode(const std::vector<common::TrackHandoff>
     w.hits = h.hits;
     w.misses = h.misses;
     w.confirmed = h.confirmed;
-    return w;
-  });
+    w.class_probabilities = appendDoubles(encoded.doubles, h.class_probabilities, common::kMaxClasses,
+                                          "handoff class probabilities");
+    encoded.items.push_back(w);
+  }
+  return encoded;
 }
 
 std::vector<common::TrackHandoff> decode(const dds_sequence_wsn_msg_TrackHandoff& seq) {
@@ -235,6 +259,7 @@ std::vector<common::TrackHandoff> decode(const dds_sequence_wsn_msg_TrackHandoff
     h.hits = w.hits;
     h.misses = w.misses;
     h.confirmed = w.confirmed;
+    h.class_probabilities = copyOut(w.class_probabilities);
     return h;
   });
 }

@@ -41,7 +41,7 @@ std::vector<common::SensorReading> decode(const dds_sequence_wsn_msg_SensorReadi
 template <typename Wire>
 struct Encoded {
   std::vector<Wire> items;
-  std::vector<double> doubles;            ///< every measurement's values, noise, class likelihoods
+  std::vector<double> doubles;            ///< every measurement's values, noise, class likelihoods; tracks' classes
   std::vector<wsn_msg_SensorPose> poses;  ///< the measurements' sensor poses
 
   Encoded() = default;
@@ -60,12 +60,13 @@ std::vector<common::Report> decode(const dds_sequence_wsn_msg_Report& seq, std::
 Encoded<wsn_msg_Observation> encode(const std::vector<common::Observation>& observations);
 std::vector<common::Observation> decode(const dds_sequence_wsn_msg_Observation& seq, std::int32_t tick_delivered);
 
-std::vector<wsn_msg_TrackEstimate> encode(const std::vector<common::TrackEstimate>& tracks);
+/// Throws std::length_error for a class vector longer than kMaxClasses.
+Encoded<wsn_msg_TrackEstimate> encode(const std::vector<common::TrackEstimate>& tracks);
 std::vector<common::TrackEstimate> decode(const dds_sequence_wsn_msg_TrackEstimate& seq);
 
 /// The settled estimate of ticks first .. first + by_tick.size() - 1 as flat (tick, track) items.
-std::vector<wsn_msg_SettledTrack> encodeSettled(std::int32_t first,
-                                                const std::vector<std::vector<common::TrackEstimate>>& by_tick);
+Encoded<wsn_msg_SettledTrack> encodeSettled(std::int32_t first,
+                                            const std::vector<std::vector<common::TrackEstimate>>& by_tick);
 /// The tracks of each tick first .. last (empty when last < first); items outside are ignored.
 /// Throws std::length_error when the range spans more than max_ticks ticks (a batch settles at
 /// most a window's worth), so a malformed sample cannot make it allocate without bound.
@@ -73,7 +74,7 @@ std::vector<std::vector<common::TrackEstimate>> decodeSettled(const dds_sequence
                                                               std::int32_t first, std::int32_t last,
                                                               std::int32_t max_ticks);
 
-std::vector<wsn_msg_TrackHandoff> encode(const std::vector<common::TrackHandoff>& handoffs);
+Encoded<wsn_msg_TrackHandoff> encode(const std::vector<common::TrackHandoff>& handoffs);
 std::vector<common::TrackHandoff> decode(const dds_sequence_wsn_msg_TrackHandoff& seq);
 
 }  // namespace wsn::dds

@@ -1085,6 +1085,9 @@ void SbmhtEngine::adopt(const common::TrackHandoff& handoff) {
   leaf.tree = handoff.track;
   leaf.first_tick = handoff.last_tick + 1;
   leaf.imm = ImmState::startAt(state, initial_probabilities_);
+  // The class evidence travels with the track; a handoff without a usable class vector (another
+  // engine's, or malformed) starts from no evidence rather than being refused.
+  if (auto beta = common::receivedClassVector(handoff.class_probabilities)) leaf.classes = std::move(*beta);
   // A confirmed track arrives confirmed, T_drop above the confirmation threshold; a tentative one
   // starts over at L(1).
   if (handoff.confirmed) {
@@ -1104,27 +1107,17 @@ std::vector<common::TrackEstimate> SbmhtEngine::confirmedTracks() const {
   for (const auto& leaf : current_) {
     if (!leaf.best || leaf.score.status != TrackStatus::confirmed) continue;
     const GaussianState s = leaf.imm.combined();
-    out.push_back({leaf.tree, s.x(kX), s.x(kY), s.x(kVx), s.x(kVy), common::toRowMajor(s.P), leaf.last_seen_tick});
+    out.push_back({leaf.tree, s.x(kX), s.x(kY), s.x(kVx), s.x(kVy), common::toRowMajor(s.P), leaf.last_seen_tick,
+                   {leaf.classes.begin(), leaf.classes.end()}});
   }
   return out;
 }
 
 std::vector<TrackClass> SbmhtEngine::confirmedClasses() const {
   std::vector<TrackClass> out;
-  for (const auto& leaf : current_) {
-    if (!leaf.best || leaf.score.status != TrackStatus::confirmed) continue;  // as confirmedTracks()
-    TrackClass c{leaf.tree, common::TargetClass::kUnknown, 0.0};
-    const Eigen::Index n = leaf.classes.size();
-    if (n == 0) {
-      out.push_back(c);
-      continue;
-    }
-    const std::size_t best = common::mostLikelyClass(leaf.classes);
-    c.probability = leaf.classes(static_cast<Eigen::Index>(best));
-    // A uniform vector (no classifying report yet) names no class.
-    const bool uniform = (leaf.classes.array() == leaf.classes(0)).all();
-    if (!uniform && n == static_cast<Eigen::Index>(common::kClassCount)) c.target_class = common::classAt(best);
-    out.push_back(c);
+  for (const auto& track : confirmedTracks()) {
+    const common::DeclaredClass declared = common::declaredTrackClass(track.class_probabilities);
+    out.push_back({track.track, declared.target_class, declared.probability});
   }
   return out;
 }
@@ -1153,6 +1146,7 @@ common::TrackHandoff SbmhtEngine::release(common::TrackId track_id, std::uint32_
   handoff.hits = leaf->hits;
   handoff.misses = leaf->misses;
   handoff.confirmed = leaf->score.status == TrackStatus::confirmed;
+  handoff.class_probabilities.assign(leaf->classes.begin(), leaf->classes.end());
   releases_.push_back(Release{current_tick_, track_id});
   std::erase_if(current_, [&](const Leaf& l) { return l.tree == track_id; });
   return handoff;

@@ -41,7 +41,7 @@ double targetX(std::int32_t t) { return 40.0 + t; }
 
 /// A supernode track observed at `seen` and reported at `tick`: its state at `seen` predicted on.
 TrackEstimate observedAt(TrackId track, std::int32_t tick, std::int32_t seen) {
-  TrackEstimate e{track, targetX(seen) + (tick - seen), 50.0, 1.0, 0.0, {}, seen};
+  TrackEstimate e{track, targetX(seen) + (tick - seen), 50.0, 1.0, 0.0, {}, seen, {}};
   return e;
 }
 
@@ -136,7 +136,7 @@ TEST_CASE("Track-level association does not depend on input order", "[aggregator
       std::vector<SupernodeTracks> in{{0, {}}, {1, {}}};
       for (std::uint64_t k = 1; k <= 4; ++k) {
         const auto kk = static_cast<double>(k);
-        TrackEstimate e{id(k % 2, k), 10.0 * kk + t, 20.0 + 5.0 * kk, 1.0, 0.0, {}, t};
+        TrackEstimate e{id(k % 2, k), 10.0 * kk + t, 20.0 + 5.0 * kk, 1.0, 0.0, {}, t, {}};
         in[k % 2].tracks.push_back(e);
       }
       if (shuffled) {
@@ -256,8 +256,8 @@ TEST_CASE("A new track takes the free id most of its supernode tracks had", "[ag
 TEST_CASE("A track both supernodes pass through is the lower supernode's, whatever the input order",
           "[aggregator][mcmcda_association]") {
   const TrackId a = id(0, 1);
-  const TrackEstimate from_sender{a, 10.0, 10.0, 1.0, 0.0, {}, 1};
-  const TrackEstimate from_receiver{a, 10.5, 10.0, 1.0, 0.0, {}, 1};
+  const TrackEstimate from_sender{a, 10.0, 10.0, 1.0, 0.0, {}, 1, {}};
+  const TrackEstimate from_receiver{a, 10.5, 10.0, 1.0, 0.0, {}, 1, {}};
   McmcdaAssociator in_order(twoSupernodes());
   McmcdaAssociator reversed(twoSupernodes());
   const auto first = in_order.associate(1, {{0, {from_sender}}, {1, {from_receiver}}});
@@ -265,4 +265,28 @@ TEST_CASE("A track both supernodes pass through is the lower supernode's, whatev
   REQUIRE(first.size() == 1);
   CHECK(first[0] == from_sender);
   CHECK(second == first);
+}
+
+TEST_CASE("A track-level global track carries the class of the supernode tracks it holds",
+          "[aggregator][mcmcda_association]") {
+  // The boundary case above: supernode 0's track (class evidence .8 / .2) to tick 8, supernode 1's
+  // (.3 / .7) from tick 11, linked into one global track. Each tick the global track's class is
+  // that of the supernode track reported for it, the newer evidence winning once it takes over.
+  const TrackId a = id(0, 1);
+  const TrackId b = id(1, 7);
+  McmcdaAssociator associator(twoSupernodes());
+  for (std::int32_t t = 1; t <= 20; ++t) {
+    std::vector<SupernodeTracks> in{{0, {}}, {1, {}}};
+    if (t <= 8) in[0].tracks.push_back(observedAt(a, t, t));
+    if (t >= 11) in[1].tracks.push_back(observedAt(b, t, t));
+    for (auto& track : in[0].tracks) track.class_probabilities = {0.8, 0.2};
+    for (auto& track : in[1].tracks) track.class_probabilities = {0.3, 0.7};
+    const auto global = associator.associate(t, in);
+    INFO("tick " << t);
+    if (global.empty()) continue;
+    REQUIRE(global.size() == 1);
+    if (t <= 8) CHECK(global[0].class_probabilities == std::vector<double>{0.8, 0.2});
+    if (t >= 11) CHECK(global[0].class_probabilities == std::vector<double>{0.3, 0.7});
+    if (t == 9 || t == 10) CHECK(global[0].class_probabilities.empty());  // coasting, nothing reported
+  }
 }

@@ -20,7 +20,7 @@ namespace {
 TrackId id(std::uint32_t supernode, std::uint64_t serial) { return (TrackId{supernode} + 1) << 48 | serial; }
 
 TrackEstimate track(TrackId track_id, double x, double y, double vx = 1.0, double vy = 0.0) {
-  return {track_id, x, y, vx, vy};
+  return {track_id, x, y, vx, vy, {}, 0, {}};
 }
 
 bool sortedById(const std::vector<TrackEstimate>& tracks) {
@@ -223,4 +223,20 @@ TEST_CASE("TrackMerger rejects a bad configuration", "[aggregator][merger]") {
   CHECK_THROWS_AS(TrackMerger(TrackMergerConfig{-1.0, 10}), std::invalid_argument);
   CHECK_THROWS_AS(TrackMerger(TrackMergerConfig{NAN, 10}), std::invalid_argument);
   CHECK_THROWS_AS(TrackMerger(TrackMergerConfig{3.0, -1}), std::invalid_argument);
+}
+
+TEST_CASE("A merged global track's class fuses its members' class vectors", "[aggregator][merger]") {
+  TrackMerger merger;
+  auto a = track(id(0, 1), 10, 10);
+  auto b = track(id(1, 1), 10.5, 10);
+  auto unclassified = track(id(1, 2), 40, 10);
+  a.class_probabilities = {0.8, 0.2};
+  b.class_probabilities = {0.5, 0.5};
+  const auto global = merger.merge(1, {{0, {a}}, {1, {b, unclassified}}});
+  REQUIRE(global.size() == 2);
+  // The normalised geometric mean (common/class_evidence.hpp): 2 : 1, as sqrt(.4) : sqrt(.1).
+  REQUIRE(global[0].class_probabilities.size() == 2);
+  CHECK(global[0].class_probabilities[0] == Approx(2.0 / 3.0).epsilon(1e-12));
+  // A lone track without class evidence stays without.
+  CHECK(global[1].class_probabilities.empty());
 }

@@ -256,3 +256,61 @@ TEST_CASE("malformed class likelihoods or class vectors or draws are rejected", 
                   std::invalid_argument);
   CHECK_THROWS_AS(reportedClassLikelihoods(camera, TargetClass::kHuman, 1.0), std::invalid_argument);
 }
+
+TEST_CASE("a class vector from the wire is used only when it is one", "[class]") {
+  const std::vector<double> good{0.5, 0.25, 0.25};
+  REQUIRE(receivedClassVector(good, 3).has_value());
+  CHECK(receivedClassVector(good, 3)->isApprox(vec(good)));
+  CHECK_FALSE(receivedClassVector(good).has_value());  // 3 entries, 6 classes
+  CHECK_FALSE(receivedClassVector(std::vector<double>{0.5, 0.25, 0.2}, 3).has_value());  // sums to 0.95
+  CHECK_FALSE(receivedClassVector(std::vector<double>{1.5, -0.25, -0.25}, 3).has_value());
+  CHECK_FALSE(receivedClassVector(std::vector<double>{std::nan(""), 0.5, 0.5}, 3).has_value());
+  CHECK_FALSE(receivedClassVector(std::vector<double>{}, 0).has_value());
+}
+
+TEST_CASE("a track declares its most likely class, and none without evidence", "[class]") {
+  CHECK(declaredTrackClass(std::vector<double>{0.05, 0.05, 0.1, 0.6, 0.15, 0.05}) ==
+        DeclaredClass{TargetClass::kHuman, 0.6});
+  CHECK(declaredTrackClass(std::vector<double>(6, 1.0 / 6.0)) == DeclaredClass{});  // uniform: no report yet
+  CHECK(declaredTrackClass(std::vector<double>{}) == DeclaredClass{});              // an engine that does not classify
+  CHECK(declaredTrackClass(std::vector<double>{0.5, 0.5}) == DeclaredClass{});      // not the run's class set
+  // A tie names the first class, as mostLikelyClass does.
+  CHECK(declaredTrackClass(std::vector<double>{0.4, 0.4, 0.05, 0.05, 0.05, 0.05}).target_class ==
+        TargetClass::kWheeledLight);
+}
+
+TEST_CASE("fused class vectors are their normalised geometric mean", "[class]") {
+  using Span = std::span<const double>;
+  const std::vector<double> sure{0.8, 0.2};
+  const std::vector<double> undecided{0.5, 0.5};
+  // sqrt(.8 x .5) : sqrt(.2 x .5) = sqrt(4) = 2 : 1, so (2/3, 1/3).
+  std::vector<Span> members{sure, undecided};
+  auto fused = fuseClassVectors(members);
+  REQUIRE(fused.size() == 2);
+  CHECK(fused[0] == Approx(2.0 / 3.0).epsilon(1e-12));
+  CHECK(fused[1] == Approx(1.0 / 3.0).epsilon(1e-12));
+  // Two copies of one opinion (a handed-over track reported by both supernodes) fuse to that
+  // opinion, where the product of independent ones would give .64 / .04 = .941 / .059.
+  members = {sure, sure};
+  fused = fuseClassVectors(members);
+  CHECK(fused[0] == Approx(0.8).epsilon(1e-12));
+  // A member that excludes a class excludes it from the fusion...
+  const std::vector<double> not_first{0.0, 1.0};
+  members = {undecided, not_first};
+  fused = fuseClassVectors(members);
+  REQUIRE(fused.size() == 2);
+  CHECK(fused[0] == 0.0);
+  CHECK(fused[1] == Approx(1.0).epsilon(1e-12));
+  // ... and members excluding every class between them contradict: their arithmetic mean.
+  const std::vector<double> first_only{1.0, 0.0};
+  members = {first_only, not_first};
+  CHECK(fuseClassVectors(members) == std::vector<double>{0.5, 0.5});
+  // Empty (an engine that does not classify) and malformed members are left out.
+  const std::vector<double> none;
+  const std::vector<double> malformed{0.9, 0.9};
+  members = {none, sure, malformed};
+  CHECK(fuseClassVectors(members) == sure);
+  members = {none, malformed};
+  CHECK(fuseClassVectors(members).empty());
+  CHECK(fuseClassVectors({}).empty());
+}

@@ -237,6 +237,17 @@ TEST_CASE("a frame shows the tick, its scores and one row per track", "[launcher
   CHECK(rows[0] == "  track                  x         y       vx       vy   speed");
   CHECK(rows[1] == "  " + (common::track_id::label(5) + std::string(14 - common::track_id::label(5).size(), ' ')) +
                        "     12.35     -1.00    3.000    4.000   5.000");
+  // A classifying engine's tracks add a class column: the declared class and its probability.
+  auto classified = track(6, 20.0);
+  classified.class_probabilities = {0.1, 0.7, 0.05, 0.05, 0.05, 0.05};
+  auto undecided = track(7, 30.0);
+  undecided.class_probabilities = std::vector<double>(6, 1.0 / 6.0);
+  frame.tracks = {classified, undecided};
+  const auto class_rows = frameRows(frame);
+  REQUIRE(class_rows.size() == 3);
+  CHECK(class_rows[0] == rows[0] + "  class");
+  CHECK(class_rows[1].ends_with("  wheeled_heavy:0.70"));
+  CHECK(class_rows[2].ends_with("  -"));
   auto paced = tenTicks();
   CHECK(watchTitle(paced) == "wsntrack watch  s  run abc  domain 7");
   paced.tick_interval_s = 0.2;

@@ -204,15 +204,47 @@ TEST_CASE("a kind the IDL does not know never crosses the wire", "[codec]") {
   CHECK_FALSE(wire.valid);
 }
 
+TEST_CASE("a track and a handoff carry their class vector across the wire", "[codec]") {
+  common::TrackEstimate classified{(2ULL << 48) | 5, 1.0, 2.0, 0.5, -0.5, {}, 3, {0.7, 0.1, 0.1, 0.05, 0.05, 0.0}};
+  classified.covariance[5] = 0.5;
+  const common::TrackEstimate unclassified{(1ULL << 48) | 9, 4.0, 5.0, 0.0, 0.0, {}, 4, {}};
+  const std::vector<common::TrackEstimate> tracks{classified, unclassified};
+  auto encoded = encode(tracks);
+  wsn_msg_GlobalTrackBatch batch{};
+  batch.tracks = sequenceView<dds_sequence_wsn_msg_TrackEstimate>(encoded.items);
+  const WireRoundTrip track_wire(batch, wsn_msg_GlobalTrackBatch_desc);
+  REQUIRE(track_wire.valid);
+  CHECK(decode(track_wire.received.tracks) == tracks);
+
+  common::TrackHandoff handoff;
+  handoff.track = classified.track;
+  handoff.to_supernode = 1;
+  handoff.last_tick = 3;
+  handoff.class_probabilities = classified.class_probabilities;
+  const std::vector<common::TrackHandoff> handoffs{handoff, common::TrackHandoff{}};
+  auto encoded_handoffs = encode(handoffs);
+  wsn_msg_HandoffBatch handoff_batch{};
+  handoff_batch.handoffs = sequenceView<dds_sequence_wsn_msg_TrackHandoff>(encoded_handoffs.items);
+  const WireRoundTrip handoff_wire(handoff_batch, wsn_msg_HandoffBatch_desc);
+  REQUIRE(handoff_wire.valid);
+  CHECK(decode(handoff_wire.received.handoffs) == handoffs);
+
+  // More classes than the wire's bound would only fail at the write: refused at the encoding.
+  common::TrackEstimate too_many = classified;
+  too_many.class_probabilities.assign(common::kMaxClasses + 1, 1.0 / static_cast<double>(common::kMaxClasses + 1));
+  CHECK_THROWS_AS(encode(std::vector<common::TrackEstimate>{too_many}), std::length_error);
+}
+
 }  // namespace
 }  // namespace wsn::dds
 
 TEST_CASE("the settled tracks of several ticks cross the wire by tick, empty ticks included") {
-  wsn::common::TrackEstimate a{7, 1.0, 2.0, 0.5, -0.5, {}, 3};
+  wsn::common::TrackEstimate a{7, 1.0, 2.0, 0.5, -0.5, {}, 3, {0.5, 0.5}};
   a.covariance[0] = 0.25;
-  const wsn::common::TrackEstimate b{9, 4.0, 5.0, 0.0, 0.0, {}, 4};
+  const wsn::common::TrackEstimate b{9, 4.0, 5.0, 0.0, 0.0, {}, 4, {}};
   const std::vector<std::vector<wsn::common::TrackEstimate>> by_tick{{a, b}, {}, {b}};
-  auto items = wsn::dds::encodeSettled(3, by_tick);
+  auto encoded = wsn::dds::encodeSettled(3, by_tick);
+  auto& items = encoded.items;
   REQUIRE(items.size() == 3);
   CHECK(items[0].tick == 3);
   CHECK(items[2].tick == 5);

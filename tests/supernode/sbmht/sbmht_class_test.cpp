@@ -243,7 +243,12 @@ TEST_CASE("sbmht classes: a confirmed track's class converges to its target's", 
   auto classes = h.engine.confirmedClasses();
   REQUIRE(classes.size() == 1);
   CHECK(classes[0].target_class == common::TargetClass::kUnknown);
-  CHECK(classes[0].probability == Approx(1.0 / 6.0));
+  CHECK(classes[0].probability == 0.0);
+  // The track itself carries its (uniform) class vector, which goes out with it.
+  const auto first = h.engine.confirmedTracks();
+  REQUIRE(first.size() == 1);
+  REQUIRE(first[0].class_probabilities.size() == common::kClassCount);
+  for (const double p : first[0].class_probabilities) CHECK(p == Approx(1.0 / 6.0));
   int correct = 0;
   for (std::int32_t t = 6; t <= 35; ++t) {
     const auto c = cameraOf(common::TargetClass::kGroup, 0, t);
@@ -258,6 +263,41 @@ TEST_CASE("sbmht classes: a confirmed track's class converges to its target's", 
   CHECK(classes[0].track == tracks[0].track);
   CHECK(classes[0].target_class == common::TargetClass::kGroup);
   CHECK(classes[0].probability > 0.999);
+  CHECK(tracks[0].class_probabilities[4] == classes[0].probability);
+}
+
+TEST_CASE("sbmht hands a track over with its class vector", "[sbmht][classes]") {
+  // The giver's track learns it is a group from 15 camera reports; the taker continues it with
+  // reports that carry no class, so the adopted track's class is exactly what was handed over.
+  Harness giver(sbmhtScenario());
+  for (std::int32_t t = 1; t <= 15; ++t)
+    giver.step(t, {classified(t, 1, 20.0 + t, 50.0, cameraOf(common::TargetClass::kGroup, 0, t))});
+  const auto tracks = giver.engine.confirmedTracks();
+  REQUIRE(tracks.size() == 1);
+  REQUIRE(common::declaredTrackClass(tracks[0].class_probabilities).target_class == common::TargetClass::kGroup);
+  const auto handoff = giver.engine.release(tracks[0].track, 1);
+  CHECK(handoff.class_probabilities == tracks[0].class_probabilities);
+
+  Harness taker(sbmhtScenario());
+  for (std::int32_t t = 1; t <= 15; ++t) taker.step(t);
+  taker.engine.adopt(handoff);
+  taker.step(16, {classified(16, 1, 36.0, 50.0, {})});
+  const auto adopted = taker.engine.confirmedTracks();
+  REQUIRE(adopted.size() == 1);
+  CHECK(adopted[0].track == handoff.track);
+  CHECK(adopted[0].class_probabilities == handoff.class_probabilities);
+
+  // A handoff whose class vector is unusable (another engine's: none; or malformed) starts from no
+  // evidence instead of being refused.
+  auto malformed = handoff;
+  malformed.class_probabilities = {0.9, 0.9};
+  Harness other(sbmhtScenario());
+  for (std::int32_t t = 1; t <= 15; ++t) other.step(t);
+  other.engine.adopt(malformed);
+  other.step(16, {classified(16, 1, 36.0, 50.0, {})});
+  const auto restarted = other.engine.confirmedTracks();
+  REQUIRE(restarted.size() == 1);
+  CHECK(common::declaredTrackClass(restarted[0].class_probabilities) == common::DeclaredClass{});
 }
 
 }  // namespace
