@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Table II of Pannetier et al. (FUSION 2014) beside our runs: per target RSE and TLR of algorithm 1
-(with the road network) and algorithm 2 (without), and the share of the target's life in which the
-sensors reported it at all, as a Markdown table on stdout.
+(with the road network) and algorithm 2 (without), the share of the target's life in which the
+sensors reported it at all and, when the runs were scored with the classification metric, its true
+class and class accuracy, as a Markdown table on stdout; then the paper's statistics and, with the
+classification metric, the run-level classification scores and confusion matrices.
 
   onera_table.py --a1 RUN_DIR... --a2 RUN_DIR...   both algorithms, with the A1 - A2 deltas
   onera_table.py --a2 RUN_DIR...                   algorithm 2 only, beside the paper's A1 and A2
@@ -62,6 +64,25 @@ and, when every target's "reported" is defined, its mean and median and, per alg
 divided by the mean reported share. Targets whose RSE is undefined in every run are left out of the
 RSE statistics and shown as '-'.
 
+Runs whose metrics.json has the classification block (docs/METRICS.md) add, per target, a "class"
+column after "target" and, after each algorithm's TLR_len, an "A1 acc" / "A2 acc" column:
+  class     the target's true class (wheeled_light, wheeled_heavy, tracked, human, group, aerial or
+            unknown), the class of classification.targets' entry with the id of the N-th entry of
+            track_quality.targets; it must be the same in every run of both algorithms. '-' when no run
+            lists the target (only targets ever associated are listed).
+  A1 acc    class accuracy pooled over the algorithm's runs: sum of ticks_correct / sum of ticks_declared
+            (ticks its track declared the true class / ticks it declared a class). '-' when no tick was
+            declared or the class is unknown. The mean and median rows are over the targets with one.
+Below the statistics, a "Classification" section gives for each algorithm given the run totals summed
+over its runs (these count only the targets of known class): declared share = ticks_declared /
+ticks_associated and accuracy = ticks_correct / ticks_declared, with the counts ('-' for 0/0), then the
+confusion matrix summed over the runs as a Markdown table: rows the true classes met (unknown included),
+columns the declared classes that are a row or have a non-zero count, then "none" (associated ticks
+whose track declared no class); classes in the order listed above. Runs scored before the classification
+metric existed have no block: without it in any run the table is as before and there is no section;
+when only one algorithm's runs have it, the other gets no acc column and a line saying its runs have no
+block. Some runs of one algorithm with the block and some without is an error.
+
 With --plot FILE (FILE ending .png or .svg, which chooses the format) the tool also draws the table
 in FILE: two panels stacked, per-target RSE (m) above and per-target TLR below, as grouped bars for
 targets 1..20 (more if the runs have more): ours A1 and ours A2 (those given), then the paper's A1 and
@@ -72,8 +93,10 @@ written. matplotlib is imported (with the Agg backend) only for --plot; when it 
 says so before printing anything and exits with status 1.
 
 Exit status: 0, 1 when a run directory or its metrics.json is missing or malformed (the message
-names the file and what was expected), when --plot is given but matplotlib cannot be imported, or
-when FILE cannot be written; 2 on a usage error (such as --plot FILE with another extension)."""
+names the file and what was expected; this includes a malformed classification block, runs of one
+algorithm with and without the block, and a target whose class differs between runs), when --plot is
+given but matplotlib cannot be imported, or when FILE cannot be written; 2 on a usage error (such as
+--plot FILE with another extension)."""
 
 PAPER_TARGETS = len(PAPER_A1)
 
@@ -88,8 +111,80 @@ def _number(value, where, path):
     return float(value)
 
 
+def _count(value, where, path):
+    if isinstance(value, bool) or not isinstance(value, int) or value < 0:
+        raise RunError(f"{path}: {where}: expected a count (an integer >= 0), got {json.dumps(value)}")
+    return value
+
+
+# The true classes a scenario gives, in the order of TargetClass (common/scenario_config.hpp), the
+# order of the confusion matrix's rows and columns; "unknown" (no class given) is never declared.
+CLASS_NAMES = ("wheeled_light", "wheeled_heavy", "tracked", "human", "group", "aerial")
+UNKNOWN_CLASS = "unknown"
+
+
+def class_order(name):
+    """Sort key: the classes of CLASS_NAMES, then unknown, then any other name alphabetically."""
+    order = CLASS_NAMES + (UNKNOWN_CLASS,)
+    return (order.index(name), "") if name in order else (len(order), name)
+
+
+def read_classification(block, ids, path):
+    """One run's classification block: {"targets": {position in track_quality.targets: (true class,
+    ticks_declared, ticks_correct)}, "totals": (ticks_associated, ticks_declared, ticks_correct) of the
+    run, "confusion": {true class: {declared class or "none": count}}}. `ids` are the track_quality
+    targets' ids in file order; a target never associated is not listed and has no position here."""
+    if not isinstance(block, dict):
+        raise RunError(f"{path}: classification: expected an object, got {json.dumps(block)}")
+    fields = ("ticks_associated", "ticks_declared", "ticks_correct")
+    for key in fields + ("confusion", "targets"):
+        if key not in block:
+            raise RunError(f"{path}: classification: no '{key}' (expected {', '.join(fields)}, confusion, targets)")
+    totals = tuple(_count(block[key], f"classification.{key}", path) for key in fields)
+    confusion = block["confusion"]
+    if not isinstance(confusion, dict):
+        raise RunError(f"{path}: classification.confusion: expected an object, got {json.dumps(confusion)}")
+    for truth, row in confusion.items():
+        if not isinstance(row, dict):
+            raise RunError(f"{path}: classification.confusion.{truth}: expected an object, got {json.dumps(row)}")
+        for declared, count in row.items():
+            _count(count, f"classification.confusion.{truth}.{declared}", path)
+    if not isinstance(block["targets"], list):
+        raise RunError(f"{path}: classification.targets: expected a list of targets, "
+                       f"got {json.dumps(block['targets'])}")
+    position = {}
+    for i, target_id in enumerate(ids):
+        if isinstance(target_id, bool) or not isinstance(target_id, int):
+            raise RunError(f"{path}: track_quality.targets[{i}].id: expected an integer (it matches the "
+                           f"classification block's targets), got {json.dumps(target_id)}")
+        position[target_id] = i
+    targets = {}
+    for k, entry in enumerate(block["targets"]):
+        where = f"classification.targets[{k}]"
+        if not isinstance(entry, dict):
+            raise RunError(f"{path}: {where}: expected an object, got {json.dumps(entry)}")
+        for key in ("id", "class") + fields:
+            if key not in entry:
+                raise RunError(f"{path}: {where}: no '{key}' (expected id, class, {', '.join(fields)})")
+        target_id = entry["id"]
+        if isinstance(target_id, bool) or not isinstance(target_id, int) or target_id not in position:
+            raise RunError(f"{path}: {where}.id: {json.dumps(entry['id'])} is not the id of a target of "
+                           "track_quality.targets")
+        if position[entry["id"]] in targets:
+            raise RunError(f"{path}: {where}.id: target {entry['id']} is listed twice")
+        if not isinstance(entry["class"], str) or not entry["class"]:
+            raise RunError(f"{path}: {where}.class: expected a class name, got {json.dumps(entry['class'])}")
+        associated, declared, correct = (_count(entry[key], f"{where}.{key}", path) for key in fields)
+        if not correct <= declared <= associated:
+            raise RunError(f"{path}: {where}: expected ticks_correct <= ticks_declared <= ticks_associated, "
+                           f"got {correct}, {declared}, {associated}")
+        targets[position[entry["id"]]] = (entry["class"], declared, correct)
+    return {"targets": targets, "totals": totals, "confusion": confusion}
+
+
 def read_run(arg):
-    """The per-target (rse or None, tlr, tlr_length or None) of one run, in file order."""
+    """(metrics.json's path, the per-target (rse or None, tlr, tlr_length or None) of one run in file
+    order, its classification block as read_classification gives it or None when it has none)."""
     path = Path(arg)
     if path.is_dir():
         path = path / "metrics.json"
@@ -112,7 +207,7 @@ def read_run(arg):
     targets = data["track_quality"].get("targets")
     if not isinstance(targets, list):
         raise RunError(f"{path}: track_quality.targets: expected a list of targets, got {json.dumps(targets)}")
-    rows = []
+    rows, ids = [], []
     for i, entry in enumerate(targets):
         where = f"track_quality.targets[{i}]"
         if not isinstance(entry, dict):
@@ -128,7 +223,10 @@ def read_run(arg):
         # Runs scored before the path-length TLR existed have no tlr_length: shown as '-'.
         tlr_length = _number(entry["tlr_length"], where + ".tlr_length", path) if "tlr_length" in entry else None
         rows.append((rse if entry["errors_defined"] else None, tlr, tlr_length))
-    return rows
+        ids.append(entry.get("id"))
+    # Runs scored before the classification metric existed have no classification block.
+    classification = read_classification(data["classification"], ids, path) if "classification" in data else None
+    return path, rows, classification
 
 
 class ReportError(Exception):
@@ -229,6 +327,75 @@ def average_runs(runs, label):
     return out
 
 
+def pool_classification(runs, label):
+    """The classification blocks of one algorithm's runs [(arg, path, rows, classification)] summed:
+    {"runs", "declared" and "correct" (per target position, summed over the runs), "totals" (the run
+    totals summed), "confusion" (summed)}, or None when no run has the block. Every run must have it,
+    or none."""
+    having = [path for _, path, _, c in runs if c is not None]
+    lacking = [path for _, path, _, c in runs if c is None]
+    if not having:
+        return None
+    if lacking:
+        raise RunError(f"{lacking[0]}: no classification block, but {having[0]} (another of the {label} runs) "
+                       "has one: the runs of an algorithm must all have it (scored by the same wsntrack) or "
+                       "none")
+    n = len(runs[0][2])
+    declared, correct = [0] * n, [0] * n
+    totals = [0, 0, 0]
+    confusion = {}
+    for _, _, _, c in runs:
+        for j, (_, d, k) in c["targets"].items():
+            declared[j] += d
+            correct[j] += k
+        totals = [a + b for a, b in zip(totals, c["totals"])]
+        for truth, row in c["confusion"].items():
+            summed = confusion.setdefault(truth, {})
+            for name, count in row.items():
+                summed[name] = summed.get(name, 0) + count
+    return {"runs": len(runs), "declared": declared, "correct": correct, "totals": totals, "confusion": confusion}
+
+
+def target_classes(runs):
+    """Per target position, its true class in the classification blocks of the runs [(arg, path, rows,
+    classification)] (None where no run lists the target: never associated); the same in every run."""
+    classes = {}  # position: (class, path of the first run giving it)
+    for _, path, _, c in runs:
+        if c is None:
+            continue
+        for j, (name, _, _) in sorted(c["targets"].items()):
+            if j not in classes:
+                classes[j] = (name, path)
+            elif classes[j][0] != name:
+                raise RunError(f"{path}: classification: target {j + 1} (track_quality.targets[{j}]) has class "
+                               f"'{name}', but '{classes[j][0]}' in {classes[j][1]}: the runs must be of the same "
+                               "scenario")
+    n = max((len(rows) for _, _, rows, _ in runs), default=0)
+    return [classes[j][0] if j in classes else None for j in range(n)]
+
+
+def class_accuracy(pooled, classes):
+    """Per target position, sum(ticks_correct) / sum(ticks_declared) over the runs; None when no tick
+    was declared or the true class is unknown (or the target never associated)."""
+    return [None if classes[j] in (None, UNKNOWN_CLASS) or pooled["declared"][j] == 0
+            else pooled["correct"][j] / pooled["declared"][j] for j in range(len(pooled["declared"]))]
+
+
+def confusion_lines(name, confusion):
+    """The summed confusion matrix as a Markdown table: rows the true classes met, columns the declared
+    classes that are a row or counted at least once, then "none"."""
+    rows = sorted(confusion, key=class_order)
+    declared = {d for row in confusion.values() for d in row if d != "none"}
+    columns = sorted((d for d in declared
+                      if d in confusion or any(row.get(d, 0) for row in confusion.values())), key=class_order)
+    columns.append("none")
+    lines = [f"| {name} true / declared | " + " | ".join(columns) + " |",
+             "|---|" + "|".join("---:" for _ in columns) + "|"]
+    for truth in rows:
+        lines.append(f"| {truth} | " + " | ".join(str(confusion[truth].get(d, 0)) for d in columns) + " |")
+    return lines
+
+
 def fmt(value, digits):
     return "-" if value is None else f"{value:.{digits}f}"
 
@@ -263,15 +430,21 @@ def compare(a1, a2, k=1):
     return len(rse_pairs), rse_lower, higher, equal, lower
 
 
-def table(a1, a2, n_a1, n_a2, reported=None, reported_from="A2"):
+def table(a1, a2, n_a1, n_a2, reported=None, reported_from="A2", classes=None, pooled=None):
     """The Markdown lines: per-target table, its mean and median rows, then the comparisons.
-    `reported` is the per-target reported share (None: '-'), read from the `reported_from` runs."""
+    `reported` is the per-target reported share (None: '-'), read from the `reported_from` runs.
+    `classes` is the per-target true class (None: no class column); `pooled` maps "A1" and "A2" to
+    pool_classification's sums of the algorithm's runs, or to None when they have no classification
+    block (no accuracy column). Without either, the output is that of runs before classification."""
     n = max(PAPER_TARGETS, len(a1 or []), len(a2 or []))
     ours = [(name, rows) for name, rows in (("A1", a1), ("A2", a2)) if rows is not None]
-    header = ["target", "paper A1 RSE", "paper A1 TLR", "paper A2 RSE", "paper A2 TLR",
-              "paper Δ RSE", "paper Δ TLR"]
+    pooled = pooled or {}
+    accuracy = {name: class_accuracy(pooled[name], classes) for name, _ in ours
+                if classes is not None and pooled.get(name) is not None}
+    header = ["target"] + (["class"] if classes is not None else []) + [
+              "paper A1 RSE", "paper A1 TLR", "paper A2 RSE", "paper A2 TLR", "paper Δ RSE", "paper Δ TLR"]
     for name, _ in ours:
-        header += [f"{name} RSE", f"{name} TLR", f"{name} TLR_len"]
+        header += [f"{name} RSE", f"{name} TLR", f"{name} TLR_len"] + ([f"{name} acc"] if name in accuracy else [])
     header.append("reported")
     if a1 is not None and a2 is not None:
         header += ["Δ RSE", "Δ TLR", "Δ TLR_len"]
@@ -289,9 +462,11 @@ def table(a1, a2, n_a1, n_a2, reported=None, reported_from="A2"):
                ([paper(PAPER_A2, j, 1) for j in range(n)], 2, False)]
     for k in (0, 1):
         columns.append(([None if j >= PAPER_TARGETS else PAPER_A1[j][k] - PAPER_A2[j][k] for j in range(n)], 2, True))
-    for _, rows in ours:
+    for name, rows in ours:
         for k in (0, 1, 2):
             columns.append(([cell(rows, j, k) for j in range(n)], 2, False))
+        if name in accuracy:
+            columns.append(([accuracy[name][j] if j < len(accuracy[name]) else None for j in range(n)], 2, False))
     columns.append(([reported[j] if reported is not None and j < len(reported) else None for j in range(n)], 2, False))
     if a1 is not None and a2 is not None:
         for k in (0, 1, 2):
@@ -305,11 +480,15 @@ def table(a1, a2, n_a1, n_a2, reported=None, reported_from="A2"):
             value = 0.0  # no "-0.00" from rounding
         return f"{value:+.{digits}f}" if delta else f"{value:.{digits}f}"
 
-    lines = ["| " + " | ".join(header) + " |", "|" + "|".join("---:" for _ in header) + "|"]
+    lines = ["| " + " | ".join(header) + " |",
+             "|" + "|".join("---" if h == "class" else "---:" for h in header) + "|"]  # text left, numbers right
     for j in range(n):
-        lines.append("| " + " | ".join([str(j + 1)] + [show(values[j], d, delta) for values, d, delta in columns]) + " |")
+        text = [str(j + 1)]
+        if classes is not None:
+            text.append(classes[j] if j < len(classes) and classes[j] is not None else "-")
+        lines.append("| " + " | ".join(text + [show(values[j], d, delta) for values, d, delta in columns]) + " |")
     for label, which in (("mean", 0), ("median", 1)):
-        cells = []
+        cells = [""] if classes is not None else []  # no mean class
         for values, d, delta in columns:
             cells.append(show(stats(values)[which], d + 1, delta))
         lines.append("| **" + label + "** | " + " | ".join(cells) + " |")
@@ -321,6 +500,12 @@ def table(a1, a2, n_a1, n_a2, reported=None, reported_from="A2"):
                  "ticks; TLR_len = associated path length / path length; reported = share of the alive ticks with "
                  f"at least one delivered report of the target (the {reported_from} runs' truth.csv and "
                  "observations.csv). Means and medians over the targets (RSE over those with a defined RSE).")
+    if classes is not None:
+        lines[-1] += (" class = the target's true class (metrics.json's classification block; '-' when no run "
+                      "associated the target); " + ", ".join(f"{name} acc" for name in accuracy) +
+                      " = ticks its track declared the true class / ticks it declared a class, each summed over "
+                      "the runs ('-' when none was declared or the class is unknown; means and medians over the "
+                      "targets with one).")
     lines.append("")
 
     def describe(pairs_a1, pairs_a2, who, key=1, what="TLR"):
@@ -351,6 +536,25 @@ def table(a1, a2, n_a1, n_a2, reported=None, reported_from="A2"):
         lines.append(describe(a1, a2, "ours"))
         if all(r[2] is not None for r in a1 + a2):
             lines.append(describe(a1, a2, "ours, path length", key=2, what="TLR_len"))
+    if any(pooled.get(name) is not None for name, _ in ours):
+        lines += ["", "Classification (metrics.json's classification block), ticks summed over the runs: declared "
+                  "share = declared / associated ticks and accuracy = correct / declared ticks, of the targets of "
+                  "known class; the confusion matrix counts every associated tick by true class (rows) and "
+                  "declared class (columns; none: no class declared)."]
+        for name, _ in ours:
+            lines.append("")
+            c = pooled.get(name)
+            if c is None:
+                lines.append(f"- {name}: no classification block in its runs' metrics.json (scored before it existed)")
+                continue
+            associated, declared, correct = c["totals"]
+            runs = f"{c['runs']} run{'s' if c['runs'] != 1 else ''}"
+            lines.append(f"- {name} ({runs}): declared share {fmt(declared / associated if associated else None, 3)} "
+                         f"({declared}/{associated} associated ticks), accuracy "
+                         f"{fmt(correct / declared if declared else None, 3)} ({correct}/{declared} declared ticks)")
+            if c["confusion"]:
+                lines.append("")
+                lines += confusion_lines(name, c["confusion"])
     return lines
 
 
@@ -452,13 +656,19 @@ def main(argv):
     if not args.a1 and not a2_args:
         parser.error("no run directories: give RUN_DIR..., --a2 RUN_DIR... and/or --a1 RUN_DIR...")
     try:
-        a1_runs = [(arg, read_run(arg)) for arg in args.a1]
-        a2_runs = [(arg, read_run(arg)) for arg in a2_args]
+        a1_read = [(arg, *read_run(arg)) for arg in args.a1]
+        a2_read = [(arg, *read_run(arg)) for arg in a2_args]
+        a1_runs = [(arg, rows) for arg, _, rows, _ in a1_read]
+        a2_runs = [(arg, rows) for arg, _, rows, _ in a2_read]
         a1 = average_runs(a1_runs, "--a1") if a1_runs else None
         a2 = average_runs(a2_runs, "--a2") if a2_runs else None
         if a1 is not None and a2 is not None and len(a1) != len(a2):
             raise RunError(f"the A1 runs have {len(a1)} targets and the A2 runs {len(a2)}: they must be "
                            "runs of the same scenario")
+        pooled = {"A1": pool_classification(a1_read, "--a1") if a1_read else None,
+                  "A2": pool_classification(a2_read, "--a2") if a2_read else None}
+        classes = (target_classes(a1_read + a2_read)
+                   if any(c is not None for c in pooled.values()) else None)
     except RunError as error:
         print(f"onera_table.py: {error}", file=sys.stderr)
         return 1
@@ -478,7 +688,7 @@ def main(argv):
             return 1
     reported_from = "A2" if a2_runs else "A1"
     reported = average_reported(a2_runs or a1_runs)
-    print("\n".join(table(a1, a2, len(a1_runs), len(a2_runs), reported, reported_from)), flush=True)
+    print("\n".join(table(a1, a2, len(a1_runs), len(a2_runs), reported, reported_from, classes, pooled)), flush=True)
     if matplotlib is not None:
         try:
             plot(matplotlib, args.plot, a1, a2, len(a1_runs), len(a2_runs))

@@ -35,7 +35,18 @@ Draws the plots of a wsntrack run directory (what 'wsntrack run' does after ever
   tracks.FORMAT       the estimated global tracks (tracks.csv) against the true target paths
                       (truth.csv) on the sensor field: sensors, supernodes and their tracking
                       groups (the Voronoi cells of the supernodes: every sensor reports to its
-                      nearest supernode), like Oh et al. Fig. 9 (right)
+                      nearest supernode), like Oh et al. Fig. 9 (right). One colour per
+                      track, unless the tracks carry class evidence (some non-empty 'class'
+                      cell in tracks.csv): then, as the ONERA paper draws them, a colour per
+                      declared class, tick by tick (the segment between two ticks takes the
+                      class of the later one), with a legend entry per class present:
+                        wheeled_light  light blue     human   vermillion
+                        wheeled_heavy  dark blue      group   orange
+                        tracked        green          aerial  purple
+                        no class yet (an empty cell): dark grey, dotted
+                      Each track's id is then written at its last point (up to 30 tracks), and
+                      the targets' labels give their true class (truth.csv's 'class').
+                      (--animate keeps one colour per track.)
   cardinality.FORMAT  K, the number of tracks, and K*, the number of targets, at every tick
                       (the terms of eps_K, Oh eq. 9)
   ospa.FORMAT         OSPA at every tick, with its cut-off c
@@ -53,9 +64,11 @@ an MP4 (H.264; needs ffmpeg) or an HTML page holding every frame and a player (n
 
 Lengths are in the scenario's units (sensor separations when the grid spacing is 1), times in
 ticks. Reads scenario.yaml, truth.csv, tracks.csv (columns found by name: runs from before the
-label and covariance columns read too), observations.csv (--animate), metrics_per_tick.csv (else
-metrics.json's metrics.ospa_per_tick) and sensors.csv when present (else the sensor grid is
-computed from scenario.yaml).
+label, covariance and class columns read too, and draw as they always did), observations.csv
+(--animate), metrics_per_tick.csv (else metrics.json's metrics.ospa_per_tick) and sensors.csv when
+present (else the sensor grid is computed from scenario.yaml). A 'class' cell that is not a class
+name above (truth.csv: or 'unknown'), or a 'class_probability' outside [0, 1] or set without a
+class, is malformed input.
 
 Exit status: 0 on success; 1 when the video encoder (ffmpeg) fails; 2 for a bad command line, a
 missing or malformed input file (reported as FILE:LINE: what was expected) or an output that cannot
@@ -160,8 +173,10 @@ def _number(value, path, line, column, kind=float):
     return number
 
 
-# A column type of read_table besides int, float and str: a whole number or an empty field (None).
+# Column types of read_table besides int, float and str: a whole number, or a finite number, or an
+# empty field (None).
 OPTIONAL_INT = "optional int"
+OPTIONAL_FLOAT = "optional float"
 
 
 def _convert(value, path, line, column, kind):
@@ -169,6 +184,8 @@ def _convert(value, path, line, column, kind):
         return value
     if kind == OPTIONAL_INT:
         return None if value == "" else _number(value, path, line, column, int)
+    if kind == OPTIONAL_FLOAT:
+        return None if value == "" else _number(value, path, line, column, float)
     return _number(value, path, line, column, kind)
 
 
@@ -176,7 +193,7 @@ def read_table(path, columns, optional=(), expected=None, check=None, check_head
     """Rows of a CSV file, its columns found by header name so that a file with more columns (from a
     newer wsntrack) still reads. `columns`: (name, type) pairs the header must have; `optional`:
     (name, type, default) triples, read when the header has them, else `default` in every row. A
-    type is int, float, str or OPTIONAL_INT. Returns (rows, present): every row a tuple in the order
+    type is int, float, str, OPTIONAL_INT or OPTIONAL_FLOAT. Returns (rows, present): every row a tuple in the order
     of `columns` then `optional`, and the set of the optional names the header has. `expected`
     describes the header in the message about a missing column (default: the names of `columns`);
     `check(row)`, when given, returns what is wrong with a converted row, or None, and
@@ -237,45 +254,85 @@ COVARIANCE_COLUMNS = ("p_xx", "p_xy", "p_xvx", "p_xvy", "p_yy", "p_yvx", "p_yvy"
 COVARIANCE_INDEX = ((0, 0), (0, 1), (0, 2), (0, 3), (1, 1), (1, 2), (1, 3), (2, 2), (2, 3), (3, 3))
 TRACK_ID_SHIFT = 48
 
+# The class names tracks.csv declares (its 'class' column; empty: no class evidence yet) and
+# truth.csv gives its targets ('unknown' too), as common/scenario_config.hpp names them.
+TARGET_CLASSES = ("wheeled_light", "wheeled_heavy", "tracked", "human", "group", "aerial")
+TRUTH_CLASSES = ("unknown",) + TARGET_CLASSES
+
 
 def track_label(track):
     """The readable id of a numeric track id, as 'wsntrack watch' shows it and newer tracks.csv
     files write it (common/track_id.hpp, track_id::label): S:N for serial N of supernode S (ids are
-    (S + 1) << 48 | N); S:tTsK when the serial is a birth id T << 24 | K (tick T, sensor K: the GNN
-    and rule-based engines); gN for an id the aggregator minted (below 1 << 48)."""
+    (S + 1) << 48 | N); S:tTsK when the serial is a birth id J << 44 | T << 24 | K (tick T, sensor
+    K: the GNN, rule-based and sbmht engines), S:tTsK.J when J, the index of the trees one sensor
+    started in one tick (sbmht), is not 0; gN for an id the aggregator minted (below 1 << 48)."""
     owner, serial = track >> TRACK_ID_SHIFT, track & ((1 << TRACK_ID_SHIFT) - 1)
     if owner == 0:
         return f"g{track}"
     if serial < 1 << 24:
         return f"{owner - 1}:{serial}"
-    return f"{owner - 1}:t{serial >> 24}s{serial & ((1 << 24) - 1)}"
+    index, tick, sensor = serial >> 44, (serial >> 24) & ((1 << 20) - 1), serial & ((1 << 24) - 1)
+    return f"{owner - 1}:t{tick}s{sensor}" + (f".{index}" if index else "")
 
 
 def read_tracks(path, supernode=False):
-    """tracks.csv (or tracks_supernode.csv with `supernode`) as (rows, has_label, has_covariance).
-    A row is (tick, [supernode,] track, x, y, vx, vy, label, p_xx, p_xy, ..., p_vyvy), the p_* in
-    COVARIANCE_COLUMNS order. Files of older runs have neither label nor covariance columns: the
-    label is then made from the id (track_label) and the covariance is all zero, which tracks.csv
-    also writes for an unknown covariance."""
+    """tracks.csv (or tracks_supernode.csv with `supernode`, or tracks_settled.csv) as (rows,
+    has_label, has_covariance). A row is (tick, [supernode,] track, x, y, vx, vy, label, p_xx, p_xy,
+    ..., p_vyvy, class, class_probability), the p_* in COVARIANCE_COLUMNS order, class one of
+    TARGET_CLASSES or "" (no class evidence at the tick) and class_probability its probability, or
+    None with no class. Files of older runs have neither label nor covariance nor class columns:
+    the label is then made from the id (track_label), the covariance is all zero, which tracks.csv
+    also writes for an unknown covariance, and the class is "" (None)."""
     key = ["tick"] + (["supernode"] if supernode else []) + ["track"]
     columns = [(name, int) for name in key] + [(name, float) for name in ("x", "y", "vx", "vy")]
-    optional = [("label", str, "")] + [(name, float, 0.0) for name in COVARIANCE_COLUMNS]
-    newer = key + ["label", "x", "y", "vx", "vy"] + list(COVARIANCE_COLUMNS)
+    optional = ([("label", str, "")] + [(name, float, 0.0) for name in COVARIANCE_COLUMNS]
+                + [("class", str, ""), ("class_probability", OPTIONAL_FLOAT, None)])
+    newer = key + ["label", "x", "y", "vx", "vy"] + list(COVARIANCE_COLUMNS) + ["class", "class_probability"]
     expected = f"'{','.join(newer)}' (or the older '{','.join(name for name, _ in columns)}')"
 
     def check_header(present):
         lacking = [name for name in COVARIANCE_COLUMNS if name not in present]
         if lacking and len(lacking) < len(COVARIANCE_COLUMNS):
             return f"expected every covariance column {','.join(COVARIANCE_COLUMNS)} or none, got no '{lacking[0]}'"
+        if ("class" in present) != ("class_probability" in present):
+            return "expected both columns 'class' and 'class_probability' or neither, got only " + \
+                ("'class'" if "class" in present else "'class_probability'")
         return None
 
-    rows, present = read_table(path, columns, optional, expected, check_header=check_header)
+    def check(row):
+        declared, probability = row[-2], row[-1]
+        if declared and declared not in TARGET_CLASSES:
+            return f"column 'class' must be empty or one of {', '.join(TARGET_CLASSES)}, got '{declared}'"
+        if (probability is None) != (not declared):
+            return ("column 'class_probability' must be set exactly when 'class' is, got "
+                    f"'{'' if probability is None else row[-1]}' with class '{declared}'")
+        if probability is not None and not 0.0 <= probability <= 1.0:
+            return f"column 'class_probability' must be in [0, 1], got '{probability:g}'"
+        return None
+
+    rows, present = read_table(path, columns, optional, expected, check=check, check_header=check_header)
     has_covariance = bool(present & set(COVARIANCE_COLUMNS))
     has_label = "label" in present
     if not has_label:
         at = len(key) + 4
         rows = [row[:at] + (track_label(row[len(key) - 1]),) + row[at + 1:] for row in rows]
     return rows, has_label, has_covariance
+
+
+def read_truth(path):
+    """truth.csv as (rows, classes): rows (tick, target, x, y, vx, vy), and {target: its class} from
+    the 'class' column (one of TRUTH_CLASSES; an empty cell reads as unknown), empty for a file of
+    an older run, which has no such column. A target's class is the one of its last row."""
+    columns = [("tick", int), ("target", int)] + [(name, float) for name in ("x", "y", "vx", "vy")]
+
+    def check(row):
+        if row[6] not in TRUTH_CLASSES and row[6] != "":
+            return f"column 'class' must be one of {', '.join(TRUTH_CLASSES)}, got '{row[6]}'"
+        return None
+
+    rows, present = read_table(path, columns, [("class", str, "")], check=check)
+    classes = {row[1]: row[6] or "unknown" for row in rows} if "class" in present else {}
+    return [row[:6] for row in rows], classes
 
 
 OBSERVATION_FATES = ("delivered", "lost", "unreachable", "after_end")
@@ -612,6 +669,16 @@ TRACK_COLOURS = ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9
 TRACK_DASHES = ["solid", (0, (5, 2)), (0, (1.5, 1.5))]
 REGION_COLOURS = ["#fff3d6", "#e3f0ff", "#e8f6e8", "#f6e6f2", "#eeeeee", "#fde8e0"]
 TRUTH_COLOUR = "#8c8c8c"
+# Track colours by declared class (tracks.csv's 'class'), when a run's tracks carry class evidence:
+# vehicles in blues and green, people in warm colours, aircraft in purple; a track at a tick
+# without class evidence is dark grey and dotted.
+CLASS_COLOURS = {"wheeled_light": "#56B4E9", "wheeled_heavy": "#0072B2", "tracked": "#009E73",
+                 "human": "#D55E00", "group": "#E69F00", "aerial": "#7B3294"}
+NO_CLASS_COLOUR = "#333333"
+NO_CLASS_DASHES = (0, (1.5, 1.5))
+# Track ids are written beside the tracks (coloured by class, colour no longer tells them apart)
+# only when there are this few.
+MAX_LABELLED_TRACKS = 30
 
 
 def new_figure(mpl, width, height, left, right, bottom, top):
@@ -650,7 +717,31 @@ def few_observations(path):
     return [(row[6], row[7]) for row in rows if row[9] == "delivered"]
 
 
-def plot_tracks(mpl, scenario, sensors, truth, tracks, summary, out_path, observations=None):
+def class_pieces(rows):
+    """The polylines of one track's rows (sorted by tick; row[2:4] is x, y, row[-2] the class
+    declared at the tick) in pieces of one class each: [(class, xs, ys)]. The segment between two
+    consecutive ticks takes the class of its later tick, so a piece starts at the last point of the
+    piece before; a gap of ticks breaks the line. A lone point is a piece of one point."""
+    pieces = []
+    previous = None
+    for row in rows:
+        tick, x, y, declared = row[0], row[2], row[3], row[-2]
+        joined = previous is not None and tick == previous[0] + 1
+        if joined and pieces[-1][0] == declared:
+            pieces[-1][1].append(x)
+            pieces[-1][2].append(y)
+        elif joined:
+            pieces.append((declared, [previous[2], x], [previous[3], y]))
+        else:
+            pieces.append((declared, [x], [y]))
+        previous = row
+    return pieces
+
+
+def plot_tracks(mpl, scenario, sensors, truth, tracks, summary, out_path, observations=None, truth_classes=None):
+    """tracks.FORMAT. When some track row declares a class, the tracks are coloured by the class
+    declared at each tick (CLASS_COLOURS) and labelled with their ids, and the targets' labels
+    give their true classes (`truth_classes`); otherwise one colour (then dash) per track."""
     from matplotlib.lines import Line2D
     from matplotlib.patches import Polygon, Patch
     from matplotlib.transforms import offset_copy
@@ -681,6 +772,9 @@ def plot_tracks(mpl, scenario, sensors, truth, tracks, summary, out_path, observ
     for p, q in edges:
         ax.plot([p[0], q[0]], [p[1], q[1]], color="#444444", linestyle=(0, (6, 4)), linewidth=1.3, zorder=2)
 
+    by_class = any(row[-2] for row in tracks)
+    truth_classes = (truth_classes or {}) if by_class else {}
+    show_true_class = any(c != "unknown" for c in truth_classes.values())
     truth_paths = paths_by_id(truth, 1)
     label_targets = len(truth_paths) <= 30
     for ident, (px, py, first, last) in truth_paths.items():
@@ -691,7 +785,8 @@ def plot_tracks(mpl, scenario, sensors, truth, tracks, summary, out_path, observ
             # Labels point inwards near the right and top edges, where they would leave the figure.
             right = px[0] > x0 + 0.88 * width
             top = py[0] > y0 + 0.95 * height
-            ax.annotate(f"{first}–{last}", (px[0], py[0]), xytext=(-7 if right else 7, -7 if top else 5),
+            true_class = f" {truth_classes.get(ident, 'unknown')}" if show_true_class else ""
+            ax.annotate(f"{first}–{last}{true_class}", (px[0], py[0]), xytext=(-7 if right else 7, -7 if top else 5),
                         textcoords="offset points", fontsize=9, color="#222222", zorder=7,
                         ha="right" if right else "left", va="top" if top else "bottom",
                         bbox=dict(boxstyle="round,pad=0.15", facecolor="white", edgecolor="none", alpha=0.75))
@@ -702,11 +797,44 @@ def plot_tracks(mpl, scenario, sensors, truth, tracks, summary, out_path, observ
 
     track_paths = paths_by_id(tracks, 1)
     order = sorted(track_paths, key=lambda i: (track_paths[i][2], i))
-    for n, ident in enumerate(order):
-        px, py, _, _ = track_paths[ident]
-        colour = TRACK_COLOURS[n % len(TRACK_COLOURS)]
-        dashes = TRACK_DASHES[(n // len(TRACK_COLOURS)) % len(TRACK_DASHES)]
-        ax.plot(px, py, color=colour, linestyle=dashes, linewidth=1.6, marker="o", markersize=2.6, zorder=4)
+    classes_drawn = []
+    if by_class:
+        # One line (pieces NaN-separated) and one set of markers per class, each point marked in
+        # the class of its tick: a few artists whatever the number of tracks.
+        rows_of = {}
+        for row in sorted(tracks, key=lambda r: (r[1], r[0])):
+            rows_of.setdefault(row[1], []).append(row)
+        lines, points = {}, {}
+        for ident in order:
+            for declared, px, py in class_pieces(rows_of[ident]):
+                xs_, ys_ = lines.setdefault(declared, ([], []))
+                if len(px) > 1:
+                    xs_ += px + [math.nan]
+                    ys_ += py + [math.nan]
+            for row in rows_of[ident]:
+                mx, my = points.setdefault(row[-2], ([], []))
+                mx.append(row[2])
+                my.append(row[3])
+        classes_drawn = [c for c in TARGET_CLASSES + ("",) if c in points]
+        for declared in classes_drawn:
+            colour = CLASS_COLOURS.get(declared, NO_CLASS_COLOUR)
+            if lines.get(declared, ([], []))[0]:
+                ax.plot(*lines[declared], color=colour, linestyle="solid" if declared else NO_CLASS_DASHES,
+                        linewidth=1.6, zorder=4)
+            ax.plot(*points[declared], linestyle="none", marker="o", markersize=2.6, color=colour, zorder=4)
+        if len(order) <= MAX_LABELLED_TRACKS:
+            # Each track's id at its last point, in the colour of its last class.
+            for ident in order:
+                last = rows_of[ident][-1]
+                ax.annotate(last[6], (last[2], last[3]), xytext=(4, -4), textcoords="offset points", fontsize=8,
+                            color=CLASS_COLOURS.get(last[-2], NO_CLASS_COLOUR), ha="left", va="top", zorder=7,
+                            bbox=dict(boxstyle="round,pad=0.1", facecolor="white", edgecolor="none", alpha=0.6))
+    else:
+        for n, ident in enumerate(order):
+            px, py, _, _ = track_paths[ident]
+            colour = TRACK_COLOURS[n % len(TRACK_COLOURS)]
+            dashes = TRACK_DASHES[(n // len(TRACK_COLOURS)) % len(TRACK_DASHES)]
+            ax.plot(px, py, color=colour, linestyle=dashes, linewidth=1.6, marker="o", markersize=2.6, zorder=4)
 
     for j, (sx, sy) in enumerate(scenario["supernodes"]):
         ax.plot(sx, sy, marker="*", markersize=20, markerfacecolor="#ffd21f", markeredgecolor="black",
@@ -732,10 +860,19 @@ def plot_tracks(mpl, scenario, sensors, truth, tracks, summary, out_path, observ
         Line2D([], [], color=TRUTH_COLOUR, linewidth=6, alpha=0.45, solid_capstyle="round",
                label="true target path"),
         Line2D([], [], linestyle="none", marker="o", markersize=9, markerfacecolor="white", markeredgecolor="black",
-               label="target appears (label: appear–last tick)" if label_targets else "target appears"),
-        Line2D([], [], color=TRACK_COLOURS[0], linewidth=1.6, marker="o", markersize=2.6,
-               label="estimated track (one colour" + (" and dash" if len(order) > len(TRACK_COLOURS) else "")
-               + " per track)"),
+               label=("target appears (label: appear–last tick" + (", true class" if show_true_class else "")
+                      + ")") if label_targets else "target appears"),
+    ]
+    if by_class:
+        for declared in classes_drawn:
+            handles.append(Line2D([], [], color=CLASS_COLOURS.get(declared, NO_CLASS_COLOUR), linewidth=1.6,
+                                  linestyle="solid" if declared else NO_CLASS_DASHES, marker="o", markersize=2.6,
+                                  label=f"track declared {declared}" if declared else "track, no class yet"))
+    else:
+        handles.append(Line2D([], [], color=TRACK_COLOURS[0], linewidth=1.6, marker="o", markersize=2.6,
+                              label="estimated track (one colour" + (" and dash" if len(order) > len(TRACK_COLOURS)
+                                                                     else "") + " per track)"))
+    handles += [
         Line2D([], [], linestyle="none", marker="*", markersize=16, markerfacecolor="#ffd21f",
                markeredgecolor="black", label="supernode Sj"),
         Patch(facecolor=REGION_COLOURS[0], edgecolor="#999999", label="tracking group of one supernode"),
@@ -754,8 +891,20 @@ def plot_tracks(mpl, scenario, sensors, truth, tracks, summary, out_path, observ
     # Below the map rather than on it, so that no track is hidden; a fixed distance in points
     # clears the tick labels and the x label whatever the map's aspect ratio.
     below = offset_copy(ax.transAxes, fig=fig, y=-44, units="points")
-    ax.legend(handles=handles, loc="upper center", ncol=2, fontsize=10, frameon=False,
-              bbox_to_anchor=(0.5, 0.0), bbox_transform=below, handlelength=3)
+    legend = ax.legend(handles=handles, loc="upper center", ncol=2, fontsize=10, frameon=False,
+                       bbox_to_anchor=(0.5, 0.0), bbox_transform=below, handlelength=3)
+    if by_class:
+        # The class entries lengthen the legend: the figure grows at the bottom to hold it, the
+        # map keeping its size.
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        renderer = FigureCanvasAgg(fig).get_renderer()  # lays text out without drawing the figure
+        lacking = -legend.get_window_extent(renderer).y0 / fig.dpi + 0.15
+        if lacking > 0:
+            fig_w, fig_h = fig.get_size_inches()
+            box = ax.get_position()
+            fig.set_size_inches(fig_w, fig_h + lacking)
+            ax.set_position([box.x0, (box.y0 * fig_h + lacking) / (fig_h + lacking), box.width,
+                             box.height * fig_h / (fig_h + lacking)])
     fig.savefig(out_path)
 
 
@@ -1502,8 +1651,7 @@ def main(argv):
         if not run_dir.is_dir():
             raise InputError(f"{run_dir}: not a directory")
         scenario = read_scenario(run_dir)
-        truth = read_csv(run_dir / "truth.csv", ["tick", "target", "x", "y", "vx", "vy"],
-                         [int, int, float, float, float, float])
+        truth, truth_classes = read_truth(run_dir / "truth.csv")
         tracks, _, _ = read_tracks(run_dir / "tracks.csv")
         sensors = read_sensors(run_dir, scenario)
         ticks, k_true, k, ospa, source = read_per_tick(run_dir, scenario, truth, tracks)
@@ -1531,7 +1679,7 @@ def main(argv):
         return EXIT_BAD_INPUT
     written = []
     plots = [("tracks", lambda path: plot_tracks(matplotlib, scenario, sensors, truth, tracks, summary, path,
-                                                 observations)),
+                                                 observations, truth_classes)),
              ("cardinality", lambda path: plot_cardinality(matplotlib, scenario, ticks, k_true, k, summary, path)),
              ("ospa", lambda path: plot_ospa(matplotlib, scenario, ticks, ospa, source, path))]
     if detections is not None:

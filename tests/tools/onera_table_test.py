@@ -4,9 +4,11 @@ run directories (metrics.json's track_quality block, and for the "reported" colu
 observations.csv): per-target means over runs against a hand computation, the paper's statistics, the
 A1 - A2 deltas and comparisons, undefined RSEs, runs without tlr_length, the reported share and its
 notes for missing, inconsistent or malformed CSV files, the errors for missing or malformed
-metrics.json, and --plot: a PNG or SVG beside the unchanged table (skipped when /usr/bin/python3 has
-no matplotlib), a bad extension, a missing matplotlib (a stand-in package that raises ImportError)
-and an unwritable file.
+metrics.json, the classification block (per-target class and accuracy pooled over runs, the run
+totals and the confusion matrix summed over runs, runs without the block, runs of one algorithm with
+and without it, classes that differ between runs, a malformed block), and --plot: a PNG or SVG
+beside the unchanged table (skipped when /usr/bin/python3 has no matplotlib), a bad extension, a
+missing matplotlib (a stand-in package that raises ImportError) and an unwritable file.
 
 Usage: onera_table_test.py SOURCE_DIR WORK_DIR
 """
@@ -301,6 +303,207 @@ class Reported(unittest.TestCase):
         self.check_dash(run, f"{run / 'observations.csv'}: line 2: target: expected an integer, got '0.5'")
         run = reported_run("reported/short_row", SEED2_REPORTS, **{"truth.csv": "tick,target,x,y,vx,vy\n10\n"})
         self.check_dash(run, f"{run / 'truth.csv'}: line 2: 1 fields, expected 6")
+
+CLASS_COLUMNS = ("wheeled_light", "wheeled_heavy", "tracked", "human", "group", "aerial", "none")
+
+
+def classification(entries, confusion):
+    """A classification block as wsntrack writes it, for targets [(id, class, associated, declared,
+    correct)] and confusion {true class: {declared: count}} (the other columns written as zeros)."""
+    known = [e for e in entries if e[1] != "unknown"]
+    associated, declared, correct = (sum(e[k] for e in known) for k in (2, 3, 4))
+    return {"gate": 50.0, "ticks_associated": associated, "ticks_declared": declared, "ticks_correct": correct,
+            "declared_share": declared / associated if associated else None,
+            "class_accuracy": correct / declared if declared else None,
+            "confusion": {truth: {c: row.get(c, 0) for c in CLASS_COLUMNS} for truth, row in confusion.items()},
+            "targets": [{"id": i, "class": c, "ticks_associated": a, "ticks_declared": d, "ticks_correct": k,
+                         "class_accuracy": k / d if d and c != "unknown" else None} for i, c, a, d, k in entries]}
+
+
+def class_run(name, block, targets=None):
+    """A run directory whose metrics.json has track_quality (20 targets, RSE 5, TLR 0.5 unless given)
+    and this classification block after boundary."""
+    targets = targets or [target(i, 5.0, 0.5, 0.5) for i in range(20)]
+    return run_dir(name, text=json.dumps({"eps_k": 0.0, "track_quality": {"gate": 50.0, "targets": targets},
+                                          "boundary": {"band": 5.0}, "classification": block}))
+
+
+# Two seeds. Table target 1 (id 0, wheeled_light): declared 8 of 10 associated ticks, 6 correct, then 2
+# of 5, 2 correct: pooled 8/10 = 0.80 (not the mean of 0.75 and 1). Target 2 (id 1, human): nothing
+# declared: '-'. Target 3 (id 2, unknown): 3 declared in each seed, accuracy '-'. Target 4 (id 3,
+# tracked): associated in seed 2 only, 1 correct of 4: 0.25. Targets 5-20: never associated, not listed.
+# Run totals (known classes): associated 10 + 3 and 5 + 2 + 4 = 24, declared 8 and 2 + 4 = 14, correct
+# 6 and 2 + 1 = 9: declared share 14/24 = 0.583, accuracy 9/14 = 0.643.
+CLASS_SEED1 = classification(
+    [(0, "wheeled_light", 10, 8, 6), (1, "human", 3, 0, 0), (2, "unknown", 5, 3, 0)],
+    {"wheeled_light": {"wheeled_light": 6, "human": 2, "none": 2}, "human": {"none": 3},
+     "unknown": {"tracked": 3, "none": 2}})
+CLASS_SEED2 = classification(
+    [(0, "wheeled_light", 5, 2, 2), (1, "human", 2, 0, 0), (2, "unknown", 5, 3, 0), (3, "tracked", 4, 4, 1)],
+    {"wheeled_light": {"wheeled_light": 2, "none": 3}, "human": {"none": 2},
+     "unknown": {"tracked": 1, "group": 2, "none": 2}, "tracked": {"tracked": 1, "wheeled_heavy": 3}})
+
+
+class Classification(unittest.TestCase):
+    """The classification block: class and accuracy columns, the run-level section, older runs."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.seed1 = class_run("class/s1", CLASS_SEED1)
+        cls.seed2 = class_run("class/s2", CLASS_SEED2)
+        cls.result = tool("--a2", cls.seed1, cls.seed2)
+
+    def test_columns(self):
+        self.assertEqual(self.result.returncode, 0, self.result.stderr)
+        self.assertEqual(header(self.result.stdout),
+                         ["target", "class", "paper A1 RSE", "paper A1 TLR", "paper A2 RSE", "paper A2 TLR",
+                          "paper Δ RSE", "paper Δ TLR", "A2 RSE", "A2 TLR", "A2 TLR_len", "A2 acc", "reported"])
+        self.assertIn("|---:|---|---:|", self.result.stdout)  # the class column left-aligned
+        # Only the notes of the missing truth.csv files.
+        self.assertEqual(self.result.stderr.count("onera_table.py: note: "), 2, self.result.stderr)
+
+    def test_pooled_accuracy_over_runs(self):
+        out = self.result.stdout
+        self.assertEqual(cells(out, "1"), ["1", "wheeled_light", "10.48", "0.99", "19.43", "0.80", "-8.95", "+0.19",
+                                           "5.00", "0.50", "0.50", "0.80", "-"])
+        self.assertEqual(cells(out, "4")[1], "tracked")
+        self.assertEqual(cells(out, "4")[11], "0.25")
+        # Mean and median over the targets with an accuracy: (0.80 + 0.25) / 2; no mean class.
+        self.assertEqual(cells(out, "**mean**")[1], "")
+        self.assertEqual(cells(out, "**mean**")[11], "0.525")
+        self.assertEqual(cells(out, "**median**")[11], "0.525")
+
+    def test_undefined_accuracy(self):
+        out = self.result.stdout
+        self.assertEqual(cells(out, "2")[1], "human")
+        self.assertEqual(cells(out, "2")[11], "-")  # nothing declared
+        self.assertEqual(cells(out, "3")[1], "unknown")
+        self.assertEqual(cells(out, "3")[11], "-")  # declared, but no true class to compare with
+        self.assertEqual(cells(out, "5")[1], "-")  # never associated: not listed
+        self.assertEqual(cells(out, "5")[11], "-")
+        self.assertEqual(cells(out, "20")[1], "-")
+
+    def test_single_run(self):
+        out = tool("--a2", self.seed1).stdout
+        self.assertEqual([cells(out, str(j))[11] for j in (1, 2, 3, 4)], ["0.75", "-", "-", "-"])
+        self.assertEqual(cells(out, "4")[1], "-")
+        self.assertIn("- A2 (1 run): declared share 0.615 (8/13 associated ticks), accuracy 0.750 "
+                      "(6/8 declared ticks)", out)
+
+    def test_run_totals(self):
+        self.assertIn("\n- A2 (2 runs): declared share 0.583 (14/24 associated ticks), accuracy 0.643 "
+                      "(9/14 declared ticks)\n", self.result.stdout)
+
+    def test_confusion_summed_over_runs(self):
+        # Columns: the classes that are a row or counted (aerial is neither), then none; rows in class order.
+        out = self.result.stdout
+        self.assertEqual(cells(out, "A2 true / declared"),
+                         ["A2 true / declared", "wheeled_light", "wheeled_heavy", "tracked", "human", "group", "none"])
+        self.assertEqual(cells(out, "wheeled_light"), ["wheeled_light", "8", "0", "0", "2", "0", "5"])
+        self.assertEqual(cells(out, "tracked"), ["tracked", "0", "3", "1", "0", "0", "0"])
+        self.assertEqual(cells(out, "human"), ["human", "0", "0", "0", "0", "0", "5"])
+        self.assertEqual(cells(out, "unknown"), ["unknown", "0", "0", "4", "0", "2", "4"])
+        lines = out.splitlines()
+        start = lines.index("| A2 true / declared | wheeled_light | wheeled_heavy | tracked | human | group | none |")
+        self.assertEqual(lines[start + 1], "|---|---:|---:|---:|---:|---:|---:|")
+        self.assertEqual([line.split("|")[1].strip() for line in lines[start + 2:start + 6]],
+                         ["wheeled_light", "tracked", "human", "unknown"])
+        self.assertEqual(lines[start + 6:], [])  # the end of the output
+
+    def test_both_algorithms(self):
+        result = tool("--a1", self.seed1, "--a2", self.seed2)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        out = result.stdout
+        self.assertEqual(header(out)[8:], ["A1 RSE", "A1 TLR", "A1 TLR_len", "A1 acc", "A2 RSE", "A2 TLR",
+                                           "A2 TLR_len", "A2 acc", "reported", "Δ RSE", "Δ TLR", "Δ TLR_len"])
+        self.assertEqual(cells(out, "1")[11], "0.75")
+        self.assertEqual(cells(out, "1")[15], "1.00")
+        self.assertEqual(cells(out, "4")[1], "tracked")  # from the A2 run
+        self.assertEqual([cells(out, "4")[k] for k in (11, 15)], ["-", "0.25"])
+        self.assertIn("- A1 (1 run): declared share 0.615 (8/13 associated ticks)", out)
+        self.assertIn("- A2 (1 run): declared share 0.545 (6/11 associated ticks), accuracy 0.500 "
+                      "(3/6 declared ticks)", out)
+        self.assertEqual(cells(out, "A1 true / declared")[1:], ["wheeled_light", "tracked", "human", "none"])
+        self.assertEqual(cells(out, "A2 true / declared")[1:],
+                         ["wheeled_light", "wheeled_heavy", "tracked", "human", "group", "none"])
+
+    def test_nothing_associated(self):
+        # Only a target of unknown class: the run totals are 0 of 0, shown as '-'.
+        run = class_run("class/unknown_only", classification([(5, "unknown", 4, 0, 0)], {"unknown": {"none": 4}}))
+        result = tool("--a2", run)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(cells(result.stdout, "6")[1], "unknown")
+        self.assertEqual(cells(result.stdout, "6")[11], "-")
+        self.assertEqual(cells(result.stdout, "**mean**")[11], "-")
+        self.assertIn("- A2 (1 run): declared share - (0/0 associated ticks), accuracy - (0/0 declared ticks)",
+                      result.stdout)
+        self.assertEqual(cells(result.stdout, "A2 true / declared")[1:], ["none"])
+
+    def test_runs_without_the_block(self):
+        # Runs of before the classification metric: no class columns, no section, as before.
+        old = [run_dir(f"class/old-{k}", [target(i, 5.0, 0.5, 0.5) for i in range(20)]) for k in (1, 2)]
+        result = tool("--a2", *old)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(header(result.stdout)[:2], ["target", "paper A1 RSE"])
+        self.assertEqual(header(result.stdout)[7:], ["A2 RSE", "A2 TLR", "A2 TLR_len", "reported"])
+        self.assertNotIn("class", result.stdout)
+        self.assertNotIn("Classification", result.stdout)
+        # With the A1 runs' block: the class and A1 acc columns, and a line saying A2 has none.
+        result = tool("--a1", self.seed1, self.seed2, "--a2", *old)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertEqual(header(result.stdout)[8:16], ["A1 RSE", "A1 TLR", "A1 TLR_len", "A1 acc", "A2 RSE",
+                                                        "A2 TLR", "A2 TLR_len", "reported"])
+        self.assertEqual(cells(result.stdout, "1")[1], "wheeled_light")
+        self.assertEqual(cells(result.stdout, "1")[11], "0.80")
+        self.assertIn("- A1 (2 runs): declared share 0.583", result.stdout)
+        self.assertIn("- A2: no classification block in its runs' metrics.json", result.stdout)
+        self.assertNotIn("A2 true / declared", result.stdout)
+
+    def check_error(self, args, *expected):
+        result = tool(*args)
+        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
+        self.assertEqual(result.stdout, "")
+        for text in expected:
+            self.assertIn(text, result.stderr)
+
+    def test_mixed_runs_fail(self):
+        old = run_dir("class/mixed-old", [target(i, 5.0, 0.5, 0.5) for i in range(20)])
+        self.check_error(["--a2", self.seed1, old],
+                         f"onera_table.py: {old / 'metrics.json'}: no classification block, but "
+                         f"{self.seed1 / 'metrics.json'} (another of the --a2 runs) has one")
+        self.check_error(["--a1", old, self.seed2, "--a2", self.seed1],
+                         f"{old / 'metrics.json'}: no classification block, but {self.seed2 / 'metrics.json'} "
+                         "(another of the --a1 runs)")
+
+    def test_class_differs_between_runs(self):
+        other = class_run("class/other", classification([(0, "human", 4, 0, 0)], {"human": {"none": 4}}))
+        self.check_error(["--a2", self.seed1, other],
+                         f"onera_table.py: {other / 'metrics.json'}: classification: target 1 "
+                         f"(track_quality.targets[0]) has class 'human', but 'wheeled_light' in "
+                         f"{self.seed1 / 'metrics.json'}")
+        self.check_error(["--a1", self.seed1, "--a2", other], f"{other / 'metrics.json'}: classification: target 1")
+
+    def test_malformed_block(self):
+        run = class_run("class/bad_id", classification([(20, "human", 4, 0, 0)], {"human": {"none": 4}}))
+        self.check_error([run], f"{run / 'metrics.json'}: classification.targets[0].id: 20 is not the id of a target "
+                                "of track_quality.targets")
+        run = class_run("class/bad_counts", classification([(0, "human", 4, 2, 3)], {"human": {"human": 3}}))
+        self.check_error([run], f"{run / 'metrics.json'}: classification.targets[0]: expected ticks_correct <= "
+                                "ticks_declared <= ticks_associated, got 3, 2, 4")
+        block = classification([(0, "human", 4, 0, 0)], {"human": {"none": 4}})
+        del block["confusion"]
+        run = class_run("class/no_confusion", block)
+        self.check_error([run], f"{run / 'metrics.json'}: classification: no 'confusion'")
+        block = classification([(0, "human", 4, 0, 0)], {"human": {"none": -1}})
+        run = class_run("class/negative", block)
+        self.check_error([run], f"{run / 'metrics.json'}: classification.confusion.human.none: expected a count")
+        run = class_run("class/not_object", None)
+        self.check_error([run], f"{run / 'metrics.json'}: classification: expected an object, got null")
+
+    def test_help(self):
+        out = tool("--help").stdout
+        self.assertIn("sum of ticks_correct / sum of ticks_declared", out)
+        self.assertIn('"Classification" section', out)
 
 
 class Plot(unittest.TestCase):

@@ -111,6 +111,43 @@ EOF
     "$python" "$plot" newer --out "$PWD/newer-plots" >/dev/null 2>err.txt || { cat err.txt >&2; fail "newer tracks.csv"; }
     check_pngs newer-plots
 
+    # Class evidence (tracks.csv's class and class_probability, truth.csv's class): tracks.png colours
+    # the tracks by the class declared at each tick. Track 0:1 has no class at ticks 2-3, then
+    # wheeled_light, then wheeled_heavy; 1:1 is human; g5 never has a class.
+    "$python" -B "$src/tests/tools/tiny_run.py" classes || fail "tiny_run.py classes"
+    add_classes() {  # DIR: appends the class columns to DIR's tracks.csv and truth.csv
+      awk -F, -v OFS=, 'NR == 1 { print $0, "class", "class_probability"; next }
+        $3 == "0:1" && $1 >= 7 { print $0, "wheeled_heavy", "0.810000"; next }
+        $3 == "0:1" && $1 >= 4 { print $0, "wheeled_light", "0.550000"; next }
+        $3 == "1:1" { print $0, "human", "0.700000"; next }
+        { print $0, "", "" }' "$1/tracks.csv" >"$1/tracks.csv.new" && mv "$1/tracks.csv.new" "$1/tracks.csv"
+      awk -F, -v OFS=, 'NR == 1 { print $0, "class"; next } { print $0, ($2 == 0 ? "wheeled_heavy" : "human") }' \
+        "$1/truth.csv" >"$1/truth.csv.new" && mv "$1/truth.csv.new" "$1/truth.csv"
+    }
+    add_classes classes
+    [ "$(head -1 classes/tracks.csv | tr ',' '\n' | tail -2 | tr '\n' ' ')" = "class class_probability " ] \
+      || fail "tiny run with classes: header"
+    "$python" "$plot" classes --out "$PWD/classes-plots" >/dev/null 2>err.txt || { cat err.txt >&2; fail "class columns"; }
+    check_pngs classes-plots
+    "$python" "$plot" classes --format svg --out "$PWD/classes-svg" >/dev/null 2>err.txt \
+      || { cat err.txt >&2; fail "class columns, svg"; }
+    for entry in "track declared wheeled_light" "track declared wheeled_heavy" "track declared human" \
+                 "track, no class yet" "4–10 human" "1–10 wheeled_heavy"; do
+      grep -q "$entry" classes-svg/tracks.svg || fail "classes-svg/tracks.svg lacks '$entry'"
+    done
+    grep -q "one colour per track" classes-svg/tracks.svg && fail "classes-svg/tracks.svg: coloured per track"
+    grep -q "track declared tracked" classes-svg/tracks.svg && fail "classes-svg/tracks.svg: a class not present"
+    # Older runs, and class columns that are all empty, draw exactly as before: one colour per track.
+    "$python" -B "$src/tests/tools/tiny_run.py" old --old || fail "tiny_run.py --old"
+    "$python" "$plot" old --format svg --out "$PWD/old-svg" >/dev/null 2>err.txt || { cat err.txt >&2; fail "old tracks.csv"; }
+    grep -q "one colour per track" old-svg/tracks.svg || fail "old-svg/tracks.svg is not coloured per track"
+    grep -q "track declared" old-svg/tracks.svg && fail "old-svg/tracks.svg has class entries"
+    "$python" -B "$src/tests/tools/tiny_run.py" noclass || fail "tiny_run.py noclass"
+    sed -i '1s/$/,class,class_probability/; 2,$s/$/,,/' noclass/tracks.csv
+    sed -i '1s/$/,class/; 2,$s/$/,unknown/' noclass/truth.csv
+    "$python" "$plot" noclass --out "$PWD/noclass-plots" >/dev/null 2>err.txt || { cat err.txt >&2; fail "empty classes"; }
+    cmp -s noclass-plots/tracks.png newer-plots/tracks.png || fail "empty class columns changed tracks.png"
+
     # A sensors.csv is drawn whatever the layout says.
     printf 'sensor,x,y\n0,1.5,2.5\n1,17.25,3.75\n' >run/sensors.csv
     "$python" "$plot" run --out "$PWD/withsensors" >/dev/null 2>err.txt || { cat err.txt >&2; fail "with sensors.csv"; }
@@ -156,6 +193,18 @@ EOF
     bad b10; sed -i '5s/.*/3,281474976710657,nan,1.0,0,0/' b10/tracks.csv
     expect_bad b10 "b10/tracks.csv:5: column 'x' must be finite"
     expect_bad "$PWD/nonexistent" "nonexistent: not a directory"
+    # Bad class columns (on copies of the run with classes; tracks.csv line 5 is tick 5 of 0:1, wheeled_light).
+    bad_class() { rm -rf "$1"; cp -r classes "$1"; rm -rf "$1/plots"; }
+    bad_class c1; sed -i '5s/,wheeled_light,/,tank,/' c1/tracks.csv
+    expect_bad c1 "c1/tracks.csv:5: column 'class' must be empty or one of wheeled_light, wheeled_heavy, tracked, human, group, aerial, got 'tank'"
+    bad_class c2; sed -i '5s/,0\.550000$/,/' c2/tracks.csv
+    expect_bad c2 "c2/tracks.csv:5: column 'class_probability' must be set exactly when 'class' is"
+    bad_class c3; sed -i '5s/,0\.550000$/,1.5/' c3/tracks.csv
+    expect_bad c3 "c3/tracks.csv:5: column 'class_probability' must be in \[0, 1\], got '1.5'"
+    bad_class c4; sed -i '1s/,class_probability$/,probability/' c4/tracks.csv
+    expect_bad c4 "c4/tracks.csv:1: expected both columns 'class' and 'class_probability' or neither, got only 'class'"
+    bad_class c5; sed -i '3s/,wheeled_heavy$/,Tank/' c5/truth.csv
+    expect_bad c5 "c5/truth.csv:3: column 'class' must be one of unknown, wheeled_light, .*, got 'Tank'"
     "$python" "$plot" run --format gif >/dev/null 2>err.txt; [ $? -eq 2 ] || fail "--format gif accepted"
 
     # Without matplotlib: exit 3 and one clear line.
