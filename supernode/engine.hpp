@@ -28,8 +28,8 @@ struct EngineContext {
   double sensor_spacing = 1.0;       ///< Ds (sensors.spacing): the rule-based engine's length unit
   std::int32_t window_size = 10;     ///< ws (tracker.window_size)
   std::map<std::string, common::EngineParam> params;  ///< tracker.params, resolved (every default present)
-  /// Where each sensor looks and how well it detects there, for a sensor model that places its
-  /// sensors one by one (common/sensor_coverage.hpp); empty otherwise.
+  /// Where each sensor of this supernode's tracking group looks and how well it detects there, for
+  /// a sensor model that places its sensors one by one (common/sensor_coverage.hpp); empty otherwise.
   std::vector<common::SensorCoverage> coverage;
   /// The roads and masks; null without a `terrain:` section.
   std::shared_ptr<const common::Terrain> terrain;

@@ -4,11 +4,13 @@
 #include <string>
 #include <string_view>
 
+#include "common/sensor_layout.hpp"
 #include "supernode/engine.hpp"
 #include "supernode/gnn/gnn_engine.hpp"
 #include "supernode/mcmcda/mcmcda_engine.hpp"
 #include "supernode/rulebased/rulebased_engine.hpp"
 #include "supernode/sbmht/sbmht_engine.hpp"
+#include "supernode/supernode_tracker.hpp"
 
 namespace wsn::supernode {
 namespace {
@@ -42,6 +44,15 @@ void resolveEngineParams(common::Scenario& scenario, const common::StatisticsSou
 EngineContext engineContext(const common::Scenario& scenario, std::uint32_t supernode) {
   std::vector<common::SensorCoverage> coverage;
   if (scenario.sensor_model.settings) coverage = scenario.sensor_model.settings->coverage(scenario);
+  if (scenario.supernodes.size() > 1 && !coverage.empty()) {
+    // A supernode hears only its tracking group, the sensors the network model routes to it (Oh
+    // §V: g(i), the supernode nearest the sensor's true position). Scanning the others would
+    // charge its tracks misses for what only they see.
+    const common::SensorLayout layout(common::sensorFieldConfig(scenario));
+    std::erase_if(coverage, [&](const common::SensorCoverage& sensor) {
+      return nearestSupernode(scenario.supernodes, layout.truePosition(sensor.sensor)) != supernode;
+    });
+  }
   std::shared_ptr<const common::Terrain> terrain;
   if (!scenario.terrain.empty()) terrain = std::make_shared<const common::Terrain>(scenario.terrain);
   return {scenario.tracker.engine,

@@ -71,8 +71,9 @@ parse_yaml = _plot_run.parse_yaml
 parse_yaml_subset = parse_yaml
 
 #: ``track_label(id)``: the readable id of a numeric track id, as common/track_id.hpp writes it:
-#: ``S:N`` (ids ``(S + 1) << 48 | N``), ``S:tTsK`` when N is a birth id ``T << 24 | K`` (tick T,
-#: sensor K) and ``gN`` for ids below ``1 << 48``, minted by the aggregator.
+#: ``S:N`` (ids ``(S + 1) << 48 | N``), ``S:tTsK`` when N is a birth id ``J << 44 | T << 24 | K``
+#: (tick T, sensor K) with ``.J`` appended when J is not 0, and ``gN`` for ids below ``1 << 48``,
+#: minted by the aggregator.
 track_label = _plot_run.track_label
 
 TRUTH_DTYPE = np.dtype([("tick", "i4"), ("target", "i8"), ("x", "f8"), ("y", "f8"), ("vx", "f8"), ("vy", "f8")])

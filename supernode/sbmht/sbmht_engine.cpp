@@ -397,14 +397,6 @@ EngineSpec engineSpec() {
   };
   // Presence and signal strength have no h(x) a filter can use (measurement_models.hpp).
   spec.accepts = {"position", "bearing", "range_bearing_rate", "azimuth_elevation"};
-  spec.check = [](const common::Scenario& scenario) {
-    // Each supernode hears only the sensors routed to it; scanning every listed sensor would charge
-    // it misses for the others' targets along its borders. Until the coverage is split per supernode:
-    if (scenario.supernodes.size() > 1 && scenario.sensor_model.settings &&
-        !scenario.sensor_model.settings->coverage(scenario).empty())
-      throw common::ScenarioError(scenario.source_path + ": engine 'sbmht' scans each listed sensor, which needs " +
-                                  "one supernode for now; the file has " + std::to_string(scenario.supernodes.size()));
-  };
   return spec;
 }
 
@@ -689,28 +681,30 @@ void SbmhtEngine::runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::spa
   }
 
   // A report that locates a target (not a bearing) also starts a new tentative tree there, at
-  // rest but for a radar's range rate. A birth id names (tick, sensor), so a sensor starts one tree
-  // a tick: from its first report that no existing leaf took (the likeliest new target), else from
-  // its first. A radar that sees a known and a new target in one tick thus starts the new one's
-  // tree at once; two new targets of one sensor start a tick apart.
-  std::map<common::SensorId, std::size_t> birth_of_sensor;
+  // rest but for a radar's range rate: every such report of a sensor that no existing leaf gated
+  // (a target no track explains), or, when the leaves gated all of them, the sensor's first (a
+  // new target may cross a track). A radar or camera that sees several new targets in one tick
+  // starts them all at once, up to kMaxBirthsPerSensorTick; the birth id's index tells them apart.
   // A presence sensor's report places the target at the sensor and says nothing of its motion: a
   // tree started there at rest would stay at the sensor after the target left, its silence
   // explained by the stop model. ONERA's volume reports update tracks only.
   const bool starts_trees = scan.coverage == nullptr || !scan.coverage->presence;
+  std::map<common::SensorId, std::vector<std::size_t>> fixes_of_sensor;
   for (const std::size_t j : scan.reports) {
     if (!starts_trees) break;
-    if (!terms[j].usable || !terms[j].fix) continue;
-    const auto [at, first] = birth_of_sensor.try_emplace(slot[j].sensor, j);
-    if (!first && gated[at->second] && !gated[j]) at->second = j;
+    if (terms[j].usable && terms[j].fix) fixes_of_sensor[slot[j].sensor].push_back(j);
   }
-  std::vector<std::size_t> births;
-  births.reserve(birth_of_sensor.size());
-  for (const auto& entry : birth_of_sensor) births.push_back(entry.second);
+  std::vector<std::pair<std::size_t, std::uint32_t>> births;  // (report, its index among the sensor's births)
+  for (const auto& [sensor, fixes] : fixes_of_sensor) {
+    std::uint32_t index = 0;
+    for (const std::size_t j : fixes)
+      if (!gated[j] && index < common::track_id::kMaxBirthsPerSensorTick) births.emplace_back(j, index++);
+    if (index == 0) births.emplace_back(fixes.front(), 0);
+  }
   std::sort(births.begin(), births.end());  // canonical order, as the slot
-  for (const std::size_t j : births) {
+  for (const auto& [j, index] : births) {
     const PositionFix& fix = *terms[j].fix;
-    const common::TrackId id = common::track_id::birth(supernode_, tick, slot[j].sensor);
+    const common::TrackId id = common::track_id::birth(supernode_, tick, slot[j].sensor, index);
     // A handed-over tree may already carry this id.
     if (std::any_of(next.begin(), next.end(), [&](const Leaf& l) { return l.tree == id; })) continue;
     GaussianState start;

@@ -73,11 +73,11 @@ problems = []
 def expect(ok, what):
     if not ok: problems.append(what)
 
-def decode(compact):  # S:N, S:tTsK or gN, as wsntrack watch shows ids (common/messages.hpp)
+def decode(compact):  # S:N, S:tTsK[.J] or gN, as wsntrack watch shows ids (common/track_id.hpp)
     if compact.startswith("g"): return int(compact[1:])
     supernode, serial = compact.split(":")
-    birth = re.fullmatch(r"t(\d+)s(\d+)", serial)
-    serial = (int(birth[1]) << 24 | int(birth[2])) if birth else int(serial)
+    birth = re.fullmatch(r"t(\d+)s(\d+)(?:\.(\d+))?", serial)
+    serial = (int(birth[3] or 0) << 44 | int(birth[1]) << 24 | int(birth[2])) if birth else int(serial)
     return ((int(supernode) + 1) << 48) | serial
 
 truth = {}  # tick -> targets

@@ -120,6 +120,7 @@ class TinyRun(unittest.TestCase):
         self.assertEqual(track_label(7), "g7")
         # A GNN / rule-based birth id: supernode 2, tick 3, sensor 5.
         self.assertEqual(track_label((3 << 48) | (3 << 24) | 5), "2:t3s5")
+        self.assertEqual(track_label((3 << 48) | (2 << 44) | (3 << 24) | 5), "2:t3s5.2")
 
     def test_doctests(self):
         import doctest

@@ -49,7 +49,17 @@ TEST_CASE("a track id encodes supernode, birth tick and sensor", "[gnn]") {
   CHECK(common::track_id::label((std::uint64_t{1} << 48) | 1) == "0:1");
   CHECK(common::track_id::label(5) == "g5");
   CHECK_THROWS_AS(common::track_id::birth(0, 1, 1u << 24), std::out_of_range);
-  CHECK_THROWS_AS(common::track_id::birth(0, 1 << 24, 0), std::out_of_range);
+  CHECK_THROWS_AS(common::track_id::birth(0, 1 << 20, 0), std::out_of_range);  // run.ticks <= 10^6 < 2^20
+  // A further tree of one sensor and tick (sbmht): index 3 << 44, read as ".3"; 16 fit.
+  const common::TrackId third = common::track_id::birth(2, 77, 9, 3);
+  CHECK(third == (common::track_id::birth(2, 77, 9) | (std::uint64_t{3} << 44)));
+  CHECK(common::track_id::birthTick(third) == 77);
+  CHECK(common::track_id::birthSensor(third) == 9);
+  CHECK(common::track_id::birthIndex(third) == 3);
+  CHECK(common::track_id::label(third) == "2:t77s9.3");
+  CHECK(common::track_id::label(common::track_id::birth(0, (1 << 20) - 1, (1u << 24) - 1, 15)) ==
+        "0:t1048575s16777215.15");
+  CHECK_THROWS_AS(common::track_id::birth(0, 1, 0, 16), std::out_of_range);
 }
 
 TEST_CASE("a straight-line target is confirmed after M hits and tracked with vanishing error", "[gnn]") {

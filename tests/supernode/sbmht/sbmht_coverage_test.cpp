@@ -232,13 +232,23 @@ TEST_CASE("sbmht ends a track no sensor could see after max_coast_ticks", "[sbmh
   }
 }
 
-/// A sensor model's settings that list one sensor, for the scenario check.
-struct OneListedSensor : common::SensorModelSettingsOf<OneListedSensor> {
+/// A sensor model's settings that list four of the default grid's sensors: ids 0 and 49 (true
+/// positions (0.5, 0.5) and (49.5, 0.5)) and 50 and 99 ((50.5, 0.5) and (99.5, 0.5)).
+struct FourListedSensors : common::SensorModelSettingsOf<FourListedSensors> {
   std::vector<SensorCoverage> coverage(const common::Scenario&) const override {
-    return {SensorCoverage{0, {50, 50}, 0.0, kAllRound, 100.0, 0.9, SightBlockers::none}};
+    std::vector<SensorCoverage> out;
+    for (const common::SensorId id : {0U, 49U, 50U, 99U})
+      out.push_back(SensorCoverage{id, {0.5 + id, 0.5}, 0.0, kAllRound, 10.0, 0.9, SightBlockers::none});
+    return out;
   }
-  friend bool operator==(const OneListedSensor&, const OneListedSensor&) = default;
+  friend bool operator==(const FourListedSensors&, const FourListedSensors&) = default;
 };
+
+std::vector<common::SensorId> sensorsOf(const EngineContext& context) {
+  std::vector<common::SensorId> ids;
+  for (const auto& sensor : context.coverage) ids.push_back(sensor.sensor);
+  return ids;
+}
 
 TEST_CASE("sbmht rejects a sensor listed twice in its coverage", "[sbmht]") {
   const SensorCoverage sensor{3, {50, 50}, 0.0, kAllRound, 100.0, 0.9, SightBlockers::none};
@@ -248,13 +258,21 @@ TEST_CASE("sbmht rejects a sensor listed twice in its coverage", "[sbmht]") {
   CHECK_THROWS_WITH(SbmhtEngine(context), Catch::Contains("sensor 3 is listed twice"));
 }
 
-TEST_CASE("sbmht rejects listed sensors with more than one supernode", "[sbmht]") {
+TEST_CASE("each supernode's sbmht scans only the sensors of its tracking group", "[sbmht]") {
+  // Oh §V's g(i): a sensor reports to the supernode nearest its true position, so that supernode
+  // alone weighs its detections and misses. With supernodes at x = 25 and 75 the bisector is
+  // x = 50: sensors 0 and 49 are the first's, 50 and 99 the second's.
   common::Scenario s = sbmhtScenario();
-  s.sensor_model.settings = std::make_shared<const OneListedSensor>();
-  CHECK_NOTHROW(resolveEngineParams(s, common::kNoStatistics));
+  s.sensor_model.settings = std::make_shared<const FourListedSensors>();
+  CHECK(sensorsOf(engineContext(s, 0)) == std::vector<common::SensorId>{0, 49, 50, 99});
   s.supernodes = {{25.0, 50.0}, {75.0, 50.0}};
-  CHECK_THROWS_WITH(resolveEngineParams(s, common::kNoStatistics),
-                    Catch::Contains("scans each listed sensor, which needs one supernode for now"));
+  CHECK_NOTHROW(resolveEngineParams(s, common::kNoStatistics));
+  CHECK(sensorsOf(engineContext(s, 0)) == std::vector<common::SensorId>{0, 49});
+  CHECK(sensorsOf(engineContext(s, 1)) == std::vector<common::SensorId>{50, 99});
+  // A tie goes to the lower index, as the network model routes it: the bisector through sensor 50.
+  s.supernodes = {{40.5, 50.0}, {60.5, 50.0}};
+  CHECK(sensorsOf(engineContext(s, 0)) == std::vector<common::SensorId>{0, 49, 50});
+  CHECK(sensorsOf(engineContext(s, 1)) == std::vector<common::SensorId>{99});
 }
 
 }  // namespace

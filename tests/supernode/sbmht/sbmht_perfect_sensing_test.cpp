@@ -21,9 +21,7 @@ using common::Vec2;
 TEST_CASE("sbmht follows every target and invents none when sensing is perfect (S4)", "[sbmht]") {
   // Five targets cross the region on straight lines for 150 ticks, two of their paths crossing.
   // Three listed all-round sensors see everything with PD 1 and place each target with sigma 0.5
-  // per axis (R = 0.25 I); they report nothing false. (Three, not one: a sensor starts one tree a
-  // tick, since a birth id names the tick and the sensor, so one sensor would start five targets
-  // over five ticks.) TLR per target: the share of its 150 ticks in which a confirmed track is
+  // per axis (R = 0.25 I); they report nothing false. TLR per target: the share of its 150 ticks in which a confirmed track is
   // assigned to it (one track per target and tick, nearest pairs first, within 5); a false-track
   // tick is a confirmed track assigned to no target. With PD 1 a silent sensor is still a miss of
   // probability 1 - PD P_G (a report outside the 99 % gate); before that term a single 3.6 sigma
@@ -82,6 +80,49 @@ TEST_CASE("sbmht follows every target and invents none when sensing is perfect (
     CHECK(static_cast<double>(followed[k]) / ticks >= 0.98);
   }
   CHECK(false_track_ticks == 0);
+}
+
+TEST_CASE("sbmht starts a tree for each new target one sensor sees in one tick", "[sbmht]") {
+  // One all-round sensor reports five targets 20 apart from tick 1 on, and a sixth, far from them,
+  // from tick 4. At tick 1 no leaf exists, so each report starts a tree: birth ids (tick 1,
+  // sensor 1, index 0..4). At tick 4 the five trees gate their targets' reports and only the sixth
+  // report, which no leaf gates, starts a tree: index 0. The old rule (one tree per sensor and
+  // tick) would have started the five over five ticks.
+  Harness h(sbmhtScenario(), [](EngineContext& c) {
+    c.coverage.push_back(common::SensorCoverage{1, {50.0, 50.0}, 0.0, 2.0 * std::numbers::pi, 500.0, 1.0,
+                                                common::SightBlockers::none});
+  });
+  const auto treesBornAt = [&](std::int32_t tick) {
+    std::vector<common::TrackId> ids;
+    for (const auto& leaf : h.engine.leaves())
+      if (common::track_id::isBirth(leaf.tree) && common::track_id::birthTick(leaf.tree) == tick) ids.push_back(leaf.tree);
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    return ids;
+  };
+  const auto report = [](std::int32_t t, double x, double y) {
+    return sensed(t, 1, {50.0, 50.0, 0.0, 0.0}, common::MeasurementKind::position, {x, y}, {0.0, 0.0}, {0.25, 0.25},
+                  1e-6);
+  };
+  for (std::int32_t t = 1; t <= 5; ++t) {
+    std::vector<common::Observation> reports;
+    for (int k = 0; k < 5; ++k) reports.push_back(report(t, 10.0 + 20.0 * k, 50.0));
+    if (t >= 4) reports.push_back(report(t, 50.0, 90.0));
+    h.step(t, reports);
+    if (t == 1) {
+      std::vector<common::TrackId> expected;
+      for (std::uint32_t index = 0; index < 5; ++index) expected.push_back(common::track_id::birth(0, 1, 1, index));
+      CHECK(treesBornAt(1) == expected);
+      CHECK(common::track_id::label(expected[4]) == "0:t1s1.4");
+    }
+    if (t == 4) {
+      REQUIRE(treesBornAt(4) == std::vector<common::TrackId>{common::track_id::birth(0, 4, 1, 0)});
+      const auto born = std::find_if(h.engine.leaves().begin(), h.engine.leaves().end(),
+                                     [](const auto& leaf) { return leaf.tree == common::track_id::birth(0, 4, 1, 0); });
+      CHECK(born->imm.combined().x(common::kY) == Approx(90.0));
+    }
+  }
+  CHECK(h.engine.confirmedTracks().size() >= 5);
 }
 
 }  // namespace
