@@ -167,6 +167,8 @@ Terrain::Terrain(TerrainConfig config) : config_(std::move(config)) {
       if (!last && !junction_points.contains({points[i].x, points[i].y})) continue;
       RoadSection section{r, first, i, {points.begin() + static_cast<std::ptrdiff_t>(first),
                                         points.begin() + static_cast<std::ptrdiff_t>(i) + 1}, 0.0};
+      section.dead_end_first = first == 0 && !junction_points.contains({points[0].x, points[0].y});
+      section.dead_end_last = last && !junction_points.contains({points[i].x, points[i].y});
       for (std::size_t k = first; k < i; ++k) section.length += distance(points[k], points[k + 1]);
       sections_.push_back(std::move(section));
       first = i;
@@ -181,6 +183,14 @@ std::optional<RoadProjection> Terrain::project(Vec2 position) const {
     if (!foot || (best && !(foot->distance < best->distance))) continue;
     best = RoadProjection{s, foot->segment, foot->point, foot->distance, foot->along, foot->direction};
   }
+  if (!best) return best;
+  // Beside the road the offset is perpendicular to it; past an end the foot is clamped there and
+  // the offset has a component along the road. The tolerance is rounding at field coordinates.
+  constexpr double kAlongTolerance = 1e-6;
+  const RoadSection& section = sections_[best->section];
+  const double ahead = dot(position - best->foot, best->direction);
+  best->past_dead_end = (section.dead_end_first && best->segment == 0 && ahead < -kAlongTolerance) ||
+                        (section.dead_end_last && best->segment + 2 == section.points.size() && ahead > kAlongTolerance);
   return best;
 }
 

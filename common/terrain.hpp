@@ -85,6 +85,9 @@ struct RoadSection {
   std::size_t last_point = 0;
   std::vector<Vec2> points;
   double length = 0.0;
+  /// Whether its first (last) point is a dead end: the end of a road that meets no other road there.
+  bool dead_end_first = false;
+  bool dead_end_last = false;
 };
 
 /// A point where two or more roads meet: a vertex of each of them, at exactly the same coordinates.
@@ -101,6 +104,9 @@ struct RoadProjection {
   double distance = 0.0;  ///< from the position to the foot point
   double along = 0.0;     ///< from the section's first point to the foot point
   Vec2 direction;         ///< unit, along the section's segment that holds the foot, in the road's order
+  /// The position lies past a dead end of the section: the foot is that end, and the position is
+  /// ahead of it along the road, not beside it. A target there has left the road.
+  bool past_dead_end = false;
 };
 
 /// The scenario's terrain with its road sections and junctions worked out once.

@@ -809,7 +809,8 @@ void SbmhtEngine::timeUpdate(Leaf& leaf) const {
     const GaussianState c = leaf.imm.combined();
     const common::Vec2 ahead{c.x(kX) + delta_ * c.x(kVx), c.x(kY) + delta_ * c.x(kVy)};
     const auto near = terrain_->project(ahead);
-    if (near && near->distance <= params_.road_gate_distance) {
+    // Past a dead end the target has left the road, however near its end it still is.
+    if (near && !near->past_dead_end && near->distance <= params_.road_gate_distance) {
       leaf.road_section = static_cast<std::int32_t>(near->section);
       imm = &road_imms_[near->section][near->segment];
     }

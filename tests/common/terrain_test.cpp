@@ -60,6 +60,36 @@ TEST_CASE("a projection names the segment of the section that holds the foot", "
   CHECK(terrain.project({4.0, -1.0})->segment == 0);
 }
 
+TEST_CASE("a position past a dead end is off the road, one beside it or past a junction is not", "[terrain]") {
+  // main runs east from (0, 0) to (200, 0), a dead end at both ends; side runs north from main's
+  // vertex (100, 0), a junction, to (100, 50), a dead end.
+  TerrainConfig config;
+  config.roads.push_back({"main", {{0.0, 0.0}, {100.0, 0.0}, {200.0, 0.0}}});
+  config.roads.push_back({"side", {{100.0, 0.0}, {100.0, 50.0}}});
+  const Terrain terrain(config);
+  REQUIRE(terrain.sections().size() == 3);
+  CHECK(terrain.sections()[0].dead_end_first);
+  CHECK_FALSE(terrain.sections()[0].dead_end_last);  // the junction
+  CHECK_FALSE(terrain.sections()[1].dead_end_first);
+  CHECK(terrain.sections()[1].dead_end_last);
+  CHECK_FALSE(terrain.sections()[2].dead_end_first);
+  CHECK(terrain.sections()[2].dead_end_last);
+
+  // 5 past main's east end: the foot is the end, 5 away, and the target has left the road.
+  const auto east = terrain.project({205.0, 0.0});
+  REQUIRE(east);
+  CHECK(east->foot == Vec2{200.0, 0.0});
+  CHECK(east->distance == Approx(5.0));
+  CHECK(east->past_dead_end);
+  CHECK(terrain.project({-3.0, 1.0})->past_dead_end);  // past the west end, a little aside
+  CHECK(terrain.project({102.0, 58.0})->past_dead_end);  // past side's end
+  // Beside the road, even at its very end, it is on the road's gate as before.
+  CHECK_FALSE(terrain.project({200.0, 4.0})->past_dead_end);
+  CHECK_FALSE(terrain.project({150.0, -4.0})->past_dead_end);
+  // Around the junction the foot is never a dead end: (104, -2) projects onto main.
+  CHECK_FALSE(terrain.project({104.0, -2.0})->past_dead_end);
+}
+
 TEST_CASE("the foot point on a polyline measures its distance along from the first point", "[terrain]") {
   // East 100, then north 100: (97, 60) is 3 from the second segment, at 100 + 60 = 160 along.
   const std::vector<Vec2> bend{{0.0, 0.0}, {100.0, 0.0}, {100.0, 100.0}};

@@ -42,6 +42,27 @@ std::int32_t sectionNear(const common::Terrain& terrain, common::Vec2 p) {
   return static_cast<std::int32_t>(terrain.project(p)->section);
 }
 
+TEST_CASE("sbmht algorithm 1 lets a target that drives past a road's dead end leave the road", "[sbmht]") {
+  // The target drives east along main at 1 per tick from x = 81 and on past main's end at x = 100,
+  // a dead end, to x = 110. While its prediction lies on the road the road model runs on main's
+  // second section; once it lies past the end, nothing holds it to the road, though the end stays
+  // within the 15 of road_gate_distance until x = 115.
+  const auto terrain = forkTerrain();
+  Harness h = roadHarness(true);
+  auto truth = [](std::int32_t t) { return common::Vec2{80.0 + t, 30.0}; };
+  const auto main_east = sectionNear(*terrain, {90.0, 30.0});
+  for (std::int32_t t = 1; t <= 30; ++t) {
+    h.step(t, {observation(t, t, truth(t).x, truth(t).y)});
+    if (t != 15 && t != 25 && t != 30) continue;
+    INFO("tick " << t);
+    const auto tracks = h.engine.confirmedTracks();
+    REQUIRE(tracks.size() == 1);
+    CHECK(std::abs(tracks[0].x - truth(t).x) < 1.0);
+    for (const auto& leaf : h.engine.leaves())
+      if (leaf.tree == tracks[0].track) CHECK(leaf.road_section == (t == 15 ? main_east : -1));
+  }
+}
+
 TEST_CASE("sbmht algorithm 1 keeps a branch on each road section at a fork where algorithm 2 keeps one (C7)",
           "[sbmht]") {
   // The target drives along "main" at 1 per tick. At tick `fork`, 3 past the junction, two reports
