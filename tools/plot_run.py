@@ -47,6 +47,20 @@ Draws the plots of a wsntrack run directory (what 'wsntrack run' does after ever
                       Each track's id is then written at its last point (up to 30 tracks), and
                       the targets' labels give their true class (truth.csv's 'class').
                       (--animate keeps one colour per track.)
+                      Typed sensors (a 'sensors.layout: list' whose entries set 'type', with
+                      sensor_model kind field_sensors, ONERA Table I) are drawn with a marker
+                      and colour per type, over their coverage: a faint sector of the sensor's
+                      range and field of view centred on its heading (degrees counter-clockwise
+                      from +x; a disc for a 360-degree field of view), the entry's 'range' and
+                      'fov' else (left out or 0) sensor_model.<type>'s 'range' and 'fov_deg',
+                      clipped to the region, beneath the paths and tracks; a legend entry per
+                      type present gives its number of sensors, e.g. "camera (10)":
+                        radar             wine, diamond      pir       rose, triangle down
+                        acoustic_antenna  teal, triangle up  camera    indigo, plus
+                        acoustic_beacon   olive, circle      magnetic  dark grey, square
+                      A list entry without a type stays a plain grey dot, and any other layout
+                      or sensor model draws its sensors as grey dots. (--animate draws every
+                      sensor as a grey dot.)
   cardinality.FORMAT  K, the number of tracks, and K*, the number of targets, at every tick
                       (the terms of eps_K, Oh eq. 9)
   ospa.FORMAT         OSPA at every tick, with its cut-off c
@@ -68,7 +82,9 @@ label, covariance and class columns read too, and draw as they always did), obse
 (--animate), metrics_per_tick.csv (else metrics.json's metrics.ospa_per_tick) and sensors.csv when
 present (else the sensor grid is computed from scenario.yaml). A 'class' cell that is not a class
 name above (truth.csv: or 'unknown'), or a 'class_probability' outside [0, 1] or set without a
-class, is malformed input.
+class, is malformed input; so is, for typed sensors, a type not listed above, a position or heading
+that is not a number, a heading outside [-360, 360], an entry's 'range' outside [0, 1e6] or 'fov'
+outside [0, 360], or a type's 'range' outside (0, 1e6] or 'fov_deg' outside (0, 360].
 
 Exit status: 0 on success; 1 when the video encoder (ffmpeg) fails; 2 for a bad command line, a
 missing or malformed input file (reported as FILE:LINE: what was expected) or an output that cannot
@@ -407,6 +423,10 @@ def read_scenario(run_dir):
             xy.append(float(value))
         supernodes.append(tuple(xy))
     terrain = read_terrain(data.get("terrain"), at)
+    sensor_kind = get("sensor_model", "kind", kind=str, default="signal_strength")
+    typed_sensors = None
+    if layout == "list" and sensor_kind == "field_sensors":
+        typed_sensors = read_typed_sensors(data, at)
     return {
         "name": get("name", kind=str, default="?"),
         "region": region,
@@ -417,7 +437,8 @@ def read_scenario(run_dir):
         "ticks": get("run", "ticks", kind=int),
         "seed": get("run", "seed", kind=str, default="?"),
         "engine": get("tracker", "engine", kind=str, default="?"),
-        "sensor_kind": get("sensor_model", "kind", kind=str, default="signal_strength"),
+        "sensor_kind": sensor_kind,
+        "typed_sensors": typed_sensors,
         "ospa_c": get("metrics", "ospa_c", default=math.nan),
         "ospa_p": get("metrics", "ospa_p", default=math.nan),
     }
@@ -451,6 +472,105 @@ def read_terrain(section, at):
     return terrain
 
 
+# The sensor types of sensor_model kind field_sensors (ONERA Table I), in the order of the scenario
+# schema, with the coverage of a sensor whose entry and type section give none (node/field_sensors:
+# range, fov_deg), and how tracks.png draws them: colour (Paul Tol's muted palette, apart from the
+# tracks' class colours where it can be) and marker.
+SENSOR_TYPES = {
+    "acoustic_antenna": {"range": 200.0, "fov_deg": 360.0, "colour": "#44AA99", "marker": "^"},
+    "acoustic_beacon": {"range": 200.0, "fov_deg": 360.0, "colour": "#999933", "marker": "o"},
+    "magnetic": {"range": 2.0, "fov_deg": 360.0, "colour": "#555555", "marker": "s"},
+    "pir": {"range": 200.0, "fov_deg": 10.0, "colour": "#CC6677", "marker": "v"},
+    "radar": {"range": 1000.0, "fov_deg": 90.0, "colour": "#882255", "marker": "D"},
+    "camera": {"range": 200.0, "fov_deg": 30.0, "colour": "#332288", "marker": "P"},
+}
+
+
+def _yaml_number(value):
+    """A YAML scalar as a finite float, or None when it is not one (booleans are not numbers)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        return None
+    return float(value)
+
+
+def read_typed_sensors(data, at):
+    """The sensors of a `sensors.layout: list` scenario whose sensor model is field_sensors, as
+    {"typed": [(type, x, y, heading, range, fov, name)], "plain": [(x, y)]}: heading and fov in
+    degrees, the heading counter-clockwise from +x, each range and fov the entry's, else (left out
+    or 0) its type's in sensor_model.<type>, else the type's default; "plain" the entries without a
+    'type' (drawn as plain sensors). None when no entry has a type: such a list draws as it always
+    did. Raises InputError (FILE:LINE: what was expected) for a malformed entry or type section."""
+    entries = (data.get("sensors") or {}).get("list")
+    if not isinstance(entries, list) or not any(
+            isinstance(entry, dict) and entry.get("type") not in (None, "") for entry in entries):
+        return None
+    model = data.get("sensor_model")
+    model = model if isinstance(model, dict) else {}
+    coverage = {}  # type: (range, fov), read when a sensor of the type is met
+
+    def type_coverage(kind):
+        if kind in coverage:
+            return coverage[kind]
+        section = model.get(kind)
+        if section is None:
+            section = {}
+        if not isinstance(section, dict):
+            raise InputError(f"{at('sensor_model', kind)}: 'sensor_model.{kind}' must be a mapping of the "
+                             f"type's settings")
+        values = []
+        for key, high in (("range", 1e6), ("fov_deg", 360.0)):
+            value = section.get(key)
+            if value is None:
+                values.append(SENSOR_TYPES[kind][key])
+                continue
+            number = _yaml_number(value)
+            if number is None or not 0.0 < number <= high:
+                raise InputError(f"{at('sensor_model', kind, key)}: 'sensor_model.{kind}.{key}' must be a number "
+                                 f"in (0, {'1e6' if high == 1e6 else f'{high:g}'}], got '{value}'")
+            values.append(number)
+        coverage[kind] = tuple(values)
+        return coverage[kind]
+
+    typed, plain = [], []
+    for i, entry in enumerate(entries):
+        if not isinstance(entry, dict):
+            raise InputError(f"{at('sensors', 'list', i)}: sensors.list[{i}] must be a mapping "
+                             "{name, type, x, y, heading, ...}")
+        kind = entry.get("type")
+        kind = None if kind is None or kind == "" else str(kind)
+        if kind is not None and kind not in SENSOR_TYPES:
+            raise InputError(f"{at('sensors', 'list', i, 'type')}: sensors.list[{i}].type must be one of "
+                             f"{', '.join(SENSOR_TYPES)}, got '{kind}'")
+        values = {}
+        # key, default, lowest, highest (fov: 0 excluded, but 0 means the type's, like range)
+        for key, default, low, high in (("x", None, -math.inf, math.inf), ("y", None, -math.inf, math.inf),
+                                        ("heading", 0.0, -360.0, 360.0), ("range", 0.0, 0.0, 1e6),
+                                        ("fov", 0.0, 0.0, 360.0)):
+            value = entry.get(key)
+            if value is None and default is not None:
+                values[key] = default
+                continue
+            number = _yaml_number(value)
+            if number is None:
+                raise InputError(f"{at('sensors', 'list', i, key)}: sensors.list[{i}].{key} must be a number, "
+                                 f"got '{value}'")
+            if not low <= number <= high:
+                zero = " (0: the type's)" if key in ("range", "fov") else ""
+                top = "1e6" if high == 1e6 else f"{high:g}"
+                raise InputError(f"{at('sensors', 'list', i, key)}: sensors.list[{i}].{key} must be in "
+                                 f"[{low:g}, {top}]{zero}, got {number:g}")
+            values[key] = number
+            if kind is None and key == "y":
+                break  # an untyped sensor is only a position
+        if kind is None:
+            plain.append((values["x"], values["y"]))
+            continue
+        default_range, default_fov = type_coverage(kind)
+        typed.append((kind, values["x"], values["y"], values["heading"], values["range"] or default_range,
+                      values["fov"] or default_fov, str(entry.get("name", ""))))
+    return {"typed": typed, "plain": plain} if typed else None
+
+
 # Masks under everything but the region's tint; roads over the masks, under the target paths.
 MASK_COLOURS = {"building": "#8c7b6b", "vegetation": "#7fb77e"}
 ROAD_COLOUR = "#8a8a8a"
@@ -474,6 +594,53 @@ def draw_terrain(ax, Polygon, scenario):
     handles = [Patch(facecolor=MASK_COLOURS.get(kind, "#aaaaaa"), alpha=0.55, label=f"mask: {kind}") for kind in kinds]
     if terrain["roads"]:
         handles.append(Line2D([], [], color=ROAD_COLOUR, linewidth=3.0, label="road"))
+    return handles
+
+
+# Coverage of the typed sensors: faint fills, a thin edge a little stronger, under the masks' edges,
+# the tracking-group boundaries, the roads, the target paths and the tracks.
+COVERAGE_FILL_ALPHA = 0.10
+COVERAGE_EDGE_ALPHA = 0.45
+COVERAGE_ZORDER = 1.6
+
+
+def draw_typed_sensors(ax, scenario):
+    """Draws each typed sensor (scenario["typed_sensors"]) as its type's marker, over its coverage:
+    a sector of its range and field of view centred on its heading (a disc for a 360-degree field of
+    view) in the type's colour, clipped to the region. Returns a legend handle per type present,
+    labelled with the type and its number of sensors."""
+    from matplotlib.collections import PatchCollection
+    from matplotlib.colors import to_rgba
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Circle, Patch, Rectangle, Wedge
+    x0, y0, x1, y1 = scenario["region"]
+    clip = Rectangle((x0, y0), x1 - x0, y1 - y0, transform=ax.transData)
+    by_type = {}
+    for sensor in scenario["typed_sensors"]["typed"]:
+        by_type.setdefault(sensor[0], []).append(sensor)
+    handles = []
+    for kind, style in SENSOR_TYPES.items():
+        sensors = by_type.get(kind)
+        if not sensors:
+            continue
+        colour = style["colour"]
+        patches = []
+        for _, x, y, heading, reach, fov, _ in sensors:
+            if fov >= 360.0:
+                patches.append(Circle((x, y), reach))
+            else:
+                patches.append(Wedge((x, y), reach, heading - fov / 2.0, heading + fov / 2.0))
+        coverage = PatchCollection(patches, facecolors=[to_rgba(colour, COVERAGE_FILL_ALPHA)],
+                                   edgecolors=[to_rgba(colour, COVERAGE_EDGE_ALPHA)], linewidths=0.6,
+                                   zorder=COVERAGE_ZORDER)
+        ax.add_collection(coverage)
+        coverage.set_clip_path(clip)
+        marker = dict(linestyle="none", marker=style["marker"], markersize=6.5, markerfacecolor=colour,
+                      markeredgecolor="white", markeredgewidth=0.8)
+        ax.plot([s[1] for s in sensors], [s[2] for s in sensors], zorder=5, **marker)
+        handles.append((Patch(facecolor=to_rgba(colour, 0.22), edgecolor=to_rgba(colour, COVERAGE_EDGE_ALPHA),
+                              linewidth=0.6, label=f"{kind} ({len(sensors)})"),
+                        Line2D([], [], **marker)))
     return handles
 
 
@@ -762,6 +929,12 @@ def plot_tracks(mpl, scenario, sensors, truth, tracks, summary, out_path, observ
     terrain_handles = draw_terrain(ax, Polygon, scenario)
 
     xs, ys, stride = sensors
+    sensor_handles = []
+    if scenario.get("typed_sensors"):
+        # Sensors of a type: its marker over its coverage; only the untyped ones are plain dots.
+        sensor_handles = draw_typed_sensors(ax, scenario)
+        plain = scenario["typed_sensors"]["plain"]
+        xs, ys, stride = [p[0] for p in plain], [p[1] for p in plain], 1
     if xs:
         # A marker line, not scatter: one path drawn many times is ~10x faster than a collection.
         size = math.sqrt(max(0.3, min(4.0, 2500.0 / len(xs))))
@@ -887,15 +1060,18 @@ def plot_tracks(mpl, scenario, sensors, truth, tracks, summary, out_path, observ
         handles.append(Line2D([], [], linestyle="none", marker="o", markersize=4, markerfacecolor="#b4b4b4",
                               markeredgewidth=0,
                               label="sensor" if stride == 1 else f"sensor (1 in {stride} drawn)"))
+    handles += sensor_handles
     handles += terrain_handles
     # Below the map rather than on it, so that no track is hidden; a fixed distance in points
     # clears the tick labels and the x label whatever the map's aspect ratio.
     below = offset_copy(ax.transAxes, fig=fig, y=-44, units="points")
-    legend = ax.legend(handles=handles, loc="upper center", ncol=2, fontsize=10, frameon=False,
+    # A sensor type's handle is a tuple (its coverage, its marker), drawn one over the other.
+    labels = [(h[0] if isinstance(h, tuple) else h).get_label() for h in handles]
+    legend = ax.legend(handles=handles, labels=labels, loc="upper center", ncol=2, fontsize=10, frameon=False,
                        bbox_to_anchor=(0.5, 0.0), bbox_transform=below, handlelength=3)
-    if by_class:
-        # The class entries lengthen the legend: the figure grows at the bottom to hold it, the
-        # map keeping its size.
+    if by_class or sensor_handles:
+        # The class and sensor-type entries lengthen the legend: the figure grows at the bottom to
+        # hold it, the map keeping its size.
         from matplotlib.backends.backend_agg import FigureCanvasAgg
         renderer = FigureCanvasAgg(fig).get_renderer()  # lays text out without drawing the figure
         lacking = -legend.get_window_extent(renderer).y0 / fig.dpi + 0.15

@@ -153,6 +153,78 @@ EOF
     "$python" "$plot" run --out "$PWD/withsensors" >/dev/null 2>err.txt || { cat err.txt >&2; fail "with sensors.csv"; }
     check_pngs withsensors
 
+    # Typed sensors (sensors.layout list, sensor_model field_sensors): a marker and a colour per type,
+    # each sensor's coverage (a sector of its range and field of view, a disc for 360 degrees), and a
+    # legend entry per type present with its number of sensors; an untyped entry stays a plain dot.
+    rm -rf typed; mkdir typed; cp run/truth.csv run/tracks.csv run/metrics.json typed/
+    cat >typed/scenario.yaml <<'EOF'
+# wsntrack resolved scenario (a small hand-made one, with typed sensors)
+name: "tiny typed"
+region:
+  x_min: 0
+  y_min: 0
+  x_max: 20
+  y_max: 10
+sensors:
+  layout: list
+  count: 6
+  list:
+    - {name: "radar1", type: "radar", x: 1, y: 1, heading: 45, range: 9}
+    - {name: "pir1", type: "pir", x: 19, y: 5, heading: 180}
+    - {name: "cam1", type: "camera", x: 10, y: 9.5, heading: -90, fov: 40}
+    - {name: "cam2", type: "camera", x: 5, y: 0.5, heading: 90, range: 3}
+    - {name: "ant1", type: "acoustic_antenna", x: 15, y: 2, heading: 0}
+    - {name: "plain", x: 12, y: 6}
+sensor_model:
+  kind: "field_sensors"
+  pir: {range: 6, fov_deg: 10}
+  camera: {range: 4, fov_deg: 30}
+  acoustic_antenna: {range: 2.5, fov_deg: 360}
+supernodes:
+  - {x: 5, y: 5}
+  - {x: 15, y: 5}
+tracker:
+  engine: "sbmht"
+  params: {}
+metrics:
+  ospa_c: 5
+  ospa_p: 2
+run:
+  ticks: 10
+  seed: 3
+EOF
+    printf 'sensor,x,y\n0,1,1\n1,19,5\n2,10,9.5\n3,5,0.5\n4,15,2\n5,12,6\n' >typed/sensors.csv
+    "$python" "$plot" typed --out "$PWD/typed-plots" >/dev/null 2>err.txt || { cat err.txt >&2; fail "typed sensors"; }
+    check_pngs typed-plots
+    "$python" "$plot" typed --format svg --out "$PWD/typed-svg" >/dev/null 2>err.txt \
+      || { cat err.txt >&2; fail "typed sensors, svg"; }
+    for entry in "radar (1)" "pir (1)" "camera (2)" "acoustic_antenna (1)" ">sensor<"; do
+      grep -q "$entry" typed-svg/tracks.svg || fail "typed-svg/tracks.svg lacks the legend entry '$entry'"
+    done
+    for entry in "magnetic (" "acoustic_beacon ("; do
+      grep -q "$entry" typed-svg/tracks.svg && fail "typed-svg/tracks.svg: an entry for a type not present ('$entry')"
+    done
+    # Without types, or with another sensor model, a list draws as it always did: plain dots only.
+    for variant in untyped otherkind; do
+      rm -rf "$variant"; cp -r typed "$variant"; rm -rf "$variant/plots"
+    done
+    sed -i 's/ type: "[a-z_]*",//' untyped/scenario.yaml
+    sed -i 's/^  kind: "field_sensors"$/  kind: "signal_strength"/' otherkind/scenario.yaml
+    for variant in untyped otherkind; do
+      "$python" "$plot" "$variant" --format svg --out "$PWD/$variant-svg" >/dev/null 2>err.txt \
+        || { cat err.txt >&2; fail "$variant list"; }
+      grep -q ">sensor<" "$variant-svg/tracks.svg" || fail "$variant-svg/tracks.svg lacks the plain sensor entry"
+      grep -Eq "(radar|pir|camera) \(" "$variant-svg/tracks.svg" && fail "$variant-svg/tracks.svg has sensor-type entries"
+    done
+    grep -Eq "(radar|pir|camera) \(" svg/tracks.svg && fail "svg/tracks.svg (a grid) has sensor-type entries"
+    # Malformed typed sensors: FILE:LINE: what was expected (line 12 is radar1, 13 pir1).
+    rm -rf t1 t2 t3 t4
+    for d in t1 t2 t3 t4; do cp -r typed "$d"; rm -rf "$d/plots"; done
+    sed -i '13s/type: "pir"/type: "sonar"/' t1/scenario.yaml
+    sed -i '12s/range: 9/range: -5/' t2/scenario.yaml
+    sed -i '13s/heading: 180/heading: west/' t3/scenario.yaml
+    sed -i 's/^  camera: {range: 4, fov_deg: 30}$/  camera: {range: 4, fov_deg: 0}/' t4/scenario.yaml
+
     # Bad input: exit 2, FILE[:LINE]: what was expected, and never a traceback.
     expect_bad() {
       local dir="$1" pattern="$2"
@@ -205,6 +277,10 @@ EOF
     expect_bad c4 "c4/tracks.csv:1: expected both columns 'class' and 'class_probability' or neither, got only 'class'"
     bad_class c5; sed -i '3s/,wheeled_heavy$/,Tank/' c5/truth.csv
     expect_bad c5 "c5/truth.csv:3: column 'class' must be one of unknown, wheeled_light, .*, got 'Tank'"
+    expect_bad t1 "t1/scenario.yaml:13: sensors.list\[1\].type must be one of acoustic_antenna, acoustic_beacon, magnetic, pir, radar, camera, got 'sonar'"
+    expect_bad t2 "t2/scenario.yaml:12: sensors.list\[0\].range must be in \[0, 1e6\] \(0: the type's\), got -5"
+    expect_bad t3 "t3/scenario.yaml:13: sensors.list\[1\].heading must be a number, got 'west'"
+    expect_bad t4 "t4/scenario.yaml:21: 'sensor_model.camera.fov_deg' must be a number in \(0, 360\], got '0'"
     "$python" "$plot" run --format gif >/dev/null 2>err.txt; [ $? -eq 2 ] || fail "--format gif accepted"
 
     # Without matplotlib: exit 3 and one clear line.
