@@ -162,14 +162,21 @@ std::vector<common::Observation> decode(const dds_sequence_wsn_msg_Observation& 
 
 namespace {
 
-/// Room for every class vector of `items`, reserved up front so that the views into it stay valid.
-template <typename Wire, typename Message>
-Encoded<Wire> withRoomForClasses(const std::vector<Message>& items) {
-  Encoded<Wire> encoded;
+/// The class probabilities of `items`, counted for the reservation below.
+template <typename Message>
+std::size_t classDoubles(const std::vector<Message>& items) {
   std::size_t n = 0;
   for (const auto& item : items) n += item.class_probabilities.size();
-  encoded.doubles.reserve(n);
-  encoded.items.reserve(items.size());
+  return n;
+}
+
+/// Room for `items` wire items and `doubles` class probabilities, reserved up front so that the
+/// views into it stay valid.
+template <typename Wire>
+Encoded<Wire> withRoom(std::size_t items, std::size_t doubles) {
+  Encoded<Wire> encoded;
+  encoded.doubles.reserve(doubles);
+  encoded.items.reserve(items);
   return encoded;
 }
 
@@ -191,7 +198,7 @@ common::TrackEstimate trackOf(const wsn_msg_TrackEstimate& t) {
 }  // namespace
 
 Encoded<wsn_msg_TrackEstimate> encode(const std::vector<common::TrackEstimate>& tracks) {
-  auto encoded = withRoomForClasses<wsn_msg_TrackEstimate>(tracks);
+  auto encoded = withRoom<wsn_msg_TrackEstimate>(tracks.size(), classDoubles(tracks));
   for (const auto& track : tracks) encoded.items.push_back(wireTrack(track, encoded));
   return encoded;
 }
@@ -202,11 +209,13 @@ std::vector<common::TrackEstimate> decode(const dds_sequence_wsn_msg_TrackEstima
 
 Encoded<wsn_msg_SettledTrack> encodeSettled(std::int32_t first,
                                             const std::vector<std::vector<common::TrackEstimate>>& by_tick) {
-  Encoded<wsn_msg_SettledTrack> encoded;
+  std::size_t items = 0;
   std::size_t doubles = 0;
-  for (const auto& tracks : by_tick)
-    for (const auto& track : tracks) doubles += track.class_probabilities.size();
-  encoded.doubles.reserve(doubles);
+  for (const auto& tracks : by_tick) {
+    items += tracks.size();
+    doubles += classDoubles(tracks);
+  }
+  auto encoded = withRoom<wsn_msg_SettledTrack>(items, doubles);
   for (std::size_t k = 0; k < by_tick.size(); ++k)
     for (const auto& track : by_tick[k])
       encoded.items.push_back({first + static_cast<std::int32_t>(k), wireTrack(track, encoded)});
@@ -230,7 +239,7 @@ std::vector<std::vector<common::TrackEstimate>> decodeSettled(const dds_sequence
 }
 
 Encoded<wsn_msg_TrackHandoff> encode(const std::vector<common::TrackHandoff>& handoffs) {
-  auto encoded = withRoomForClasses<wsn_msg_TrackHandoff>(handoffs);
+  auto encoded = withRoom<wsn_msg_TrackHandoff>(handoffs.size(), classDoubles(handoffs));
   for (const auto& h : handoffs) {
     wsn_msg_TrackHandoff w{};
     w.track = h.track;
