@@ -172,12 +172,17 @@ std::vector<common::TrackEstimate> McmcdaAssociator::associate(std::int32_t tick
   for (std::size_t n = 0; n < chosen.size(); ++n) {
     common::TrackEstimate e = chosen[n]->now;
     e.track = ids.global[n];
-    // The track-level engine sees positions only; the class is fused from the supernode tracks
+    // The track-level engine sees positions only; the class and stop probability are fused from the supernode tracks
     // it holds that were reported at this tick (in id order, so the result is canonical).
     std::vector<std::span<const double>> classes;
+    std::vector<std::optional<double>> stopped;
     for (const common::TrackId source : std::set<common::TrackId>(globals[n].sources.begin(), globals[n].sources.end()))
-      if (const auto it = reported.find(source); it != reported.end()) classes.emplace_back(it->second->class_probabilities);
+      if (const auto it = reported.find(source); it != reported.end()) {
+        classes.emplace_back(it->second->class_probabilities);
+        stopped.push_back(it->second->stop_probability);
+      }
     e.class_probabilities = common::fuseClassVectors(classes);
+    e.stop_probability = common::fuseStopProbabilities(stopped);
     out.push_back(e);
   }
   for (std::size_t n = 0; n < passed.size(); ++n)

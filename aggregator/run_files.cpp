@@ -8,7 +8,7 @@ namespace wsn::aggregator {
 namespace {
 
 constexpr const char* kTrackColumns =
-    "track,label,x,y,vx,vy,p_xx,p_xy,p_xvx,p_xvy,p_yy,p_yvx,p_yvy,p_vxvx,p_vxvy,p_vyvy,class,class_probability";
+    "track,label,x,y,vx,vy,p_xx,p_xy,p_xvx,p_xvy,p_yy,p_yvx,p_yvy,p_vxvx,p_vxvy,p_vyvy,class,class_probability,stop_probability";
 
 std::string trackFields(const common::TrackEstimate& track) {
   std::string row = std::to_string(track.track) + "," + common::track_id::label(track.track);
@@ -17,8 +17,12 @@ std::string trackFields(const common::TrackEstimate& track) {
     for (int j = i; j < 4; ++j) row += "," + common::significant9(track.covariance[static_cast<std::size_t>(4 * i + j)]);
   // Empty for a track without class evidence; else its most likely class and that probability.
   const common::DeclaredClass declared = common::declaredTrackClass(track.class_probabilities);
-  if (declared.target_class == common::TargetClass::kUnknown) return row + ",,";
-  return row + "," + common::targetClassName(declared.target_class) + "," + common::fixed6(declared.probability);
+  if (declared.target_class == common::TargetClass::kUnknown)
+    row += ",,";
+  else
+    row += "," + common::targetClassName(declared.target_class) + "," + common::fixed6(declared.probability);
+  // Empty for an engine without a stop model.
+  return row + "," + (track.stop_probability ? common::fixed6(*track.stop_probability) : std::string());
 }
 
 }  // namespace

@@ -73,6 +73,9 @@ TrackEstimate meanState(const Cluster& cluster, TrackId id) {
   std::vector<std::span<const double>> classes;
   for (const auto& member : cluster.members) classes.emplace_back(member.track.class_probabilities);
   merged.class_probabilities = common::fuseClassVectors(classes);
+  std::vector<std::optional<double>> stopped;
+  for (const auto& member : cluster.members) stopped.push_back(member.track.stop_probability);
+  merged.stop_probability = common::fuseStopProbabilities(stopped);
   return merged;
 }
 

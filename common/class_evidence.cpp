@@ -1,5 +1,6 @@
 #include "common/class_evidence.hpp"
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -178,6 +179,15 @@ std::vector<double> fuseClassVectors(std::span<const std::span<const double>> me
     fused /= static_cast<double>(valid.size());
   }
   return {fused.begin(), fused.end()};
+}
+
+std::optional<double> fuseStopProbabilities(std::span<const std::optional<double>> members) {
+  std::vector<std::array<double, 2>> outcomes;
+  for (const auto& p : members)
+    if (p && *p >= 0.0 && *p <= 1.0) outcomes.push_back({*p, 1.0 - *p});
+  if (outcomes.empty()) return std::nullopt;
+  const std::vector<std::span<const double>> vectors(outcomes.begin(), outcomes.end());
+  return fuseClassVectors(vectors).front();
 }
 
 ConfusionMatrix symmetricConfusionMatrix(double a, std::size_t class_count) {

@@ -83,6 +83,11 @@ DeclaredClass declaredTrackClass(std::span<const double> beta);
 /// mean is returned. The result depends on the order of `members` only through rounding.
 std::vector<double> fuseClassVectors(std::span<const std::span<const double>> members);
 
+/// Several trackers' probabilities that one target is stopped, fused by the same rule as the class
+/// vectors above, on the two outcomes (stopped, moving). Members that are none or no probability
+/// are left out; none left gives none.
+std::optional<double> fuseStopProbabilities(std::span<const std::optional<double>> members);
+
 /// PROP: the probability a camera declares the true class (spec §4).
 inline constexpr double kCameraCorrectClass = 0.85;
 /// PROP: the same for an acoustic antenna or beacon.

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -93,6 +94,9 @@ struct TrackEstimate {
   /// The track's class vector beta over common/class_evidence.hpp's classes (ONERA eqs. 19-20);
   /// empty when the engine does not classify. At most kMaxClasses entries go on the wire.
   std::vector<double> class_probabilities;
+  /// The probability the engine's motion model gives the target being stopped (ONERA's IMM stop
+  /// model, eq. 4); none when the engine has no stop model.
+  std::optional<double> stop_probability;
   friend bool operator==(const TrackEstimate&, const TrackEstimate&) = default;
 };
 

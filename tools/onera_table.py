@@ -3,7 +3,8 @@
 (with the road network) and algorithm 2 (without), the share of the target's life in which the
 sensors reported it at all and, when the runs were scored with the classification metric, its true
 class and class accuracy, as a Markdown table on stdout; then the paper's statistics and, with the
-classification metric, the run-level classification scores and confusion matrices.
+classification metric, the run-level classification scores and confusion matrices and, with the
+stop_mode metric, the mean stop probability of the tracks while their targets stand still and move.
 
   onera_table.py --a1 RUN_DIR... --a2 RUN_DIR...   both algorithms, with the A1 - A2 deltas
   onera_table.py --a2 RUN_DIR...                   algorithm 2 only, beside the paper's A1 and A2
@@ -83,6 +84,18 @@ metric existed have no block: without it in any run the table is as before and t
 when only one algorithm's runs have it, the other gets no acc column and a line saying its runs have no
 block. Some runs of one algorithm with the block and some without is an error.
 
+Runs whose metrics.json has the stop_mode block (docs/METRICS.md, "Stop mode") add, after the
+classification section, a "Stop mode" section: for each algorithm given, the mean probability its
+tracks give the stop model of their IMM over the associated ticks in which the target stands still
+(true velocity exactly 0) and over those in which it moves, pooled over the algorithm's runs as
+sum(mean * ticks) / sum(ticks), with the summed tick counts ('-' for no tick), and the associated
+ticks of tracks whose engine has no stop model when there are any; then one line with, per target
+that stands still in some associated tick of some algorithm's runs (target N being the N-th entry of
+track_quality.targets, by the id of stop_mode.targets' entries), each algorithm's mean while stopped
+pooled the same way and its ticks. Without the block in any run there is no section; when only one
+algorithm's runs have it, the other gets a line saying its runs have no block. Some runs of one
+algorithm with the block and some without is an error, as for classification.
+
 With --plot FILE (FILE ending .png or .svg, which chooses the format) the tool also draws the table
 in FILE: two panels stacked, per-target RSE (m) above and per-target TLR below, as grouped bars for
 targets 1..20 (more if the runs have more): ours A1 and ours A2 (those given), then the paper's A1 and
@@ -93,10 +106,10 @@ written. matplotlib is imported (with the Agg backend) only for --plot; when it 
 says so before printing anything and exits with status 1.
 
 Exit status: 0, 1 when a run directory or its metrics.json is missing or malformed (the message
-names the file and what was expected; this includes a malformed classification block, runs of one
-algorithm with and without the block, and a target whose class differs between runs), when --plot is
-given but matplotlib cannot be imported, or when FILE cannot be written; 2 on a usage error (such as
---plot FILE with another extension)."""
+names the file and what was expected; this includes a malformed classification or stop_mode block,
+runs of one algorithm with and without either block, and a target whose class differs between runs),
+when --plot is given but matplotlib cannot be imported, or when FILE cannot be written; 2 on a usage
+error (such as --plot FILE with another extension)."""
 
 PAPER_TARGETS = len(PAPER_A1)
 
@@ -129,6 +142,43 @@ def class_order(name):
     return (order.index(name), "") if name in order else (len(order), name)
 
 
+def target_positions(ids, block, path):
+    """{target id: its position in track_quality.targets}, for the targets of a block named `block`
+    that lists them by id. `ids` are the track_quality targets' ids in file order."""
+    position = {}
+    for i, target_id in enumerate(ids):
+        if isinstance(target_id, bool) or not isinstance(target_id, int):
+            raise RunError(f"{path}: track_quality.targets[{i}].id: expected an integer (it matches the "
+                           f"{block} block's targets), got {json.dumps(target_id)}")
+        position[target_id] = i
+    return position
+
+
+def block_targets(block, name, keys, ids, path):
+    """The entries of the `targets` list of the block `name`, as (position in track_quality.targets,
+    entry, where for messages), each an object with an "id" of one of `ids` (the track_quality
+    targets' ids in file order), listed once, and every one of `keys`."""
+    if not isinstance(block["targets"], list):
+        raise RunError(f"{path}: {name}.targets: expected a list of targets, got {json.dumps(block['targets'])}")
+    position = target_positions(ids, name, path)
+    seen = set()
+    for k, entry in enumerate(block["targets"]):
+        where = f"{name}.targets[{k}]"
+        if not isinstance(entry, dict):
+            raise RunError(f"{path}: {where}: expected an object, got {json.dumps(entry)}")
+        for key in ("id",) + tuple(keys):
+            if key not in entry:
+                raise RunError(f"{path}: {where}: no '{key}' (expected id, {', '.join(keys)})")
+        target_id = entry["id"]
+        if isinstance(target_id, bool) or not isinstance(target_id, int) or target_id not in position:
+            raise RunError(f"{path}: {where}.id: {json.dumps(target_id)} is not the id of a target of "
+                           "track_quality.targets")
+        if position[target_id] in seen:
+            raise RunError(f"{path}: {where}.id: target {target_id} is listed twice")
+        seen.add(position[target_id])
+        yield position[target_id], entry, where
+
+
 def read_classification(block, ids, path):
     """One run's classification block: {"targets": {position in track_quality.targets: (true class,
     ticks_declared, ticks_correct)}, "totals": (ticks_associated, ticks_declared, ticks_correct) of the
@@ -149,42 +199,72 @@ def read_classification(block, ids, path):
             raise RunError(f"{path}: classification.confusion.{truth}: expected an object, got {json.dumps(row)}")
         for declared, count in row.items():
             _count(count, f"classification.confusion.{truth}.{declared}", path)
-    if not isinstance(block["targets"], list):
-        raise RunError(f"{path}: classification.targets: expected a list of targets, "
-                       f"got {json.dumps(block['targets'])}")
-    position = {}
-    for i, target_id in enumerate(ids):
-        if isinstance(target_id, bool) or not isinstance(target_id, int):
-            raise RunError(f"{path}: track_quality.targets[{i}].id: expected an integer (it matches the "
-                           f"classification block's targets), got {json.dumps(target_id)}")
-        position[target_id] = i
     targets = {}
-    for k, entry in enumerate(block["targets"]):
-        where = f"classification.targets[{k}]"
-        if not isinstance(entry, dict):
-            raise RunError(f"{path}: {where}: expected an object, got {json.dumps(entry)}")
-        for key in ("id", "class") + fields:
-            if key not in entry:
-                raise RunError(f"{path}: {where}: no '{key}' (expected id, class, {', '.join(fields)})")
-        target_id = entry["id"]
-        if isinstance(target_id, bool) or not isinstance(target_id, int) or target_id not in position:
-            raise RunError(f"{path}: {where}.id: {json.dumps(entry['id'])} is not the id of a target of "
-                           "track_quality.targets")
-        if position[entry["id"]] in targets:
-            raise RunError(f"{path}: {where}.id: target {entry['id']} is listed twice")
+    for at, entry, where in block_targets(block, "classification", ("class",) + fields, ids, path):
         if not isinstance(entry["class"], str) or not entry["class"]:
             raise RunError(f"{path}: {where}.class: expected a class name, got {json.dumps(entry['class'])}")
         associated, declared, correct = (_count(entry[key], f"{where}.{key}", path) for key in fields)
         if not correct <= declared <= associated:
             raise RunError(f"{path}: {where}: expected ticks_correct <= ticks_declared <= ticks_associated, "
                            f"got {correct}, {declared}, {associated}")
-        targets[position[entry["id"]]] = (entry["class"], declared, correct)
+        targets[at] = (entry["class"], declared, correct)
     return {"targets": targets, "totals": totals, "confusion": confusion}
+
+
+# The fields of the stop_mode block's totals and of each of its targets: (tick count, mean stop
+# probability over those ticks), target stopped then moving.
+STOP_FIELDS = (("ticks_stopped", "mean_stop_probability_stopped"), ("ticks_moving", "mean_stop_probability_moving"))
+
+
+def _stop_means(entry, where, path):
+    """(ticks_stopped, mean while stopped or None, ticks_moving, mean while moving or None) of the
+    stop_mode block or of one of its targets: a mean is a probability, null only when its count is 0."""
+    out = []
+    for ticks_key, mean_key in STOP_FIELDS:
+        ticks = _count(entry[ticks_key], f"{where}.{ticks_key}", path)
+        mean = entry[mean_key]
+        if mean is None:
+            if ticks > 0:
+                raise RunError(f"{path}: {where}.{mean_key}: expected a probability (a number in [0, 1]) since "
+                               f"{ticks_key} is {ticks}, got null")
+        else:
+            mean = _number(mean, f"{where}.{mean_key}", path)
+            if not 0.0 <= mean <= 1.0:
+                raise RunError(f"{path}: {where}.{mean_key}: expected a probability (a number in [0, 1]), "
+                               f"got {json.dumps(entry[mean_key])}")
+        out += [ticks, mean]
+    return tuple(out)
+
+
+def read_stop_mode(block, ids, path):
+    """One run's stop_mode block: {"totals": (ticks_stopped, mean while stopped or None, ticks_moving,
+    mean while moving or None, ticks_without_stop_model) of the run, "targets": {position in
+    track_quality.targets: (ticks_stopped, mean or None, ticks_moving, mean or None)}}. `ids` are the
+    track_quality targets' ids in file order; a target never associated is not listed."""
+    if not isinstance(block, dict):
+        raise RunError(f"{path}: stop_mode: expected an object, got {json.dumps(block)}")
+    fields = tuple(key for pair in STOP_FIELDS for key in pair)
+    expected = ", ".join(fields + ("ticks_without_stop_model", "targets"))
+    for key in fields + ("ticks_without_stop_model", "targets"):
+        if key not in block:
+            raise RunError(f"{path}: stop_mode: no '{key}' (expected {expected})")
+    totals = _stop_means(block, "stop_mode", path) + (
+        _count(block["ticks_without_stop_model"], "stop_mode.ticks_without_stop_model", path),)
+    targets = {}
+    for at, entry, where in block_targets(block, "stop_mode", fields, ids, path):
+        targets[at] = _stop_means(entry, where, path)
+    for m, (ticks_key, _) in enumerate(STOP_FIELDS):
+        summed = sum(t[2 * m] for t in targets.values())
+        if summed != totals[2 * m]:
+            raise RunError(f"{path}: stop_mode.{ticks_key}: expected the sum of its targets' {ticks_key}, "
+                           f"{summed}, got {totals[2 * m]}")
+    return {"totals": totals, "targets": targets}
 
 
 def read_run(arg):
     """(metrics.json's path, the per-target (rse or None, tlr, tlr_length or None) of one run in file
-    order, its classification block as read_classification gives it or None when it has none)."""
+    order, its classification block as read_classification gives it or None when it has none, its
+    stop_mode block as read_stop_mode gives it or None when it has none)."""
     path = Path(arg)
     if path.is_dir():
         path = path / "metrics.json"
@@ -226,7 +306,9 @@ def read_run(arg):
         ids.append(entry.get("id"))
     # Runs scored before the classification metric existed have no classification block.
     classification = read_classification(data["classification"], ids, path) if "classification" in data else None
-    return path, rows, classification
+    # Runs scored before the stop_mode metric existed have no stop_mode block.
+    stop_mode = read_stop_mode(data["stop_mode"], ids, path) if "stop_mode" in data else None
+    return path, rows, classification, stop_mode
 
 
 class ReportError(Exception):
@@ -327,24 +409,33 @@ def average_runs(runs, label):
     return out
 
 
-def pool_classification(runs, label):
-    """The classification blocks of one algorithm's runs [(arg, path, rows, classification)] summed:
-    {"runs", "declared" and "correct" (per target position, summed over the runs), "totals" (the run
-    totals summed), "confusion" (summed)}, or None when no run has the block. Every run must have it,
-    or none."""
-    having = [path for _, path, _, c in runs if c is not None]
-    lacking = [path for _, path, _, c in runs if c is None]
+def blocks_of(runs, k, block, label):
+    """The blocks in place k of one algorithm's runs [(arg, path, rows, classification, stop_mode)],
+    named `block` in metrics.json, or None when no run has one. Every run must have it, or none."""
+    having = [run[1] for run in runs if run[k] is not None]
+    lacking = [run[1] for run in runs if run[k] is None]
     if not having:
         return None
     if lacking:
-        raise RunError(f"{lacking[0]}: no classification block, but {having[0]} (another of the {label} runs) "
+        raise RunError(f"{lacking[0]}: no {block} block, but {having[0]} (another of the {label} runs) "
                        "has one: the runs of an algorithm must all have it (scored by the same wsntrack) or "
                        "none")
+    return [run[k] for run in runs]
+
+
+def pool_classification(runs, label):
+    """The classification blocks of one algorithm's runs [(arg, path, rows, classification, stop_mode)]
+    summed: {"runs", "declared" and "correct" (per target position, summed over the runs), "totals" (the
+    run totals summed), "confusion" (summed)}, or None when no run has the block. Every run must have
+    it, or none."""
+    blocks = blocks_of(runs, 3, "classification", label)
+    if blocks is None:
+        return None
     n = len(runs[0][2])
     declared, correct = [0] * n, [0] * n
     totals = [0, 0, 0]
     confusion = {}
-    for _, _, _, c in runs:
+    for c in blocks:
         for j, (_, d, k) in c["targets"].items():
             declared[j] += d
             correct[j] += k
@@ -356,11 +447,36 @@ def pool_classification(runs, label):
     return {"runs": len(runs), "declared": declared, "correct": correct, "totals": totals, "confusion": confusion}
 
 
+def pool_stop_mode(runs, label):
+    """The stop_mode blocks of one algorithm's runs [(arg, path, rows, classification, stop_mode)]
+    pooled: {"runs", "totals": (ticks_stopped, mean while stopped, ticks_moving, mean while moving,
+    ticks_without_stop_model) over the runs, "targets": {position: (ticks_stopped, mean, ticks_moving,
+    mean)} over the runs that list the target}, each mean sum(mean * ticks) / sum(ticks) (None when
+    the ticks sum to 0), or None when no run has the block. Every run must have it, or none."""
+    blocks = blocks_of(runs, 4, "stop_mode", label)
+    if blocks is None:
+        return None
+
+    def pool(entries):
+        out = []
+        for m in (0, 1):
+            ticks = sum(e[2 * m] for e in entries)
+            weighted = sum(e[2 * m + 1] * e[2 * m] for e in entries if e[2 * m])
+            out += [ticks, weighted / ticks if ticks else None]
+        return tuple(out)
+
+    totals = pool([s["totals"] for s in blocks]) + (sum(s["totals"][4] for s in blocks),)
+    positions = sorted({j for s in blocks for j in s["targets"]})
+    targets = {j: pool([s["targets"][j] for s in blocks if j in s["targets"]]) for j in positions}
+    return {"runs": len(runs), "totals": totals, "targets": targets}
+
+
 def target_classes(runs):
     """Per target position, its true class in the classification blocks of the runs [(arg, path, rows,
-    classification)] (None where no run lists the target: never associated); the same in every run."""
+    classification, stop_mode)] (None where no run lists the target: never associated); the same in
+    every run."""
     classes = {}  # position: (class, path of the first run giving it)
-    for _, path, _, c in runs:
+    for _, path, _, c, _ in runs:
         if c is None:
             continue
         for j, (name, _, _) in sorted(c["targets"].items()):
@@ -370,7 +486,7 @@ def target_classes(runs):
                 raise RunError(f"{path}: classification: target {j + 1} (track_quality.targets[{j}]) has class "
                                f"'{name}', but '{classes[j][0]}' in {classes[j][1]}: the runs must be of the same "
                                "scenario")
-    n = max((len(rows) for _, _, rows, _ in runs), default=0)
+    n = max((len(rows) for _, _, rows, _, _ in runs), default=0)
     return [classes[j][0] if j in classes else None for j in range(n)]
 
 
@@ -430,12 +546,14 @@ def compare(a1, a2, k=1):
     return len(rse_pairs), rse_lower, higher, equal, lower
 
 
-def table(a1, a2, n_a1, n_a2, reported=None, reported_from="A2", classes=None, pooled=None):
+def table(a1, a2, n_a1, n_a2, reported=None, reported_from="A2", classes=None, pooled=None, stop=None):
     """The Markdown lines: per-target table, its mean and median rows, then the comparisons.
     `reported` is the per-target reported share (None: '-'), read from the `reported_from` runs.
     `classes` is the per-target true class (None: no class column); `pooled` maps "A1" and "A2" to
     pool_classification's sums of the algorithm's runs, or to None when they have no classification
-    block (no accuracy column). Without either, the output is that of runs before classification."""
+    block (no accuracy column). Without either, the output is that of runs before classification.
+    `stop` maps "A1" and "A2" to pool_stop_mode's pooled means of the algorithm's runs, or to None when
+    they have no stop_mode block; without any, there is no stop mode section."""
     n = max(PAPER_TARGETS, len(a1 or []), len(a2 or []))
     ours = [(name, rows) for name, rows in (("A1", a1), ("A2", a2)) if rows is not None]
     pooled = pooled or {}
@@ -555,6 +673,33 @@ def table(a1, a2, n_a1, n_a2, reported=None, reported_from="A2", classes=None, p
             if c["confusion"]:
                 lines.append("")
                 lines += confusion_lines(name, c["confusion"])
+    stop = stop or {}
+    having = [name for name, _ in ours if stop.get(name) is not None]
+    if having:
+        lines += ["", "Stop mode (metrics.json's stop_mode block): the mean probability a track gives the stop "
+                  "model of its IMM, over the ticks its target stands still and the ticks it moves (associated "
+                  "ticks whose track gives one), summed over the runs ('-' when there is no such tick).", ""]
+        for name, _ in ours:
+            s = stop.get(name)
+            if s is None:
+                lines.append(f"- {name}: no stop_mode block in its runs' metrics.json (scored before it existed)")
+                continue
+            stopped, mean_stopped, moving, mean_moving, without = s["totals"]
+            runs = f"{s['runs']} run{'s' if s['runs'] != 1 else ''}"
+            line = (f"- {name} ({runs}): while stopped {fmt(mean_stopped, 3)} ({stopped} ticks), while moving "
+                    f"{fmt(mean_moving, 3)} ({moving} ticks)")
+            if without:
+                line += f"; {without} associated ticks of tracks whose engine has no stop model"
+            lines.append(line)
+        stops = sorted({j for name in having for j, t in stop[name]["targets"].items() if t[0] > 0})
+
+        def stopped_cell(name, j):
+            t = stop[name]["targets"].get(j)
+            return f"{fmt(t[1], 2)} ({t[0]})" if t is not None else "- (0)"
+
+        listing = ", ".join(f"{j + 1}: " + "; ".join(stopped_cell(name, j) for name in having) for j in stops)
+        lines.append("- per target that stops (target: " + "; ".join(f"{name} while stopped (ticks)" for name in having)
+                     + f"): {listing or 'none'}")
     return lines
 
 
@@ -658,8 +803,8 @@ def main(argv):
     try:
         a1_read = [(arg, *read_run(arg)) for arg in args.a1]
         a2_read = [(arg, *read_run(arg)) for arg in a2_args]
-        a1_runs = [(arg, rows) for arg, _, rows, _ in a1_read]
-        a2_runs = [(arg, rows) for arg, _, rows, _ in a2_read]
+        a1_runs = [(arg, rows) for arg, _, rows, _, _ in a1_read]
+        a2_runs = [(arg, rows) for arg, _, rows, _, _ in a2_read]
         a1 = average_runs(a1_runs, "--a1") if a1_runs else None
         a2 = average_runs(a2_runs, "--a2") if a2_runs else None
         if a1 is not None and a2 is not None and len(a1) != len(a2):
@@ -669,6 +814,8 @@ def main(argv):
                   "A2": pool_classification(a2_read, "--a2") if a2_read else None}
         classes = (target_classes(a1_read + a2_read)
                    if any(c is not None for c in pooled.values()) else None)
+        stop = {"A1": pool_stop_mode(a1_read, "--a1") if a1_read else None,
+                "A2": pool_stop_mode(a2_read, "--a2") if a2_read else None}
     except RunError as error:
         print(f"onera_table.py: {error}", file=sys.stderr)
         return 1
@@ -688,7 +835,8 @@ def main(argv):
             return 1
     reported_from = "A2" if a2_runs else "A1"
     reported = average_reported(a2_runs or a1_runs)
-    print("\n".join(table(a1, a2, len(a1_runs), len(a2_runs), reported, reported_from, classes, pooled)), flush=True)
+    print("\n".join(table(a1, a2, len(a1_runs), len(a2_runs), reported, reported_from, classes, pooled, stop)),
+          flush=True)
     if matplotlib is not None:
         try:
             plot(matplotlib, args.plot, a1, a2, len(a1_runs), len(a2_runs))

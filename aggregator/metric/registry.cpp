@@ -12,6 +12,7 @@ MetricSpec clearMotMetric();
 MetricSpec trackQualityMetric();
 MetricSpec boundaryMetric();
 MetricSpec classificationMetric();
+MetricSpec stopModeMetric();
 
 const MetricRegistry& metricRegistry() {
   // The order is that of metrics.json's blocks and of metrics_per_tick.csv's columns, which
@@ -23,6 +24,7 @@ const MetricRegistry& metricRegistry() {
       trackQualityMetric(),
       boundaryMetric(),
       classificationMetric(),
+      stopModeMetric(),
   });
   return registry;
 }

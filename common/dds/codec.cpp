@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <iterator>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -182,15 +184,24 @@ Encoded<Wire> withRoom(std::size_t items, std::size_t doubles) {
 
 template <typename Wire>
 wsn_msg_TrackEstimate wireTrack(const common::TrackEstimate& t, Encoded<Wire>& storage) {
-  wsn_msg_TrackEstimate w{t.track, t.x, t.y, t.vx, t.vy, {}, t.last_seen_tick, {}};
+  wsn_msg_TrackEstimate w{t.track, t.x, t.y, t.vx, t.vy, {}, t.last_seen_tick, {},
+                          t.stop_probability.value_or(std::numeric_limits<double>::quiet_NaN())};
   std::copy(t.covariance.begin(), t.covariance.end(), w.covariance);
   w.class_probabilities = appendDoubles(storage.doubles, t.class_probabilities, common::kMaxClasses,
                                         "track class probabilities");
   return w;
 }
 
+/// NaN, what the wire sends for none, and any other value that is no probability read as none: the
+/// same policy as a malformed class vector (common::receivedClassVector).
+std::optional<double> stopProbabilityOf(double wire) {
+  if (!(wire >= 0.0 && wire <= 1.0)) return std::nullopt;
+  return wire;
+}
+
 common::TrackEstimate trackOf(const wsn_msg_TrackEstimate& t) {
-  common::TrackEstimate e{t.track, t.x, t.y, t.vx, t.vy, {}, t.last_seen_tick, copyOut(t.class_probabilities)};
+  common::TrackEstimate e{t.track, t.x, t.y, t.vx, t.vy, {}, t.last_seen_tick, copyOut(t.class_probabilities),
+                          stopProbabilityOf(t.stop_probability)};
   std::copy(std::begin(t.covariance), std::end(t.covariance), e.covariance.begin());
   return e;
 }

@@ -400,7 +400,7 @@ std::vector<common::TrackEstimate> GnnEngine::confirmedTracks() const {
   for (const auto& track : current_) {
     if (!track.confirmed) continue;
     const auto& x = track.state.x;
-    out.push_back({track.id, x(kX), x(kY), x(kVx), x(kVy), common::toRowMajor(track.state.P), current_tick_ - track.misses, {}});
+    out.push_back({track.id, x(kX), x(kY), x(kVx), x(kVy), common::toRowMajor(track.state.P), current_tick_ - track.misses, {}, {}});
   }
   return out;
 }

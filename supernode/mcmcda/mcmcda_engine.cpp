@@ -51,7 +51,7 @@ std::array<double, 16> fullCovariance(const AxisCovariance& c) {
 }
 
 common::TrackEstimate estimate(common::TrackId id, const TrackState& s, std::int32_t last_seen_tick) {
-  return {id, s.x, s.y, s.vx, s.vy, fullCovariance(s.cov), last_seen_tick, {}};
+  return {id, s.x, s.y, s.vx, s.vy, fullCovariance(s.cov), last_seen_tick, {}, {}};
 }
 
 using common::Derived;

@@ -1103,7 +1103,8 @@ std::vector<common::TrackEstimate> SbmhtEngine::confirmedTracks() const {
     if (!leaf.best || leaf.score.status != TrackStatus::confirmed) continue;
     const GaussianState s = leaf.imm.combined();
     out.push_back({leaf.tree, s.x(kX), s.x(kY), s.x(kVx), s.x(kVy), common::toRowMajor(s.P), leaf.last_seen_tick,
-                   {leaf.classes.begin(), leaf.classes.end()}});
+                   {leaf.classes.begin(), leaf.classes.end()},
+                   leaf.imm.probabilities(static_cast<Eigen::Index>(kStopMode))});
   }
   return out;
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <set>
 #include <vector>
@@ -41,7 +42,7 @@ double targetX(std::int32_t t) { return 40.0 + t; }
 
 /// A supernode track observed at `seen` and reported at `tick`: its state at `seen` predicted on.
 TrackEstimate observedAt(TrackId track, std::int32_t tick, std::int32_t seen) {
-  TrackEstimate e{track, targetX(seen) + (tick - seen), 50.0, 1.0, 0.0, {}, seen, {}};
+  TrackEstimate e{track, targetX(seen) + (tick - seen), 50.0, 1.0, 0.0, {}, seen, {}, {}};
   return e;
 }
 
@@ -136,7 +137,7 @@ TEST_CASE("Track-level association does not depend on input order", "[aggregator
       std::vector<SupernodeTracks> in{{0, {}}, {1, {}}};
       for (std::uint64_t k = 1; k <= 4; ++k) {
         const auto kk = static_cast<double>(k);
-        TrackEstimate e{id(k % 2, k), 10.0 * kk + t, 20.0 + 5.0 * kk, 1.0, 0.0, {}, t, {}};
+        TrackEstimate e{id(k % 2, k), 10.0 * kk + t, 20.0 + 5.0 * kk, 1.0, 0.0, {}, t, {}, {}};
         in[k % 2].tracks.push_back(e);
       }
       if (shuffled) {
@@ -256,8 +257,8 @@ TEST_CASE("A new track takes the free id most of its supernode tracks had", "[ag
 TEST_CASE("A track both supernodes pass through is the lower supernode's, whatever the input order",
           "[aggregator][mcmcda_association]") {
   const TrackId a = id(0, 1);
-  const TrackEstimate from_sender{a, 10.0, 10.0, 1.0, 0.0, {}, 1, {}};
-  const TrackEstimate from_receiver{a, 10.5, 10.0, 1.0, 0.0, {}, 1, {}};
+  const TrackEstimate from_sender{a, 10.0, 10.0, 1.0, 0.0, {}, 1, {}, {}};
+  const TrackEstimate from_receiver{a, 10.5, 10.0, 1.0, 0.0, {}, 1, {}, {}};
   McmcdaAssociator in_order(twoSupernodes());
   McmcdaAssociator reversed(twoSupernodes());
   const auto first = in_order.associate(1, {{0, {from_sender}}, {1, {from_receiver}}});
@@ -267,7 +268,7 @@ TEST_CASE("A track both supernodes pass through is the lower supernode's, whatev
   CHECK(second == first);
 }
 
-TEST_CASE("A track-level global track carries the class of the supernode tracks it holds",
+TEST_CASE("A track-level global track carries the class and stop probability of the supernode tracks it holds",
           "[aggregator][mcmcda_association]") {
   // The boundary case above: supernode 0's track (class evidence .8 / .2) to tick 8, supernode 1's
   // (.3 / .7) from tick 11, linked into one global track. Each tick the global track's class is
@@ -281,6 +282,7 @@ TEST_CASE("A track-level global track carries the class of the supernode tracks 
     if (t >= 11) in[1].tracks.push_back(observedAt(b, t, t));
     for (auto& track : in[0].tracks) track.class_probabilities = {0.8, 0.2};
     for (auto& track : in[1].tracks) track.class_probabilities = {0.3, 0.7};
+    for (auto& track : in[1].tracks) track.stop_probability = 0.25;
     const auto global = associator.associate(t, in);
     INFO("tick " << t);
     if (global.empty()) continue;
@@ -288,5 +290,7 @@ TEST_CASE("A track-level global track carries the class of the supernode tracks 
     if (t <= 8) CHECK(global[0].class_probabilities == std::vector<double>{0.8, 0.2});
     if (t >= 11) CHECK(global[0].class_probabilities == std::vector<double>{0.3, 0.7});
     if (t == 9 || t == 10) CHECK(global[0].class_probabilities.empty());  // coasting, nothing reported
+    // The stop probability likewise: supernode 1's, and none while supernode 0's track has none.
+    CHECK(global[0].stop_probability == (t >= 11 ? std::optional<double>(0.25) : std::nullopt));
   }
 }

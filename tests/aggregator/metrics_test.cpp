@@ -280,7 +280,7 @@ TEST_CASE("A perfect tracker scores eps_K = eps_X = OSPA = 0", "[aggregator][met
       s.y += s.vy;
     }
     std::vector<TrackEstimate> tracks;
-    for (const auto& s : alive) tracks.push_back({static_cast<std::uint64_t>(1000 + s.id), s.x, s.y, s.vx, s.vy, {}, 0, {}});
+    for (const auto& s : alive) tracks.push_back({static_cast<std::uint64_t>(1000 + s.id), s.x, s.y, s.vx, s.vy, {}, 0, {}, {}});
     std::reverse(tracks.begin(), tracks.end());  // order must not matter
     total_targets += static_cast<std::int64_t>(alive.size());
     metrics.add(t, alive, tracks);

@@ -13,7 +13,7 @@ inline common::TargetState target(int id, double x, double y, double vx = 0.0, d
 }
 
 inline common::TrackEstimate track(std::uint64_t id, double x, double y, double vx = 0.0, double vy = 0.0) {
-  return {id, x, y, vx, vy, {}, 0, {}};
+  return {id, x, y, vx, vy, {}, 0, {}, {}};
 }
 
 }  // namespace wsn::aggregator::test

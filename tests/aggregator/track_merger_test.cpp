@@ -20,7 +20,7 @@ namespace {
 TrackId id(std::uint32_t supernode, std::uint64_t serial) { return (TrackId{supernode} + 1) << 48 | serial; }
 
 TrackEstimate track(TrackId track_id, double x, double y, double vx = 1.0, double vy = 0.0) {
-  return {track_id, x, y, vx, vy, {}, 0, {}};
+  return {track_id, x, y, vx, vy, {}, 0, {}, {}};
 }
 
 bool sortedById(const std::vector<TrackEstimate>& tracks) {
@@ -239,4 +239,19 @@ TEST_CASE("A merged global track's class fuses its members' class vectors", "[ag
   CHECK(global[0].class_probabilities[0] == Approx(2.0 / 3.0).epsilon(1e-12));
   // A lone track without class evidence stays without.
   CHECK(global[1].class_probabilities.empty());
+}
+
+TEST_CASE("A merged global track's stop probability fuses its members' by the same rule", "[aggregator][merger]") {
+  TrackMerger merger;
+  auto a = track(id(0, 1), 10, 10);
+  auto b = track(id(1, 1), 10.5, 10);
+  const auto without = track(id(1, 2), 40, 10);
+  a.stop_probability = 0.9;
+  b.stop_probability = 0.6;
+  const auto global = merger.merge(1, {{0, {a}}, {1, {b, without}}});
+  REQUIRE(global.size() == 2);
+  // sqrt(.9 x .6) / (sqrt(.9 x .6) + sqrt(.1 x .4)) = .734847 / .934847.
+  REQUIRE(global[0].stop_probability);
+  CHECK(*global[0].stop_probability == Approx(0.786062).epsilon(1e-6));
+  CHECK_FALSE(global[1].stop_probability);  // a lone track of an engine without a stop model
 }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -313,4 +314,24 @@ TEST_CASE("fused class vectors are their normalised geometric mean", "[class]") 
   members = {none, malformed};
   CHECK(fuseClassVectors(members).empty());
   CHECK(fuseClassVectors({}).empty());
+}
+
+TEST_CASE("fused stop probabilities follow the class vectors rule on stopped or moving", "[class]") {
+  using Maybe = std::optional<double>;
+  // .9 and .6: sqrt(.9 x .6) = .734847 against sqrt(.1 x .4) = .2, so .734847 / .934847 = .786062.
+  std::vector<Maybe> members{0.9, 0.6};
+  REQUIRE(fuseStopProbabilities(members));
+  CHECK(*fuseStopProbabilities(members) == Approx(0.786062).epsilon(1e-6));
+  // Opposite opinions cancel: sqrt(.8 x .2) on both sides.
+  members = {0.8, 0.2};
+  CHECK(*fuseStopProbabilities(members) == Approx(0.5).epsilon(1e-12));
+  // Copies of one opinion fuse to it.
+  members = {0.8, 0.8, 0.8};
+  CHECK(*fuseStopProbabilities(members) == Approx(0.8).epsilon(1e-12));
+  // A track of an engine without a stop model, and a value that is no probability, are left out.
+  members = {std::nullopt, 0.3, 1.5};
+  CHECK(*fuseStopProbabilities(members) == Approx(0.3).epsilon(1e-12));
+  members = {std::nullopt, -0.1};
+  CHECK_FALSE(fuseStopProbabilities(members));
+  CHECK_FALSE(fuseStopProbabilities({}));
 }

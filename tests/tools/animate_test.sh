@@ -181,9 +181,9 @@ EOF
     timeout 300 "$wsntrack" run "$src/scenarios/oh_quadrants.yaml" --ticks 20 --out "$PWD/real" --no-plot --quiet \
       >run.stdout 2>run.stderr || { cat run.stderr >&2; fail "wsntrack run"; }
     # The readable id and the covariance of every track (issue 12, item 7).
-    [ "$(head -1 real/tracks.csv)" = "tick,track,label,x,y,vx,vy,p_xx,p_xy,p_xvx,p_xvy,p_yy,p_yvx,p_yvy,p_vxvx,p_vxvy,p_vyvy,class,class_probability" ] \
+    [ "$(head -1 real/tracks.csv)" = "tick,track,label,x,y,vx,vy,p_xx,p_xy,p_xvx,p_xvy,p_yy,p_yvx,p_yvy,p_vxvx,p_vxvy,p_vyvy,class,class_probability,stop_probability" ] \
       || fail "tracks.csv header: $(head -1 real/tracks.csv)"
-    [ "$(head -1 real/tracks_supernode.csv)" = "tick,supernode,track,label,x,y,vx,vy,p_xx,p_xy,p_xvx,p_xvy,p_yy,p_yvx,p_yvy,p_vxvx,p_vxvy,p_vyvy,class,class_probability" ] \
+    [ "$(head -1 real/tracks_supernode.csv)" = "tick,supernode,track,label,x,y,vx,vy,p_xx,p_xy,p_xvx,p_xvy,p_yy,p_yvx,p_yvy,p_vxvx,p_vxvy,p_vyvy,class,class_probability,stop_probability" ] \
       || fail "tracks_supernode.csv header: $(head -1 real/tracks_supernode.csv)"
     "$python" -B "$src/tests/tools/loader_test.py" "$src" "$PWD/loader" --real "$PWD/real" >loader.txt 2>&1 \
       || { cat loader.txt >&2; fail "the loader on a real run"; }

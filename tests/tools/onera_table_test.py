@@ -6,7 +6,10 @@ A1 - A2 deltas and comparisons, undefined RSEs, runs without tlr_length, the rep
 notes for missing, inconsistent or malformed CSV files, the errors for missing or malformed
 metrics.json, the classification block (per-target class and accuracy pooled over runs, the run
 totals and the confusion matrix summed over runs, runs without the block, runs of one algorithm with
-and without it, classes that differ between runs, a malformed block), and --plot: a PNG or SVG
+and without it, classes that differ between runs, a malformed block), the stop_mode block (the mean
+stop probabilities while stopped and while moving pooled over runs by their ticks, per run and per
+target, runs without the block, runs of one algorithm with and without it, a malformed block), and
+--plot: a PNG or SVG
 beside the unchanged table (skipped when /usr/bin/python3 has no matplotlib), a bad extension, a
 missing matplotlib (a stand-in package that raises ImportError) and an unwritable file.
 
@@ -504,6 +507,200 @@ class Classification(unittest.TestCase):
         out = tool("--help").stdout
         self.assertIn("sum of ticks_correct / sum of ticks_declared", out)
         self.assertIn('"Classification" section', out)
+
+
+def stop_mode(entries, without=0):
+    """A stop_mode block as wsntrack writes it, for targets [(id, ticks_stopped, mean while stopped,
+    ticks_moving, mean while moving)] (a mean None when its ticks are 0): the run's means weighted by
+    the targets' ticks."""
+    block = {"gate": 50.0}
+    for k, (ticks, mean) in enumerate((("ticks_stopped", "mean_stop_probability_stopped"),
+                                       ("ticks_moving", "mean_stop_probability_moving"))):
+        count = sum(e[1 + 2 * k] for e in entries)
+        block[ticks] = count
+        block[mean] = sum(e[1 + 2 * k] * e[2 + 2 * k] for e in entries if e[1 + 2 * k]) / count if count else None
+    block["ticks_without_stop_model"] = without
+    block["targets"] = [{"id": i, "ticks_stopped": ts, "mean_stop_probability_stopped": ms, "ticks_moving": tm,
+                         "mean_stop_probability_moving": mm} for i, ts, ms, tm, mm in entries]
+    return block
+
+
+# Track_quality ids 10-29: id 10 + N - 1 is table target N.
+STOP_TARGETS = [target(10 + i, 5.0, 0.5, 0.5) for i in range(20)]
+
+
+def stop_run(name, block, classification_block=None):
+    """A run directory whose metrics.json has track_quality (ids 10-29, RSE 5, TLR 0.5), this stop_mode
+    block (None: none) and, when given, this classification block."""
+    data = {"eps_k": 0.0, "track_quality": {"gate": 50.0, "targets": STOP_TARGETS}}
+    if classification_block is not None:
+        data["classification"] = classification_block
+    if block is not None:
+        data["stop_mode"] = block
+    return run_dir(name, text=json.dumps(data))
+
+
+# Two seeds. Seed 1: table target 2 (id 11) stopped 30 ticks at 0.9 and moving 70 at 0.1; target 5
+# (id 14) never stopped, moving 50 at 0.02; target 7 (id 16) stopped 10 at 0.5, moving 40 at 0.05.
+# Run: stopped 40 at (27 + 5) / 40 = 0.8, moving 160 at (7 + 1 + 2) / 160 = 0.0625.
+# Seed 2: target 2 stopped 10 at 0.5, moving 90 at 0.2; target 5 stopped 20 at 0.7, moving 30 at 0.1;
+# target 7 never associated; 5 ticks of tracks without a stop model. Run: stopped 30 at (5 + 14) / 30
+# = 0.633, moving 120 at (18 + 3) / 120 = 0.175.
+# Pooled: stopped 70 at (32 + 19) / 70 = 0.729 (not the mean of the runs' means, 0.717), moving 280 at
+# (10 + 21) / 280 = 0.111 (not 0.119). Per target while stopped: 2 (27 + 5) / 40 = 0.80 (40 ticks),
+# 5 14 / 20 = 0.70 (20), 7 0.50 (10).
+STOP_SEED1 = stop_mode([(11, 30, 0.9, 70, 0.1), (14, 0, None, 50, 0.02), (16, 10, 0.5, 40, 0.05)])
+STOP_SEED2 = stop_mode([(11, 10, 0.5, 90, 0.2), (14, 20, 0.7, 30, 0.1)], without=5)
+STOP_HEADING = "Stop mode (metrics.json's stop_mode block): the mean probability a track gives the stop model"
+
+
+class StopMode(unittest.TestCase):
+    """The stop_mode block: the stop mode section, pooled over runs; older runs; malformed blocks."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.seed1 = stop_run("stop/s1", STOP_SEED1)
+        cls.seed2 = stop_run("stop/s2", STOP_SEED2)
+        cls.old = [stop_run(f"stop/old-{k}", None) for k in (1, 2)]
+        cls.result = tool("--a2", cls.seed1, cls.seed2)
+
+    def test_pooled_over_runs(self):
+        self.assertEqual(self.result.returncode, 0, self.result.stderr)
+        lines = self.result.stdout.splitlines()
+        start = next(k for k, line in enumerate(lines) if line.startswith(STOP_HEADING))
+        self.assertEqual(lines[start - 1], "")
+        self.assertEqual(lines[start + 1:], [
+            "",
+            "- A2 (2 runs): while stopped 0.729 (70 ticks), while moving 0.111 (280 ticks); 5 associated ticks "
+            "of tracks whose engine has no stop model",
+            "- per target that stops (target: A2 while stopped (ticks)): 2: 0.80 (40), 5: 0.70 (20), 7: 0.50 (10)"])
+
+    def test_single_run(self):
+        result = tool("--a2", self.seed2)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("\n- A2 (1 run): while stopped 0.633 (30 ticks), while moving 0.175 (120 ticks); 5 "
+                      "associated ticks of tracks whose engine has no stop model\n", result.stdout)
+        self.assertIn("\n- per target that stops (target: A2 while stopped (ticks)): 2: 0.50 (10), 5: 0.70 (20)\n",
+                      result.stdout)
+        # No tick without a stop model: no such clause.
+        result = tool("--a2", self.seed1)
+        self.assertIn("\n- A2 (1 run): while stopped 0.800 (40 ticks), while moving 0.062 (160 ticks)\n",
+                      result.stdout)
+
+    def test_both_algorithms(self):
+        # Target 5 is listed in A1's run but never stopped, target 7 is not listed in A2's: '-' (0).
+        result = tool("--a1", self.seed1, "--a2", self.seed2)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("\n- A1 (1 run): while stopped 0.800 (40 ticks), while moving 0.062 (160 ticks)\n"
+                      "- A2 (1 run): while stopped 0.633 (30 ticks)", result.stdout)
+        self.assertTrue(result.stdout.endswith(
+            "\n- per target that stops (target: A1 while stopped (ticks); A2 while stopped (ticks)): 2: 0.90 (30); "
+            "0.50 (10), 5: - (0); 0.70 (20), 7: 0.50 (10); - (0)\n"), result.stdout)
+
+    def test_no_target_stops(self):
+        run = stop_run("stop/moving_only", stop_mode([(10, 0, None, 8, 0.25)]))
+        result = tool("--a2", run)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("\n- A2 (1 run): while stopped - (0 ticks), while moving 0.250 (8 ticks)\n", result.stdout)
+        self.assertIn("\n- per target that stops (target: A2 while stopped (ticks)): none\n", result.stdout)
+        # An engine without a stop model: no tick has a probability.
+        run = stop_run("stop/no_model", stop_mode([(10, 0, None, 0, None)], without=12))
+        result = tool("--a2", run)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("\n- A2 (1 run): while stopped - (0 ticks), while moving - (0 ticks); 12 associated ticks of "
+                      "tracks whose engine has no stop model\n", result.stdout)
+
+    def test_runs_without_the_block(self):
+        # Runs of before the stop_mode metric: no section, and the rest as with the block.
+        result = tool("--a2", *self.old)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertNotIn("Stop mode", result.stdout)
+        self.assertNotIn("stop", result.stdout)
+        self.assertTrue(self.result.stdout.startswith(result.stdout), self.result.stdout)
+        self.assertTrue(self.result.stdout[len(result.stdout):].startswith("\n" + STOP_HEADING))
+        # With the A1 runs' block: a line saying A2 has none, and only A1 per target.
+        result = tool("--a1", self.seed1, self.seed2, "--a2", *self.old)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("\n- A1 (2 runs): while stopped 0.729 (70 ticks)", result.stdout)
+        self.assertIn("\n- A2: no stop_mode block in its runs' metrics.json (scored before it existed)\n"
+                      "- per target that stops (target: A1 while stopped (ticks)): 2: 0.80 (40), 5: 0.70 (20), "
+                      "7: 0.50 (10)\n", result.stdout)
+
+    def test_after_the_classification_section(self):
+        run = stop_run("stop/with_class", STOP_SEED1, classification([(10, "human", 4, 0, 0)], {"human": {"none": 4}}))
+        result = tool("--a2", run)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        out = result.stdout
+        self.assertIn("Classification (", out)
+        self.assertLess(out.index("| human | 0 | 4 |"), out.index(STOP_HEADING))
+        self.assertEqual(cells(out, "1")[1], "human")  # the classification block's ids are mapped alike
+
+    def check_error(self, args, *expected):
+        result = tool(*args)
+        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
+        self.assertEqual(result.stdout, "")
+        for text in expected:
+            self.assertIn(text, result.stderr)
+
+    def test_mixed_runs_fail(self):
+        old = self.old[0]
+        self.check_error(["--a2", self.seed1, old],
+                         f"onera_table.py: {old / 'metrics.json'}: no stop_mode block, but "
+                         f"{self.seed1 / 'metrics.json'} (another of the --a2 runs) has one: the runs of an "
+                         "algorithm must all have it")
+        self.check_error(["--a1", old, self.seed2, "--a2", self.seed1],
+                         f"{old / 'metrics.json'}: no stop_mode block, but {self.seed2 / 'metrics.json'} "
+                         "(another of the --a1 runs)")
+
+    def check_bad(self, name, block, expected):
+        run = stop_run(f"stop/{name}", block)
+        self.check_error([run], f"onera_table.py: {run / 'metrics.json'}: {expected}")
+
+    def test_malformed_block(self):
+        self.check_bad("not_object", [], "stop_mode: expected an object, got []")
+        block = stop_mode([(10, 3, 0.5, 4, 0.25)])
+        del block["ticks_moving"]
+        self.check_bad("no_key", block, "stop_mode: no 'ticks_moving' (expected ticks_stopped, "
+                                        "mean_stop_probability_stopped, ticks_moving")
+        block = stop_mode([(10, 3, 0.5, 4, 0.25)])
+        block["ticks_stopped"] = -3
+        self.check_bad("negative", block, "stop_mode.ticks_stopped: expected a count (an integer >= 0), got -3")
+        block = stop_mode([(10, 3, 0.5, 4, 0.25)])
+        block["ticks_without_stop_model"] = 1.5
+        self.check_bad("float_count", block, "stop_mode.ticks_without_stop_model: expected a count")
+        block = stop_mode([(10, 3, 0.5, 4, 0.25)])
+        block["mean_stop_probability_stopped"] = None
+        self.check_bad("null_mean", block,
+                       "stop_mode.mean_stop_probability_stopped: expected a probability (a number in [0, 1]) "
+                       "since ticks_stopped is 3, got null")
+        self.check_bad("above_one", stop_mode([(10, 3, 0.5, 4, 1.5)]),
+                       "stop_mode.mean_stop_probability_moving: expected a probability (a number in [0, 1]), got 1.5")
+        block = stop_mode([(10, 3, 0.5, 4, 0.25)])
+        block["targets"][0]["mean_stop_probability_stopped"] = "high"
+        self.check_bad("string_mean", block,
+                       'stop_mode.targets[0].mean_stop_probability_stopped: expected a finite number, got "high"')
+        block = stop_mode([(10, 3, 0.5, 4, 0.25)])
+        block["targets"][0]["mean_stop_probability_moving"] = -0.1
+        self.check_bad("negative_mean", block, "stop_mode.targets[0].mean_stop_probability_moving: expected a "
+                                               "probability (a number in [0, 1]), got -0.1")
+        block = stop_mode([(10, 3, 0.5, 4, 0.25)])
+        del block["targets"][0]["id"]
+        self.check_bad("no_id", block, "stop_mode.targets[0]: no 'id' (expected id, ticks_stopped")
+        self.check_bad("bad_id", stop_mode([(3, 3, 0.5, 4, 0.25)]),
+                       "stop_mode.targets[0].id: 3 is not the id of a target of track_quality.targets")
+        self.check_bad("twice", stop_mode([(10, 3, 0.5, 4, 0.25), (10, 1, 0.5, 0, None)]),
+                       "stop_mode.targets[1].id: target 10 is listed twice")
+        block = stop_mode([(10, 3, 0.5, 4, 0.25)])
+        block["targets"] = {"10": {}}
+        self.check_bad("targets_object", block, 'stop_mode.targets: expected a list of targets, got {"10": {}}')
+        block = stop_mode([(10, 3, 0.5, 4, 0.25)])
+        block["ticks_moving"] = 5
+        self.check_bad("sum", block, "stop_mode.ticks_moving: expected the sum of its targets' ticks_moving, 4, got 5")
+
+    def test_help(self):
+        out = tool("--help").stdout
+        self.assertIn('"Stop mode" section', out)
+        self.assertIn("sum(mean * ticks) /", out)
 
 
 class Plot(unittest.TestCase):

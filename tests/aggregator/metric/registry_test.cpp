@@ -85,7 +85,7 @@ std::vector<std::string> keys(const Json& object) {
 
 TEST_CASE("the registry lists every metric once, in the order of metrics.json", "[metric][registry]") {
   const auto& registry = metricRegistry();
-  CHECK(registry.names() == "metrics, gospa, clear_mot, track_quality, boundary, classification");
+  CHECK(registry.names() == "metrics, gospa, clear_mot, track_quality, boundary, classification, stop_mode");
   std::set<std::string> names;
   for (const MetricSpec& spec : registry) {
     INFO(spec.name);
@@ -153,7 +153,7 @@ TEST_CASE("two streams of one run are scored independently by the same metrics",
   // The other under streams, with the same keys.
   const Json& other = json.at("streams").at("settled");
   CHECK(keys(other) == std::vector<std::string>{"eps_k", "eps_x", "eps_x_gated", "ospa", "metrics", "gospa",
-                                                 "clear_mot", "track_quality", "boundary", "classification"});
+                                                 "clear_mot", "track_quality", "boundary", "classification", "stop_mode"});
   CHECK(other.at("eps_k").get<double>() == 0.0);
   CHECK(other.at("metrics").at("ospa_mean").get<double>() == 0.0);
   CHECK(other.at("clear_mot").at("false_positives") == 0);

@@ -1,5 +1,6 @@
 // The codec of reports and observations through Cyclone's own CDR serializer (no participant):
 // a measurement of any kind, with its noise, pose and class likelihoods, comes back as it went.
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
@@ -204,10 +205,10 @@ TEST_CASE("a kind the IDL does not know never crosses the wire", "[codec]") {
   CHECK_FALSE(wire.valid);
 }
 
-TEST_CASE("a track and a handoff carry their class vector across the wire", "[codec]") {
-  common::TrackEstimate classified{(2ULL << 48) | 5, 1.0, 2.0, 0.5, -0.5, {}, 3, {0.7, 0.1, 0.1, 0.05, 0.05, 0.0}};
+TEST_CASE("a track and a handoff carry their class vector, a track its stop probability, across the wire", "[codec]") {
+  common::TrackEstimate classified{(2ULL << 48) | 5, 1.0, 2.0, 0.5, -0.5, {}, 3, {0.7, 0.1, 0.1, 0.05, 0.05, 0.0}, 0.25};
   classified.covariance[5] = 0.5;
-  const common::TrackEstimate unclassified{(1ULL << 48) | 9, 4.0, 5.0, 0.0, 0.0, {}, 4, {}};
+  const common::TrackEstimate unclassified{(1ULL << 48) | 9, 4.0, 5.0, 0.0, 0.0, {}, 4, {}, {}};
   const std::vector<common::TrackEstimate> tracks{classified, unclassified};
   auto encoded = encode(tracks);
   wsn_msg_GlobalTrackBatch batch{};
@@ -215,6 +216,10 @@ TEST_CASE("a track and a handoff carry their class vector across the wire", "[co
   const WireRoundTrip track_wire(batch, wsn_msg_GlobalTrackBatch_desc);
   REQUIRE(track_wire.valid);
   CHECK(decode(track_wire.received.tracks) == tracks);
+  // None goes as NaN; a value that is no probability reads as none, as a malformed beta does.
+  CHECK(std::isnan(encoded.items[1].stop_probability));
+  encoded.items[0].stop_probability = 1.5;
+  CHECK_FALSE(decode(sequenceView<dds_sequence_wsn_msg_TrackEstimate>(encoded.items))[0].stop_probability);
 
   common::TrackHandoff handoff;
   handoff.track = classified.track;
@@ -239,9 +244,9 @@ TEST_CASE("a track and a handoff carry their class vector across the wire", "[co
 }  // namespace wsn::dds
 
 TEST_CASE("the settled tracks of several ticks cross the wire by tick, empty ticks included") {
-  wsn::common::TrackEstimate a{7, 1.0, 2.0, 0.5, -0.5, {}, 3, {0.5, 0.5}};
+  wsn::common::TrackEstimate a{7, 1.0, 2.0, 0.5, -0.5, {}, 3, {0.5, 0.5}, {}};
   a.covariance[0] = 0.25;
-  const wsn::common::TrackEstimate b{9, 4.0, 5.0, 0.0, 0.0, {}, 4, {}};
+  const wsn::common::TrackEstimate b{9, 4.0, 5.0, 0.0, 0.0, {}, 4, {}, {}};
   const std::vector<std::vector<wsn::common::TrackEstimate>> by_tick{{a, b}, {}, {b}};
   auto encoded = wsn::dds::encodeSettled(3, by_tick);
   auto& items = encoded.items;

@@ -198,10 +198,19 @@ TEST_CASE("sbmht bridges a missed detection with the miss branch", "[sbmht]") {
     const auto tracks = h.engine.confirmedTracks();
     REQUIRE(tracks.size() == 1);
     CHECK(tracks[0].track == id);
-    // Coasting, the combined estimate lags: a miss moves weight to the stop model (mu0 = .34, then .84).
+    // Coasting, the combined estimate lags: a miss moves weight to the stop model (below).
     CHECK(distance(tracks[0], p) < (t == 12 || t == 13 ? 2.5 : 0.5));
     if (t == 13) CHECK(tracks[0].last_seen_tick == 11);
     if (t == 14) CHECK(tracks[0].last_seen_tick == 14);
+    // The track reports its stop-model probability, what its best leaf's IMM holds: 0 after a
+    // report (eq. 9: a stopped target makes none), rising at each miss (.137, then .609).
+    REQUIRE(tracks[0].stop_probability);
+    const double stop = *tracks[0].stop_probability;
+    for (const auto& leaf : h.engine.leaves())
+      if (leaf.best) CHECK(stop == leaf.imm.probabilities(static_cast<Eigen::Index>(SbmhtEngine::kStopMode)));
+    if (t == 12) CHECK(stop == Approx(0.137).margin(0.001));
+    if (t == 13) CHECK(stop == Approx(0.609).margin(0.001));
+    if (t != 12 && t != 13) CHECK(stop == 0.0);
   }
 }
 
