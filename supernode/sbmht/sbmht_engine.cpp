@@ -881,35 +881,50 @@ void SbmhtEngine::manageHypotheses(std::vector<Leaf>& leaves, std::int32_t tick,
   for (std::size_t k = 0; k < count; ++k) parent[k] = k;
   for (std::size_t k = 1; k < count; ++k)
     if (leaves[k].tree == leaves[k - 1].tree) unite(parent, k, k - 1);
-  struct Entry {
-    std::int32_t tick;
-    std::int32_t report;
-    std::size_t leaf;
+  // Each report (tick, index) any leaf took: the first leaf that took it, found by a table per
+  // tick rather than a sort of every entry, which cost more than the rest of the engine. Only a
+  // report taken by leaves of two trees can conflict in the search (one tree contributes one leaf),
+  // so only those get a compact id; the search depends on which reports conflict, not on their ids.
+  std::int32_t first_tick = leaves.front().first_tick;
+  for (const auto& leaf : leaves) first_tick = std::min(first_tick, leaf.first_tick);
+  constexpr int kNone = -1;
+  struct Taken {
+    int first_leaf = kNone;
+    bool shared = false;  ///< by leaves of two trees
+    int id = kNone;       ///< compact id, set when shared
   };
-  std::vector<Entry> entries;
-  for (std::size_t k = 0; k < count; ++k) {
+  std::vector<std::vector<Taken>> taken;  // by tick - first_tick, then report index
+  const auto forEachReport = [&](std::size_t k, auto&& visit) {
     std::int32_t t = leaves[k].first_tick;
     for (const std::int32_t e : leaves[k].history) {
-      if (e == SbmhtEngine::kTickEnd)
+      if (e == SbmhtEngine::kTickEnd) {
         ++t;
-      else
-        entries.push_back({t, e, k});
+        continue;
+      }
+      const auto row = static_cast<std::size_t>(t - first_tick);
+      if (row >= taken.size()) taken.resize(row + 1);
+      if (static_cast<std::size_t>(e) >= taken[row].size()) taken[row].resize(static_cast<std::size_t>(e) + 1);
+      visit(taken[row][static_cast<std::size_t>(e)]);
     }
-  }
-  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
-    return std::tie(a.tick, a.report, a.leaf) < std::tie(b.tick, b.report, b.leaf);
-  });
-  std::vector<std::vector<int>> reports(count);  // each leaf's reports as compact ids
-  int report_id = -1;
-  for (std::size_t e = 0; e < entries.size(); ++e) {
-    const bool same = e > 0 && entries[e].tick == entries[e - 1].tick && entries[e].report == entries[e - 1].report;
-    if (same)
-      unite(parent, entries[e].leaf, entries[e - 1].leaf);
-    else
-      ++report_id;
-    reports[entries[e].leaf].push_back(report_id);
-  }
-  const auto report_count = static_cast<std::size_t>(report_id + 1);
+  };
+  for (std::size_t k = 0; k < count; ++k)
+    forEachReport(k, [&](Taken& slot) {
+      if (slot.first_leaf == kNone) {
+        slot.first_leaf = static_cast<int>(k);
+        return;
+      }
+      unite(parent, static_cast<std::size_t>(slot.first_leaf), k);
+      if (leaves[static_cast<std::size_t>(slot.first_leaf)].tree != leaves[k].tree) slot.shared = true;
+    });
+  std::vector<std::vector<int>> reports(count);  // each leaf's reports shared with another tree, as compact ids
+  int report_count_int = 0;
+  for (std::size_t k = 0; k < count; ++k)
+    forEachReport(k, [&](Taken& slot) {
+      if (!slot.shared) return;
+      if (slot.id == kNone) slot.id = report_count_int++;
+      reports[k].push_back(slot.id);
+    });
+  const auto report_count = static_cast<std::size_t>(report_count_int);
 
   std::vector<std::vector<std::size_t>> clusters(count);
   for (std::size_t k = 0; k < count; ++k) clusters[findRoot(parent, k)].push_back(k);
