@@ -43,22 +43,9 @@ constexpr double kMinTrackProbability = 1e-3;
 /// (counted in truncatedSearches()).
 constexpr std::uint64_t kSearchBudget = 200000;
 
-/// a < b lexicographically, as std::vector's operator<. Leaves of one tree agree on all but their
-/// last few ticks, so their histories share a prefix as long as the track is old; it is skipped
-/// in blocks with memcmp (equality only: memcmp's byte order is not the order of signed ints).
-bool historyLess(const std::vector<std::int32_t>& a, const std::vector<std::int32_t>& b) {
-  constexpr std::size_t kBlock = 64;
-  const std::size_t n = std::min(a.size(), b.size());
-  std::size_t i = 0;
-  while (i + kBlock <= n && std::memcmp(a.data() + i, b.data() + i, kBlock * sizeof(std::int32_t)) == 0) i += kBlock;
-  for (; i < n; ++i)
-    if (a[i] != b[i]) return a[i] < b[i];
-  return a.size() < b.size();
-}
-
 bool leafOrder(const Leaf& a, const Leaf& b) {
   if (a.tree != b.tree) return a.tree < b.tree;
-  return historyLess(a.history, b.history);
+  return SbmhtEngine::historyLess(a.history, b.history);
 }
 
 std::map<std::string, common::ParamDerivation> derivations() {
@@ -516,6 +503,19 @@ SbmhtEngine::SbmhtEngine(const EngineContext& context)
 void SbmhtEngine::inject(std::vector<Leaf>& leaves, const Leaf& leaf) {
   std::erase_if(leaves, [&](const Leaf& l) { return l.tree == leaf.tree; });
   leaves.insert(std::upper_bound(leaves.begin(), leaves.end(), leaf, leafOrder), leaf);
+}
+
+// Leaves of one tree agree on all but their last few ticks, so their histories share a prefix as
+// long as the track is old; it is skipped in blocks with memcmp (equality only: memcmp's byte order
+// is not the order of signed ints).
+bool SbmhtEngine::historyLess(const std::vector<std::int32_t>& a, const std::vector<std::int32_t>& b) {
+  constexpr std::size_t kBlock = 64;
+  const std::size_t n = std::min(a.size(), b.size());
+  std::size_t i = 0;
+  while (i + kBlock <= n && std::memcmp(a.data() + i, b.data() + i, kBlock * sizeof(std::int32_t)) == 0) i += kBlock;
+  for (; i < n; ++i)
+    if (a[i] != b[i]) return a[i] < b[i];
+  return a.size() < b.size();
 }
 
 const Leaf* SbmhtEngine::representative(const std::vector<Leaf>& leaves, common::TrackId tree) {

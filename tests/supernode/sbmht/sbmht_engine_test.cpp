@@ -273,6 +273,24 @@ TEST_CASE("sbmht N-scan pruning collapses branches that differ only N scans back
                                std::vector<std::int32_t>{0});
 }
 
+TEST_CASE("sbmht orders histories as std vector does, across its block boundaries", "[sbmht]") {
+  // Histories longer than a 64-entry block, differing first before, at and after each boundary,
+  // with negative entries (kTickEnd) so that a byte-wise order would be wrong, and prefixes.
+  std::vector<std::int32_t> base(200);
+  for (std::size_t i = 0; i < base.size(); ++i) base[i] = i % 3 == 0 ? SbmhtEngine::kTickEnd : static_cast<std::int32_t>(i % 7);
+  std::vector<std::vector<std::int32_t>> histories{base, {}, {SbmhtEngine::kTickEnd}, {0}};
+  for (const std::size_t at : {0UL, 1UL, 63UL, 64UL, 65UL, 127UL, 128UL, 199UL}) {
+    for (const std::int32_t value : {SbmhtEngine::kTickEnd, 0, 5, 300}) {
+      auto h = base;
+      h[at] = value;
+      histories.push_back(h);
+    }
+    histories.emplace_back(base.begin(), base.begin() + static_cast<std::ptrdiff_t>(at));  // a prefix
+  }
+  for (const auto& a : histories)
+    for (const auto& b : histories) CHECK(SbmhtEngine::historyLess(a, b) == (a < b));
+}
+
 TEST_CASE("sbmht gives identical outputs for identical inputs", "[sbmht]") {
   auto run = [] {
     Harness h(sbmhtScenario({{"false_alarm_density", 2e-4}}));
