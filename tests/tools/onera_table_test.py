@@ -347,7 +347,18 @@ CLASS_SEED2 = classification(
      "unknown": {"tracked": 1, "group": 2, "none": 2}, "tracked": {"tracked": 1, "wheeled_heavy": 3}})
 
 
-class Classification(unittest.TestCase):
+class FailingRuns(unittest.TestCase):
+    """A case whose tool runs may fail: check_error runs one and expects a clean failure."""
+
+    def check_error(self, args, *expected):
+        result = tool(*args)
+        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
+        self.assertEqual(result.stdout, "")
+        for text in expected:
+            self.assertIn(text, result.stderr)
+
+
+class Classification(FailingRuns):
     """The classification block: class and accuracy columns, the run-level section, older runs."""
 
     @classmethod
@@ -462,13 +473,6 @@ class Classification(unittest.TestCase):
         self.assertIn("- A2: no classification block in its runs' metrics.json", result.stdout)
         self.assertNotIn("A2 true / declared", result.stdout)
 
-    def check_error(self, args, *expected):
-        result = tool(*args)
-        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
-        self.assertEqual(result.stdout, "")
-        for text in expected:
-            self.assertIn(text, result.stderr)
-
     def test_mixed_runs_fail(self):
         old = run_dir("class/mixed-old", [target(i, 5.0, 0.5, 0.5) for i in range(20)])
         self.check_error(["--a2", self.seed1, old],
@@ -554,7 +558,7 @@ STOP_SEED2 = stop_mode([(11, 10, 0.5, 90, 0.2), (14, 20, 0.7, 30, 0.1)], without
 STOP_HEADING = "Stop mode (metrics.json's stop_mode block): the mean probability a track gives the stop model"
 
 
-class StopMode(unittest.TestCase):
+class StopMode(FailingRuns):
     """The stop_mode block: the stop mode section, pooled over runs; older runs; malformed blocks."""
 
     @classmethod
@@ -634,13 +638,6 @@ class StopMode(unittest.TestCase):
         self.assertIn("Classification (", out)
         self.assertLess(out.index("| human | 0 | 4 |"), out.index(STOP_HEADING))
         self.assertEqual(cells(out, "1")[1], "human")  # the classification block's ids are mapped alike
-
-    def check_error(self, args, *expected):
-        result = tool(*args)
-        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
-        self.assertEqual(result.stdout, "")
-        for text in expected:
-            self.assertIn(text, result.stderr)
 
     def test_mixed_runs_fail(self):
         old = self.old[0]
