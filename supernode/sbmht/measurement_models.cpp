@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <boost/math/distributions/chi_squared.hpp>
 
 namespace wsn::supernode::sbmht {
@@ -222,6 +223,43 @@ std::optional<PositionFix> positionFix(const MeasurementModel& model, const Meas
   fix.covariance = 0.5 * (fix.covariance + fix.covariance.transpose());
   if (!fix.position.allFinite() || !fix.covariance.allFinite()) return std::nullopt;
   return fix;
+}
+
+std::optional<BearingPairFix> bearingPairFix(const MeasurementModel& model_a, const MeasurementVector& z_a,
+                                             const MeasurementCovariance& R_a, const MeasurementModel& model_b,
+                                             const MeasurementVector& z_b, const MeasurementCovariance& R_b,
+                                             double min_sine_angle) {
+  const auto isBearing = [](const MeasurementModel& m, const MeasurementVector& z, const MeasurementCovariance& R) {
+    return m.kind == MeasurementKind::bearing && z.size() == 1 && R.rows() == 1 && R.cols() == 1 && z.allFinite() &&
+           std::isfinite(R(0, 0)) && R(0, 0) >= 0.0;
+  };
+  if (!isBearing(model_a, z_a, R_a) || !isBearing(model_b, z_b, R_b)) return std::nullopt;
+  const double ba = model_a.sensor.heading + z_a(0);
+  const double bb = model_b.sensor.heading + z_b(0);
+  const Eigen::Vector2d ua(std::cos(ba), std::sin(ba));
+  const Eigen::Vector2d ub(std::cos(bb), std::sin(bb));
+  const Eigen::Vector2d sa(model_a.sensor.x, model_a.sensor.y);
+  const Eigen::Vector2d sb(model_b.sensor.x, model_b.sensor.y);
+  const auto cross = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q) { return p.x() * q.y() - p.y() * q.x(); };
+  const double sine = cross(ua, ub);  // sin gamma
+  if (!(std::abs(sine) > min_sine_angle)) return std::nullopt;
+  // sa + r_a ua = sb + r_b ub: cross both sides with ub, then with ua.
+  const Eigen::Vector2d d = sb - sa;
+  BearingPairFix out;
+  out.range_a = cross(d, ub) / sine;
+  out.range_b = cross(d, ua) / sine;
+  if (!(out.range_a > kMinimumRange) || !(out.range_b > kMinimumRange)) return std::nullopt;
+  out.fix.position = sa + out.range_a * ua;
+  // Row i of J is d theta_i / d(x, y) = (-sin b_i, cos b_i) / r_i.
+  Eigen::Matrix2d J;
+  J << -ua.y() / out.range_a, ua.x() / out.range_a, -ub.y() / out.range_b, ub.x() / out.range_b;
+  const Eigen::Matrix2d J_inverse = J.inverse();
+  const Eigen::Vector2d R(R_a(0, 0), R_b(0, 0));
+  out.fix.covariance = J_inverse * R.asDiagonal() * J_inverse.transpose();
+  out.fix.covariance = 0.5 * (out.fix.covariance + out.fix.covariance.transpose());
+  out.jacobian_determinant = std::abs(sine) / (out.range_a * out.range_b);
+  if (!out.fix.position.allFinite() || !out.fix.covariance.allFinite()) return std::nullopt;
+  return out;
 }
 
 MeasurementVector valuesOf(const common::Measurement& m) {

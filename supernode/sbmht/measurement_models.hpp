@@ -80,6 +80,27 @@ struct PositionFix {
 std::optional<PositionFix> positionFix(const MeasurementModel& model, const MeasurementVector& z,
                                        const MeasurementCovariance& R);
 
+/// Where two bearings from two sensors put a target (ONERA §II-C's composite report, docs/ONERA.md
+/// §8): the crossing of their rays, R carried through the inverse of the 2 x 2 Jacobian
+/// J = d(theta_a, theta_b)/d(x, y), and |det J| = |sin gamma| / (r_a r_b), gamma the angle between
+/// the lines of sight, r the ranges. |det J| maps a density over the field into one over the two
+/// bearings: a track's score weighs the fix by it (the false-alarm density of the pair in the field).
+struct BearingPairFix {
+  PositionFix fix;
+  double jacobian_determinant = 0.0;  ///< |det J|, per m^2 in rad^2
+  double range_a = 0.0;               ///< r_a, from sensor a to the crossing
+  double range_b = 0.0;
+};
+
+/// The crossing of bearing z_a (variance R_a, 1 x 1) of model_a with bearing z_b of model_b. Nullopt
+/// unless both models are bearings, the rays cross in front of both sensors (r > kMinimumRange) and
+/// their directions differ by more than min_sine_angle in |sin gamma| (near-parallel rays cross
+/// anywhere along them, or nowhere).
+std::optional<BearingPairFix> bearingPairFix(const MeasurementModel& model_a, const MeasurementVector& z_a,
+                                             const MeasurementCovariance& R_a, const MeasurementModel& model_b,
+                                             const MeasurementVector& z_b, const MeasurementCovariance& R_b,
+                                             double min_sine_angle);
+
 /// The model of measurement m: its kind and pose (with the mast height).
 /// Nullopt for a kind no field sensor reports with a state-dependent h (signal_strength, presence),
 /// or when m lacks the pose its kind needs.

@@ -37,6 +37,10 @@ using common::shortNumber;
 using Statistics = common::ObservationStatistics;
 using Resolved = std::map<std::string, common::EngineParam>;
 
+/// Two bearings whose lines of sight differ by less than this in |sin gamma| (about 1 degree) start no
+/// tree: they cross far along both rays or nowhere, and a fix so long and thin (its covariance grows as
+/// 1 / sin^2 gamma) locates nothing the sensors' reach does not already bound.
+constexpr double kMinBearingCrossingSine = 0.02;
 /// Leaves with a posterior below this are pruned (docs/ONERA.md §3, B&P ch. 16).
 constexpr double kMinTrackProbability = 1e-3;
 /// Nodes the k-best search of one cluster may visit; beyond it the k best found so far are used
@@ -363,6 +367,10 @@ const config::FieldTable<SbmhtParams>& paramTable() {
           integer<P>("max_coast_ticks", &P::max_coast_ticks, 1.0, 1e6, "ticks",
                      "where sensors are listed: a leaf that no sensor could see (behind a mask, in a gap between "
                      "sensor areas) for this many ticks running is deleted; a miss costs nothing there"),
+          integer<P>("bearing_pair_births", &P::bearing_pair_births, 0.0, 1.0, "",
+                     "1: two bearings of one tick from two listed sensors that no track took start a tentative track "
+                     "where their rays cross within both sensors' sight (the composite report of Pannetier et al. "
+                     "§II-C); 0: bearings only update tracks"),
           integer<P>("use_road_network", &P::use_road_network, 0.0, 1.0, "",
                      "1: algorithm 1 of Pannetier et al., where the scenario has roads: a road-constrained model in the "
                      "IMM near a road, its estimate projected onto the road, and N-scan pruning that keeps the best "
@@ -604,8 +612,7 @@ Detectability SbmhtEngine::detectabilityOf(const Scan& scan, const ImmState& imm
 }
 
 void SbmhtEngine::runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot,
-                          const std::vector<ReportTerms>& terms, const Scan& scan) const {
-  std::vector<char> gated(slot.size(), 0);  // a report some existing leaf took
+                          const std::vector<ReportTerms>& terms, const Scan& scan, std::vector<char>& gated) const {
   std::vector<Leaf> next;
   next.reserve(leaves.size() * 2 + scan.reports.size());
   for (Leaf& leaf : leaves) {
@@ -721,34 +728,106 @@ void SbmhtEngine::runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::spa
     const common::TrackId id = common::track_id::birth(supernode_, tick, slot[j].sensor, index);
     // A handed-over tree may already carry this id.
     if (std::any_of(next.begin(), next.end(), [&](const Leaf& l) { return l.tree == id; })) continue;
-    GaussianState start;
-    start.x << fix.position(0), fix.position(1), 0.0, 0.0;
-    start.P.setZero();
-    start.P.topLeftCorner<2, 2>() = fix.covariance;
-    const double v2 = params_.initial_velocity_sigma * params_.initial_velocity_sigma;
-    Eigen::Matrix2d velocity = Eigen::Matrix2d::Identity() * v2;
-    if (fix.line_of_sight) {
-      // The radar measured the speed along u: v = rho_dot u, with the prior left across it.
-      const Eigen::Vector2d& u = *fix.line_of_sight;
-      start.x.segment<2>(kVx) = fix.range_rate * u;
-      velocity = v2 * (Eigen::Matrix2d::Identity() - u * u.transpose()) + fix.range_rate_variance * u * u.transpose();
-    }
-    start.P.block<2, 2>(kVx, kVx) = velocity;
-    Leaf leaf;
-    leaf.tree = id;
-    leaf.first_tick = tick;
-    leaf.history = {static_cast<std::int32_t>(j)};
-    leaf.imm = ImmState::startAt(start, initial_probabilities_);
-    leaf.score = TrackScore::start(initial_score_);
-    leaf.classes = common::initialClassVector(terms[j].classes);  // eq. 20; uniform without c
-    leaf.last_seen_tick = tick;
-    leaf.hits = 1;
-    leaf.born_this_tick = true;
-    confirmByCount(leaf);
-    next.push_back(std::move(leaf));
+    // eq. 20: its class vector from the report's c, uniform without one.
+    next.push_back(newTree(id, tick, {static_cast<std::int32_t>(j)}, fix, initial_score_,
+                           ClassVector(common::initialClassVector(terms[j].classes))));
   }
   std::sort(next.begin(), next.end(), leafOrder);
   leaves = std::move(next);
+}
+
+SbmhtEngine::Leaf SbmhtEngine::newTree(common::TrackId id, std::int32_t tick, std::vector<std::int32_t> reports,
+                                       const PositionFix& fix, double score, const ClassVector& classes) const {
+  GaussianState start;
+  start.x << fix.position(0), fix.position(1), 0.0, 0.0;
+  start.P.setZero();
+  start.P.topLeftCorner<2, 2>() = fix.covariance;
+  const double v2 = params_.initial_velocity_sigma * params_.initial_velocity_sigma;
+  Eigen::Matrix2d velocity = Eigen::Matrix2d::Identity() * v2;
+  if (fix.line_of_sight) {
+    // The radar measured the speed along u: v = rho_dot u, with the prior left across it.
+    const Eigen::Vector2d& u = *fix.line_of_sight;
+    start.x.segment<2>(kVx) = fix.range_rate * u;
+    velocity = v2 * (Eigen::Matrix2d::Identity() - u * u.transpose()) + fix.range_rate_variance * u * u.transpose();
+  }
+  start.P.block<2, 2>(kVx, kVx) = velocity;
+  Leaf leaf;
+  leaf.tree = id;
+  leaf.first_tick = tick;
+  leaf.history = std::move(reports);
+  leaf.imm = ImmState::startAt(start, initial_probabilities_);
+  leaf.score = TrackScore::start(score);
+  leaf.classes = classes;
+  leaf.last_seen_tick = tick;
+  leaf.hits = 1;
+  leaf.born_this_tick = true;
+  confirmByCount(leaf);
+  return leaf;
+}
+
+void SbmhtEngine::startBearingPairTrees(std::vector<Leaf>& leaves, std::int32_t tick,
+                                        std::span<const common::Observation> slot,
+                                        const std::vector<ReportTerms>& terms, const std::vector<Scan>& scans,
+                                        const std::vector<char>& gated) const {
+  // The bearings no leaf took, by scan (a listed sensor that starts trees: a bearing alone never does).
+  std::vector<std::pair<std::size_t, std::vector<std::size_t>>> free;  // (scan, its ungated bearings)
+  for (std::size_t s = 0; s < scans.size(); ++s) {
+    const common::SensorCoverage* sensor = scans[s].coverage;
+    if (sensor == nullptr || sensor->presence) continue;
+    std::vector<std::size_t> bearings;
+    for (const std::size_t j : scans[s].reports)
+      if (terms[j].usable && terms[j].model.kind == common::MeasurementKind::bearing && !gated[j]) bearings.push_back(j);
+    if (!bearings.empty()) free.emplace_back(s, std::move(bearings));
+  }
+  std::vector<Leaf> born;
+  for (std::size_t p = 0; p < free.size(); ++p) {
+    const common::SensorCoverage& sensor_a = *scans[free[p].first].coverage;
+    std::uint32_t index = 0;  // births named after sensor a, which starts no tree alone
+    for (std::size_t q = p + 1; q < free.size(); ++q) {
+      const common::SensorCoverage& sensor_b = *scans[free[q].first].coverage;
+      for (const std::size_t a : free[p].second) {
+        for (const std::size_t b : free[q].second) {
+          if (index >= common::track_id::kMaxBirthsPerSensorTick) break;
+          const ReportTerms& ta = terms[a];
+          const ReportTerms& tb = terms[b];
+          const auto pair = bearingPairFix(ta.model, ta.z, ta.R, tb.model, tb.z, tb.R, kMinBearingCrossingSine);
+          if (!pair) continue;
+          // Both sensors must be able to see a target there: in range, field of view and sight.
+          const common::Vec2 at{pair->fix.position(0), pair->fix.position(1)};
+          if (!(common::detectionProbabilityAt(sensor_a, at, terrain_.get()) > 0.0) ||
+              !(common::detectionProbabilityAt(sensor_b, at, terrain_.get()) > 0.0))
+            continue;
+          // Eq. 20 from a's c, then eq. 19 with b's: a pair whose classes exclude each other is no target.
+          ClassVector classes(common::initialClassVector(ta.classes));
+          double class_increment = 0.0;
+          if (!tb.classes.empty()) {
+            const common::ClassUpdate update = common::updateClassVector(classes, tb.classes);
+            if (std::isinf(update.score_increment) && update.score_increment < 0.0) continue;
+            classes = ClassVector(update.beta);
+            class_increment = update.score_increment;
+          }
+          // The pair's likelihood ratio: a new target (density lambda_nt over the field, seen by
+          // both) against two false bearings, lambda_a lambda_b per rad^2, that is lambda_a lambda_b
+          // |det J| per m^2 in the field. The initial-score rule then applies as to any fix.
+          const double pd = sensor_a.detection_probability * sensor_b.detection_probability *
+                            params_.delivery_probability * params_.delivery_probability;
+          const double clutter = ta.clutter_density * tb.clutter_density * pair->jacobian_determinant;
+          const double score =
+              initialScore(params_.initial_score == 1 ? InitialScore::paper : InitialScore::blackman, pd, clutter,
+                           params_.birth_density) +
+              class_increment;
+          const common::TrackId id = common::track_id::birth(supernode_, tick, slot[a].sensor, index++);
+          if (std::any_of(leaves.begin(), leaves.end(), [&](const Leaf& l) { return l.tree == id; })) continue;
+          // a's scan ran first: its entry comes first, as in a leaf that took both through the scans.
+          born.push_back(newTree(id, tick, {static_cast<std::int32_t>(a), static_cast<std::int32_t>(b)}, pair->fix,
+                                 score, classes));
+        }
+      }
+    }
+  }
+  if (born.empty()) return;
+  for (Leaf& leaf : born) leaves.push_back(std::move(leaf));
+  std::sort(leaves.begin(), leaves.end(), leafOrder);
 }
 
 void SbmhtEngine::endTick(std::vector<Leaf>& leaves, std::int32_t tick) const {
@@ -871,12 +950,14 @@ void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std:
   }
 
   const std::vector<Scan> scans = scansOf(slot);
+  std::vector<char> gated(slot.size(), 0);  // a report some leaf took in its scan
   for (std::size_t s = 0; s < scans.size(); ++s) {
-    runScan(leaves, tick, slot, terms, scans[s]);
+    runScan(leaves, tick, slot, terms, scans[s], gated);
     // Between one sensor's scan and the next, the hypotheses the reports made unlikely go, or the
     // leaves would multiply by two per sensor that saw the target.
     if (s + 1 < scans.size() && !scans[s].reports.empty()) manageHypotheses(leaves, tick, false);
   }
+  if (params_.bearing_pair_births == 1) startBearingPairTrees(leaves, tick, slot, terms, scans, gated);
   endTick(leaves, tick);
   mergeDuplicates(leaves);
   std::sort(leaves.begin(), leaves.end(), leafOrder);

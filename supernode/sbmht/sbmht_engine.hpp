@@ -5,7 +5,8 @@
 // combined into the k best global hypotheses per cluster; the tracks' posteriors prune the leaves,
 // N-scan pruning keeps the branches that agree with the best hypothesis N ticks back, and duplicate
 // leaves are merged. Reports are positions, bearings, radar plots or camera angles (docs/ONERA.md
-// §3 and §8); every kind but a bearing can start a track. Where the scenario lists its sensors,
+// §3 and §8); every kind but a bearing can start a track, and two bearings of two sensors start one
+// where they cross (§II-C's composite report). Where the scenario lists its sensors,
 // each sensor is a scan of its own, its silence weighed by its coverage (common/sensor_coverage.hpp),
 // and a bearing keeps the track within its sensor's reach (reach.hpp). Where it has roads, the
 // paper's algorithm 1 adds a road model to the IMM and keeps a branch per road section (§2, §3).
@@ -52,6 +53,7 @@ struct SbmhtParams {
   std::int32_t confirm_reports = 3;   ///< a tentative track that took reports at this many ticks is confirmed
   double delivery_probability = 1.0;  ///< scales each sensor's PD where the engine has coverage
   std::int32_t max_coast_ticks = 60;  ///< a leaf no sensor could see for this many ticks running is deleted
+  std::int32_t bearing_pair_births = 1;  ///< 1: two ungated bearings of two sensors start a tree where they cross
   std::int32_t use_road_network = 1;  ///< 1: algorithm 1 (the scenario's roads in the IMM and N-scan), 0: algorithm 2
   double road_along_sigma = 1.0;      ///< sigma_d of eq. 6
   double road_across_sigma = 0.1;     ///< sigma_n of eq. 6
@@ -165,8 +167,19 @@ class SbmhtEngine final : public Engine {
   /// The scans of a tick's reports, in sensor order.
   std::vector<Scan> scansOf(std::span<const common::Observation> slot) const;
   /// Branches every leaf on the scan's reports and a miss, and starts the scan's births.
+  /// Marks in `gated` the reports some leaf took.
   void runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot,
-               const std::vector<ReportTerms>& terms, const Scan& scan) const;
+               const std::vector<ReportTerms>& terms, const Scan& scan, std::vector<char>& gated) const;
+  /// ONERA §II-C's composite reports: after a tick's scans, every pair of bearings from two listed
+  /// sensors that no leaf took starts a tentative tree where the rays cross, if both sensors could
+  /// see a target there; the tree took both reports, so it conflicts with any leaf that took either.
+  void startBearingPairTrees(std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot,
+                             const std::vector<ReportTerms>& terms, const std::vector<Scan>& scans,
+                             const std::vector<char>& gated) const;
+  /// A tentative tree born at `tick` from `reports` (indices into its slot), at `fix` with the
+  /// velocity prior (a radar's range rate along its line of sight), scoring `score`.
+  Leaf newTree(common::TrackId id, std::int32_t tick, std::vector<std::int32_t> reports, const PositionFix& fix,
+               double score, const ClassVector& classes) const;
   /// PD and per-model Pe of the scan's sensor for the leaf's (time-updated) estimate.
   Detectability detectabilityOf(const Scan& scan, const ImmState& imm) const;
   /// The time update of one leaf: mixing and each model's prediction. Algorithm 1 first picks the

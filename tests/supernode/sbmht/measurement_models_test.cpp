@@ -308,6 +308,54 @@ TEST_CASE("a camera's angles from a mast fix a position, and a bearing fixes non
   CHECK_FALSE(positionFix(antenna, theta, MeasurementCovariance::Identity(1, 1) * 1e-3));
 }
 
+TEST_CASE("two bearings cross at a fix with R carried through the inverse Jacobian", "[sbmht]") {
+  // Antenna a at the origin sees the target at 45 deg, antenna b at (10, 0), facing +y, sees it 45 deg
+  // to its left (135 deg in the field): the rays cross at (5, 5), r_a = r_b = sqrt(50). Row i of
+  // J = d theta_i / d(x, y) is (-sin b_i, cos b_i) / r_i: J = [[-0.1, 0.1], [-0.1, -0.1]],
+  // det J = 0.02 = sin 90 deg / (r_a r_b) = 1 / 50, J^-1 = [[-5, -5], [5, -5]]. With variances
+  // 1e-4 and 4e-4, P = 1e-4 c1 c1' + 4e-4 c2 c2' (c the columns of J^-1, (-5, 5) and (-5, -5)):
+  // [[0.0025 + 0.01, -0.0025 + 0.01], [., 0.0125]] = [[0.0125, 0.0075], [0.0075, 0.0125]].
+  const auto a = modelOfKind(MeasurementKind::bearing, SensorPose{0.0, 0.0, 0.0});
+  const auto b = modelOfKind(MeasurementKind::bearing, SensorPose{10.0, 0.0, kPi / 2});
+  MeasurementVector za(1);
+  MeasurementVector zb(1);
+  za << kPi / 4;
+  zb << kPi / 4;
+  const MeasurementCovariance Ra = MeasurementCovariance::Identity(1, 1) * 1e-4;
+  const MeasurementCovariance Rb = MeasurementCovariance::Identity(1, 1) * 4e-4;
+  const auto pair = bearingPairFix(a, za, Ra, b, zb, Rb, 0.02);
+  REQUIRE(pair);
+  CHECK(pair->fix.position.x() == Approx(5.0));
+  CHECK(pair->fix.position.y() == Approx(5.0));
+  CHECK(pair->range_a == Approx(std::sqrt(50.0)));
+  CHECK(pair->range_b == Approx(std::sqrt(50.0)));
+  CHECK(pair->jacobian_determinant == Approx(0.02));
+  CHECK(pair->fix.covariance(0, 0) == Approx(0.0125));
+  CHECK(pair->fix.covariance(0, 1) == Approx(0.0075));
+  CHECK(pair->fix.covariance(1, 0) == Approx(0.0075));
+  CHECK(pair->fix.covariance(1, 1) == Approx(0.0125));
+  CHECK_FALSE(pair->fix.line_of_sight);
+  // The same bearings in the other order give the same point.
+  const auto swapped = bearingPairFix(b, zb, Rb, a, za, Ra, 0.02);
+  REQUIRE(swapped);
+  CHECK(swapped->fix.position.x() == Approx(5.0));
+  CHECK(swapped->fix.covariance(0, 1) == Approx(0.0075));
+
+  // b looking the other way (-45 deg in the field): the lines meet at (5, 5) behind b, no fix.
+  zb << -3 * kPi / 4;
+  CHECK_FALSE(bearingPairFix(a, za, Ra, b, zb, Rb, 0.02));
+  // Parallel rays (both at 45 deg), and rays 0.5 deg apart (|sin| 0.0087 < 0.02), cross nowhere useful.
+  zb << -kPi / 4;
+  CHECK_FALSE(bearingPairFix(a, za, Ra, b, zb, Rb, 0.02));
+  za << kPi / 2 - 0.5 * kPi / 180;
+  zb << 0.0;
+  CHECK_FALSE(bearingPairFix(a, za, Ra, b, zb, Rb, 0.02));
+  // A camera or a radar is not a bearing.
+  const auto radar = modelOfKind(MeasurementKind::range_bearing_rate, SensorPose{10.0, 0.0, kPi / 2});
+  za << kPi / 4;
+  CHECK_FALSE(bearingPairFix(a, za, Ra, radar, zb, Rb, 0.02));
+}
+
 TEST_CASE("gates of other dimensions keep the probability of the 2-D gate", "[sbmht]") {
   // 9.2103 = -2 ln 0.01 is the 2-D gate of P_G = 0.99; its 1-D and 3-D quantiles are gateThreshold's.
   CHECK(gateOfSameProbability(gateThreshold(2), 1) == Approx(gateThreshold(1)).epsilon(1e-9));

@@ -8,6 +8,7 @@
 
 #include "common/sensor_coverage.hpp"
 #include "common/terrain.hpp"
+#include "common/track_id.hpp"
 #include "supernode/sbmht/sbmht_engine.hpp"
 #include "tests/supernode/sbmht/sbmht_test_support.hpp"
 
@@ -46,6 +47,66 @@ TEST_CASE("sbmht fuses two sensors that report one target each tick into one tra
   const auto* leaf = bestLeaf(h.engine, *ids.begin());
   REQUIRE(leaf != nullptr);
   for (std::int32_t t = 5; t <= 25; ++t) CHECK(leaf->reportsAt(t).size() == 2);
+}
+
+TEST_CASE("sbmht starts a track where two antennas' bearings cross and follows it on bearings alone", "[sbmht]") {
+  // Two all-round acoustic antennas (3 deg, 0.01 false bearings a tick) hear one walker; no sensor
+  // places it. A bearing alone starts nothing, but two that no track took start a tree at their
+  // crossing (ONERA §II-C): one track, under one id, fed both bearings every tick. Without the
+  // pair births the field has no track at all.
+  const Vec2 a{10, 10};
+  const Vec2 b{90, 10};
+  const common::SensorPose pose_a{a.x, a.y, 0.0, 0.0};
+  const common::SensorPose pose_b{b.x, b.y, 0.0, 0.0};
+  const double clutter = 0.01 / (2.0 * std::numbers::pi);
+  auto truth = [](std::int32_t t) { return Vec2{20.0 + t, 50.0}; };
+  for (const int pair_births : {1, 0}) {
+    Harness h(sbmhtScenario({{"bearing_pair_births", pair_births}}), [&](EngineContext& c) {
+      c.coverage = {SensorCoverage{1, a, 0.0, kAllRound, 200.0, 0.9, SightBlockers::none},
+                    SensorCoverage{2, b, 0.0, kAllRound, 200.0, 0.9, SightBlockers::none}};
+    });
+    std::set<common::TrackId> ids;
+    for (std::int32_t t = 1; t <= 20; ++t) {
+      h.step(t, {sensed(t, 1, pose_a, common::MeasurementKind::bearing, truth(t), {1.0, 0.0},
+                        {9.0 * kDegree * kDegree}, clutter),
+                 sensed(t, 2, pose_b, common::MeasurementKind::bearing, truth(t), {1.0, 0.0},
+                        {9.0 * kDegree * kDegree}, clutter)});
+      for (const auto& track : h.engine.confirmedTracks()) ids.insert(track.track);
+    }
+    INFO("bearing_pair_births " << pair_births);
+    if (pair_births == 0) {
+      CHECK(h.engine.leaves().empty());
+      continue;
+    }
+    REQUIRE(ids.size() == 1);
+    // Born of sensor 1's bearing at tick 1, the first of its pair births.
+    CHECK(*ids.begin() == common::track_id::birth(0, 1, 1, 0));
+    const auto tracks = h.engine.confirmedTracks();
+    REQUIRE(tracks.size() == 1);
+    // Noise-free bearings: the fix is exact and the track follows the walker closely.
+    CHECK(distance(tracks[0], truth(20)) < 1.0);
+    const auto* leaf = bestLeaf(h.engine, tracks[0].track);
+    REQUIRE(leaf != nullptr);
+    for (std::int32_t t = 1; t <= 20; ++t) CHECK(leaf->reportsAt(t).size() == 2);
+  }
+}
+
+TEST_CASE("sbmht starts no pair tree where one antenna cannot see the crossing", "[sbmht]") {
+  // The same walker, but antenna 2 reaches only 30 m: its bearing is the walker's false alarm as far
+  // as the rays go (they cross about 70 m from it), so the pair starts nothing.
+  const Vec2 a{10, 10};
+  const Vec2 b{90, 10};
+  const double clutter = 0.01 / (2.0 * std::numbers::pi);
+  Harness h(sbmhtScenario(), [&](EngineContext& c) {
+    c.coverage = {SensorCoverage{1, a, 0.0, kAllRound, 200.0, 0.9, SightBlockers::none},
+                  SensorCoverage{2, b, 0.0, kAllRound, 30.0, 0.9, SightBlockers::none}};
+  });
+  for (std::int32_t t = 1; t <= 5; ++t)
+    h.step(t, {sensed(t, 1, {a.x, a.y, 0.0, 0.0}, common::MeasurementKind::bearing, {20.0 + t, 50.0}, {1.0, 0.0},
+                      {9.0 * kDegree * kDegree}, clutter),
+               sensed(t, 2, {b.x, b.y, 0.0, 0.0}, common::MeasurementKind::bearing, {20.0 + t, 50.0}, {1.0, 0.0},
+                      {9.0 * kDegree * kDegree}, clutter)});
+  CHECK(h.engine.leaves().empty());
 }
 
 /// One camera-like sensor at (50, -50) sees the whole region but for what a building at
