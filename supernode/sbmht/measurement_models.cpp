@@ -231,7 +231,7 @@ std::optional<BearingPairFix> bearingPairFix(const MeasurementModel& model_a, co
                                              double min_sine_angle) {
   const auto isBearing = [](const MeasurementModel& m, const MeasurementVector& z, const MeasurementCovariance& R) {
     return m.kind == MeasurementKind::bearing && z.size() == 1 && R.rows() == 1 && R.cols() == 1 && z.allFinite() &&
-           std::isfinite(R(0, 0)) && R(0, 0) >= 0.0;
+           std::isfinite(R(0, 0)) && R(0, 0) > 0.0;
   };
   if (!isBearing(model_a, z_a, R_a) || !isBearing(model_b, z_b, R_b)) return std::nullopt;
   const double ba = model_a.sensor.heading + z_a(0);

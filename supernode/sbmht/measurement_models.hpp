@@ -87,15 +87,15 @@ std::optional<PositionFix> positionFix(const MeasurementModel& model, const Meas
 /// bearings: a track's score weighs the fix by it (the false-alarm density of the pair in the field).
 struct BearingPairFix {
   PositionFix fix;
-  double jacobian_determinant = 0.0;  ///< |det J|, per m^2 in rad^2
+  double jacobian_determinant = 0.0;  ///< |det J|, in rad^2 per m^2
   double range_a = 0.0;               ///< r_a, from sensor a to the crossing
   double range_b = 0.0;
 };
 
 /// The crossing of bearing z_a (variance R_a, 1 x 1) of model_a with bearing z_b of model_b. Nullopt
-/// unless both models are bearings, the rays cross in front of both sensors (r > kMinimumRange) and
-/// their directions differ by more than min_sine_angle in |sin gamma| (near-parallel rays cross
-/// anywhere along them, or nowhere).
+/// unless both models are bearings with a positive variance, the rays cross in front of both sensors
+/// (r > kMinimumRange) and |sin gamma| exceeds min_sine_angle (near-parallel rays cross far along both
+/// or nowhere; near-opposed ones, a target on the line through both sensors, anywhere between them).
 std::optional<BearingPairFix> bearingPairFix(const MeasurementModel& model_a, const MeasurementVector& z_a,
                                              const MeasurementCovariance& R_a, const MeasurementModel& model_b,
                                              const MeasurementVector& z_b, const MeasurementCovariance& R_b,

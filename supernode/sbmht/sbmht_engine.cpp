@@ -37,9 +37,10 @@ using common::shortNumber;
 using Statistics = common::ObservationStatistics;
 using Resolved = std::map<std::string, common::EngineParam>;
 
-/// Two bearings whose lines of sight differ by less than this in |sin gamma| (about 1 degree) start no
-/// tree: they cross far along both rays or nowhere, and a fix so long and thin (its covariance grows as
-/// 1 / sin^2 gamma) locates nothing the sensors' reach does not already bound.
+/// Two bearings whose lines of sight are within about 1 degree of parallel or of opposed (|sin gamma|
+/// below this) start no tree: parallel rays cross far along both or nowhere, opposed ones (a target on
+/// the line through both sensors) anywhere between them, and a fix so long and thin (its covariance
+/// grows as 1 / sin^2 gamma) locates nothing the sensors' reach does not already bound.
 constexpr double kMinBearingCrossingSine = 0.02;
 /// Leaves with a posterior below this are pruned (docs/ONERA.md §3, B&P ch. 16).
 constexpr double kMinTrackProbability = 1e-3;
@@ -768,60 +769,62 @@ SbmhtEngine::Leaf SbmhtEngine::newTree(common::TrackId id, std::int32_t tick, st
 void SbmhtEngine::startBearingPairTrees(std::vector<Leaf>& leaves, std::int32_t tick,
                                         std::span<const common::Observation> slot,
                                         const std::vector<ReportTerms>& terms, const std::vector<Scan>& scans,
-                                        const std::vector<char>& gated) const {
-  // The bearings no leaf took, by scan (a listed sensor that starts trees: a bearing alone never does).
-  std::vector<std::pair<std::size_t, std::vector<std::size_t>>> free;  // (scan, its ungated bearings)
-  for (std::size_t s = 0; s < scans.size(); ++s) {
-    const common::SensorCoverage* sensor = scans[s].coverage;
-    if (sensor == nullptr || sensor->presence) continue;
+                                        std::size_t scan, const std::vector<char>& gated) const {
+  // The bearings of a listed sensor that starts trees which no leaf took (a bearing alone starts none).
+  const auto freeBearings = [&](std::size_t s) {
     std::vector<std::size_t> bearings;
+    const common::SensorCoverage* sensor = scans[s].coverage;
+    if (sensor == nullptr || sensor->presence) return bearings;
     for (const std::size_t j : scans[s].reports)
       if (terms[j].usable && terms[j].model.kind == common::MeasurementKind::bearing && !gated[j]) bearings.push_back(j);
-    if (!bearings.empty()) free.emplace_back(s, std::move(bearings));
-  }
+    return bearings;
+  };
+  const std::vector<std::size_t> latest = freeBearings(scan);
+  if (latest.empty()) return;
+  const common::SensorCoverage& sensor_b = *scans[scan].coverage;
   std::vector<Leaf> born;
-  for (std::size_t p = 0; p < free.size(); ++p) {
-    const common::SensorCoverage& sensor_a = *scans[free[p].first].coverage;
-    std::uint32_t index = 0;  // births named after sensor a, which starts no tree alone
-    for (std::size_t q = p + 1; q < free.size(); ++q) {
-      const common::SensorCoverage& sensor_b = *scans[free[q].first].coverage;
-      for (const std::size_t a : free[p].second) {
-        for (const std::size_t b : free[q].second) {
-          if (index >= common::track_id::kMaxBirthsPerSensorTick) break;
-          const ReportTerms& ta = terms[a];
-          const ReportTerms& tb = terms[b];
-          const auto pair = bearingPairFix(ta.model, ta.z, ta.R, tb.model, tb.z, tb.R, kMinBearingCrossingSine);
-          if (!pair) continue;
-          // Both sensors must be able to see a target there: in range, field of view and sight.
-          const common::Vec2 at{pair->fix.position(0), pair->fix.position(1)};
-          if (!(common::detectionProbabilityAt(sensor_a, at, terrain_.get()) > 0.0) ||
-              !(common::detectionProbabilityAt(sensor_b, at, terrain_.get()) > 0.0))
-            continue;
-          // Eq. 20 from a's c, then eq. 19 with b's: a pair whose classes exclude each other is no target.
-          ClassVector classes(common::initialClassVector(ta.classes));
-          double class_increment = 0.0;
-          if (!tb.classes.empty()) {
-            const common::ClassUpdate update = common::updateClassVector(classes, tb.classes);
-            if (std::isinf(update.score_increment) && update.score_increment < 0.0) continue;
-            classes = ClassVector(update.beta);
-            class_increment = update.score_increment;
-          }
-          // The pair's likelihood ratio: a new target (density lambda_nt over the field, seen by
-          // both) against two false bearings, lambda_a lambda_b per rad^2, that is lambda_a lambda_b
-          // |det J| per m^2 in the field. The initial-score rule then applies as to any fix.
-          const double pd = sensor_a.detection_probability * sensor_b.detection_probability *
-                            params_.delivery_probability * params_.delivery_probability;
-          const double clutter = ta.clutter_density * tb.clutter_density * pair->jacobian_determinant;
-          const double score =
-              initialScore(params_.initial_score == 1 ? InitialScore::paper : InitialScore::blackman, pd, clutter,
-                           params_.birth_density) +
-              class_increment;
-          const common::TrackId id = common::track_id::birth(supernode_, tick, slot[a].sensor, index++);
-          if (std::any_of(leaves.begin(), leaves.end(), [&](const Leaf& l) { return l.tree == id; })) continue;
-          // a's scan ran first: its entry comes first, as in a leaf that took both through the scans.
-          born.push_back(newTree(id, tick, {static_cast<std::int32_t>(a), static_cast<std::int32_t>(b)}, pair->fix,
-                                 score, classes));
+  std::uint32_t index = 0;  // births named after this scan's sensor, which starts no tree alone
+  for (std::size_t earlier = 0; earlier < scan; ++earlier) {
+    const std::vector<std::size_t> free = freeBearings(earlier);
+    if (free.empty()) continue;
+    const common::SensorCoverage& sensor_a = *scans[earlier].coverage;
+    for (const std::size_t a : free) {
+      for (const std::size_t b : latest) {
+        if (index >= common::track_id::kMaxBirthsPerSensorTick) break;
+        const ReportTerms& ta = terms[a];
+        const ReportTerms& tb = terms[b];
+        const auto pair = bearingPairFix(ta.model, ta.z, ta.R, tb.model, tb.z, tb.R, kMinBearingCrossingSine);
+        if (!pair) continue;
+        // Both sensors must be able to see a target there: in range, field of view and sight.
+        const common::Vec2 at{pair->fix.position(0), pair->fix.position(1)};
+        if (!(common::detectionProbabilityAt(sensor_a, at, terrain_.get()) > 0.0) ||
+            !(common::detectionProbabilityAt(sensor_b, at, terrain_.get()) > 0.0))
+          continue;
+        // Eq. 20 from a's c, then eq. 19 with b's: a pair whose classes exclude each other is no target.
+        ClassVector classes(common::initialClassVector(ta.classes));
+        double class_increment = 0.0;
+        if (!tb.classes.empty()) {
+          const common::ClassUpdate update = common::updateClassVector(classes, tb.classes);
+          if (std::isinf(update.score_increment) && update.score_increment < 0.0) continue;
+          classes = ClassVector(update.beta);
+          class_increment = update.score_increment;
         }
+        // The pair's likelihood ratio: a new target (density lambda_nt over the field, seen and
+        // delivered by both) against two false bearings, lambda_a lambda_b per rad^2, that is
+        // lambda_a lambda_b |det J| per m^2 in the field. The initial-score rule then applies as to
+        // any fix. Two reports' evidence: it starts well above a one-report birth.
+        const double pd = sensor_a.detection_probability * sensor_b.detection_probability *
+                          params_.delivery_probability * params_.delivery_probability;
+        const double clutter = ta.clutter_density * tb.clutter_density * pair->jacobian_determinant;
+        const double score =
+            initialScore(params_.initial_score == 1 ? InitialScore::paper : InitialScore::blackman, pd, clutter,
+                         params_.birth_density) +
+            class_increment;
+        const common::TrackId id = common::track_id::birth(supernode_, tick, slot[b].sensor, index++);
+        if (std::any_of(leaves.begin(), leaves.end(), [&](const Leaf& l) { return l.tree == id; })) continue;
+        // a's scan ran first: its entry comes first, as in a leaf that took both through the scans.
+        born.push_back(newTree(id, tick, {static_cast<std::int32_t>(a), static_cast<std::int32_t>(b)}, pair->fix,
+                               score, classes));
       }
     }
   }
@@ -953,11 +956,13 @@ void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std:
   std::vector<char> gated(slot.size(), 0);  // a report some leaf took in its scan
   for (std::size_t s = 0; s < scans.size(); ++s) {
     runScan(leaves, tick, slot, terms, scans[s], gated);
+    // A pair tree started here meets the later sensors' scans of the tick: a third bearing of its
+    // target joins it rather than pairing anew, and a sensor that could see it and did not weighs it.
+    if (params_.bearing_pair_births == 1) startBearingPairTrees(leaves, tick, slot, terms, scans, s, gated);
     // Between one sensor's scan and the next, the hypotheses the reports made unlikely go, or the
     // leaves would multiply by two per sensor that saw the target.
     if (s + 1 < scans.size() && !scans[s].reports.empty()) manageHypotheses(leaves, tick, false);
   }
-  if (params_.bearing_pair_births == 1) startBearingPairTrees(leaves, tick, slot, terms, scans, gated);
   endTick(leaves, tick);
   mergeDuplicates(leaves);
   std::sort(leaves.begin(), leaves.end(), leafOrder);

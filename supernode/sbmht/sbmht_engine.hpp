@@ -170,11 +170,12 @@ class SbmhtEngine final : public Engine {
   /// Marks in `gated` the reports some leaf took.
   void runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot,
                const std::vector<ReportTerms>& terms, const Scan& scan, std::vector<char>& gated) const;
-  /// ONERA §II-C's composite reports: after a tick's scans, every pair of bearings from two listed
-  /// sensors that no leaf took starts a tentative tree where the rays cross, if both sensors could
-  /// see a target there; the tree took both reports, so it conflicts with any leaf that took either.
+  /// ONERA §II-C's composite reports: after scan `scan`, every bearing of its sensor that no leaf
+  /// took, paired with each such bearing of an earlier scan's sensor, starts a tentative tree where
+  /// the rays cross, if both sensors could see a target there. The tree took both reports, so it
+  /// conflicts with any leaf that took either; the tick's later scans branch it as any leaf.
   void startBearingPairTrees(std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot,
-                             const std::vector<ReportTerms>& terms, const std::vector<Scan>& scans,
+                             const std::vector<ReportTerms>& terms, const std::vector<Scan>& scans, std::size_t scan,
                              const std::vector<char>& gated) const;
   /// A tentative tree born at `tick` from `reports` (indices into its slot), at `fix` with the
   /// velocity prior (a radar's range rate along its line of sight), scoring `score`.

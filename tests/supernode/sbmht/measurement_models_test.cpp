@@ -350,6 +350,10 @@ TEST_CASE("two bearings cross at a fix with R carried through the inverse Jacobi
   za << kPi / 2 - 0.5 * kPi / 180;
   zb << 0.0;
   CHECK_FALSE(bearingPairFix(a, za, Ra, b, zb, Rb, 0.02));
+  // A bearing of no error would make a singular fix.
+  za << kPi / 4;
+  zb << kPi / 4;
+  CHECK_FALSE(bearingPairFix(a, za, MeasurementCovariance::Zero(1, 1), b, zb, Rb, 0.02));
   // A camera or a radar is not a bearing.
   const auto radar = modelOfKind(MeasurementKind::range_bearing_rate, SensorPose{10.0, 0.0, kPi / 2});
   za << kPi / 4;

@@ -79,8 +79,8 @@ TEST_CASE("sbmht starts a track where two antennas' bearings cross and follows i
       continue;
     }
     REQUIRE(ids.size() == 1);
-    // Born of sensor 1's bearing at tick 1, the first of its pair births.
-    CHECK(*ids.begin() == common::track_id::birth(0, 1, 1, 0));
+    // Born at tick 1 after sensor 2's scan, the first pair birth named after it.
+    CHECK(*ids.begin() == common::track_id::birth(0, 1, 2, 0));
     const auto tracks = h.engine.confirmedTracks();
     REQUIRE(tracks.size() == 1);
     // Noise-free bearings: the fix is exact and the track follows the walker closely.
