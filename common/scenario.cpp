@@ -379,9 +379,23 @@ void readRoute(const Reader& r, const Scenario& s, const Section& t, const Entry
       spec.stops.push_back(stop);
     });
   }
+  if (const Entry* speeds = t.find("speeds"); speeds != nullptr) {
+    const std::string speeds_path = t.pathOf("speeds");
+    const int line = Reader::lineOf(*speeds);
+    if (!speeds->value.IsSequence())
+      r.fail(line, "'" + speeds_path + "' must be a list of speeds, one per waypoint, got " + describe(speeds->value));
+    if (speeds->value.size() != spec.waypoints.size())
+      r.fail(line, "'" + speeds_path + "' has " + std::to_string(speeds->value.size()) + " speeds for " +
+                       std::to_string(spec.waypoints.size()) + " waypoints; expected one per waypoint");
+    for (std::size_t i = 0; i < speeds->value.size(); ++i) {
+      const YAML::Node item = speeds->value[i];
+      spec.speeds.push_back(r.numberValue(Entry{item, item}, speeds_path + "[" + std::to_string(i) + "]", config::kPositive));
+    }
+  }
   spec.position = spec.waypoints.front();
   const Vec2 leg = spec.waypoints[1] - spec.waypoints[0];
-  spec.velocity = (spec.speed / std::hypot(leg.x, leg.y)) * leg;
+  const double first_speed = spec.speeds.empty() ? spec.speed : spec.speeds.front();
+  spec.velocity = (first_speed / std::hypot(leg.x, leg.y)) * leg;
 }
 
 /// targets: the random births and the scripted list.
@@ -407,7 +421,7 @@ void readTargets(const Reader& r, const Section& top, const node::SensorModelSpe
         if (waypoints == nullptr) {
           r.require(t, {"x", "y"}, "initial position, sensor separations");
           r.require(t, {"vx", "vy"}, "velocity, sensor separations per tick");
-          for (const char* key : {"speed", "stops"})
+          for (const char* key : {"speed", "speeds", "stops"})
             if (const Entry* given = t.find(key))
               r.fail(Reader::lineOf(given->key), "'" + t.pathOf(key) + "' applies only with 'waypoints'");
         } else {
@@ -415,7 +429,12 @@ void readTargets(const Reader& r, const Section& top, const node::SensorModelSpe
             if (const Entry* given = t.find(key))
               r.fail(Reader::lineOf(given->key), "'" + t.pathOf(key) + "' does not apply with 'waypoints': the target " +
                                                  "starts at the first waypoint and moves at 'speed'");
-          r.require(t, {"speed"}, "distance per tick along the waypoints");
+          const Entry* speed = t.find("speed");
+          const Entry* speeds = t.find("speeds");
+          if (speed != nullptr && speeds != nullptr)
+            r.fail(Reader::lineOf(speeds->key), "'" + t.pathOf("speeds") + "' and 'speed' both given; expected " +
+                                                    "one speed for the route or one per waypoint, not both");
+          if (speeds == nullptr) r.require(t, {"speed"}, "distance per tick along the waypoints (or 'speeds')");
         }
         TargetSpec spec;
         r.fields(t, schema::scriptedTarget(), spec);
@@ -641,6 +660,11 @@ void writeScriptedTargets(std::ostringstream& out, const std::vector<TargetSpec>
       return key == "waypoints" ? &target.waypoints : nullptr;
     };
     const auto stops = [&](const std::string& key) -> std::string {
+      if (key == "speeds" && !target.speeds.empty()) {
+        std::string text;
+        for (const double v : target.speeds) text += (text.empty() ? "[" : ", ") + yamlNumber(v);
+        return text + "]";
+      }
       if (key != "stops" || target.stops.empty()) return "";
       std::string text;
       for (const auto& stop : target.stops)

@@ -3,6 +3,8 @@
 // (common/scenario_schema.hpp) describe each key once, and common/scenario.hpp loads and writes.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -150,10 +152,21 @@ struct TargetSpec {
   /// halting at `stops`, gone after the last waypoint (common/truth.cpp). Empty: it moves with
   /// `velocity` under eq. (8).
   std::vector<Vec2> waypoints;
-  double speed = 0.0;  ///< per tick, for a waypoint target
+  double speed = 0.0;  ///< per tick, for a waypoint target with one speed (0 when `speeds` gives them)
+  /// Per tick, one per waypoint: the speed as the target passes it. Along a leg the speed changes at
+  /// a constant acceleration from one waypoint's to the next's. Empty: `speed` throughout.
+  std::vector<double> speeds;
   std::vector<WaypointStop> stops;  ///< in route order
   TargetClass target_class = TargetClass::kUnknown;
   friend bool operator==(const TargetSpec&, const TargetSpec&) = default;
+
+  /// Its highest speed per tick: |velocity| under eq. (8), on a route `speed` or the most of `speeds`.
+  double topSpeed() const {
+    if (waypoints.empty()) return std::hypot(velocity.x, velocity.y);
+    double top = speed;
+    for (const double v : speeds) top = std::max(top, v);
+    return top;
+  }
 };
 
 /// Speed classes of Oh §VII-A: |vx|, |vy| uniform in [min, max] per tick, random signs.

@@ -171,7 +171,12 @@ const FieldTable<TargetSpec>& scriptedTarget() {
                     "without eq. (8)'s noise, and is gone the tick after it reaches the last one"),
           unsetWhenZero(withNotes(real<C>("speed", &C::speed, kPositive, "separations/tick",
                                           "distance a waypoint target covers per tick"),
-                                  "(0, 1e6]; with `waypoints` only", "required with `waypoints`")),
+                                  "(0, 1e6]; with `waypoints` only", "required with `waypoints`, unless `speeds`")),
+          nested<C>("speeds", "list of numbers", "none",
+                    "one per waypoint, each in (0, 1e6]; with `waypoints`, instead of `speed`",
+                    "separations/tick: the speed as the target passes each waypoint. Along a leg it changes at a "
+                    "constant acceleration from one waypoint's speed to the next's (a target that speeds up across "
+                    "a gap, or slows into a bend)"),
           nested<C>("stops", "list of `{at, ticks}`", "`[]`", "with `waypoints` only; `at` increasing",
                     "halts: `ticks` ticks at rest (velocity 0) at waypoint number `at` (from 0), after the tick "
                     "that reaches it; that tick ends at the waypoint"),

@@ -30,13 +30,41 @@ Vec2 legDirection(const std::vector<Vec2>& waypoints, std::size_t leg) {
   return (1.0 / std::hypot(d.x, d.y)) * d;
 }
 
-/// The state on the route: on a leg, moving along it at `speed`; at rest or at the end, still.
+/// Motion along leg `leg` of a route with `speeds`: the speed goes from speeds[leg] to speeds[leg + 1]
+/// at the constant acceleration a = (v1^2 - v0^2) / (2 L), so v(s)^2 = v0^2 + 2 a s at s along it.
+struct LegMotion {
+  double start_speed = 0.0;
+  double end_speed = 0.0;
+  double acceleration = 0.0;
+  double length = 0.0;
+
+  LegMotion(const TargetSpec& spec, std::size_t leg)
+      : start_speed(spec.speeds[leg]), end_speed(spec.speeds[leg + 1]),
+        length(distance(spec.waypoints[leg], spec.waypoints[leg + 1])) {
+    acceleration = (end_speed * end_speed - start_speed * start_speed) / (2.0 * length);
+  }
+  double speedAt(double along) const {
+    return std::sqrt(std::max(0.0, start_speed * start_speed + 2.0 * acceleration * along));
+  }
+  /// Ticks from `along` to the leg's end.
+  double timeToEnd(double along) const {
+    if (acceleration == 0.0) return (length - along) / start_speed;
+    return (end_speed - speedAt(along)) / acceleration;
+  }
+  /// Distance covered from `along` in `time` ticks (less than timeToEnd(along)).
+  double distanceIn(double along, double time) const {
+    return speedAt(along) * time + 0.5 * acceleration * time * time;
+  }
+};
+
+/// The state on the route: on a leg, moving along it at its speed there; at rest or at the end, still.
 void placeOnRoute(TargetState& s, const TargetSpec& spec, const RouteProgress& p, bool moving) {
   const auto& w = spec.waypoints;
   const bool on_leg = p.leg + 1 < w.size();
   const Vec2 direction = on_leg ? legDirection(w, p.leg) : Vec2{};
   const Vec2 position = on_leg ? w[p.leg] + p.along_leg * direction : w[p.leg];
-  const Vec2 velocity = moving && on_leg ? spec.speed * direction : Vec2{};
+  const double speed = !on_leg ? 0.0 : spec.speeds.empty() ? spec.speed : LegMotion(spec, p.leg).speedAt(p.along_leg);
+  const Vec2 velocity = moving && on_leg ? speed * direction : Vec2{};
   s.x = position.x;
   s.y = position.y;
   s.vx = velocity.x;
@@ -55,8 +83,9 @@ void startRoute(LiveTarget& target) {
 }
 
 /// One tick along the route, exactly: a tick that reaches a waypoint goes on along the next leg by
-/// what is left of `speed`, unless the target stops there (the tick ends at the waypoint) or it is
-/// the last one. Sets `finished` the tick after the last waypoint (and its rest).
+/// what is left of `speed` (with `speeds`, of the tick's time), unless the target stops there (the
+/// tick ends at the waypoint) or it is the last one. Sets `finished` the tick after the last
+/// waypoint (and its rest).
 void advanceOnRoute(LiveTarget& target) {
   const TargetSpec& spec = *target.route;
   const auto& w = spec.waypoints;
@@ -70,15 +99,18 @@ void advanceOnRoute(LiveTarget& target) {
     p.finished = true;
     return;
   }
-  double remaining = spec.speed;
+  // What is left of the tick: a distance at one speed, a time where the speed changes along the legs.
+  const bool one_speed = spec.speeds.empty();
+  double remaining = one_speed ? spec.speed : 1.0;
   while (true) {
-    const double left_on_leg = distance(w[p.leg], w[p.leg + 1]) - p.along_leg;
-    if (remaining < left_on_leg) {
-      p.along_leg += remaining;
+    const double to_leg_end = one_speed ? distance(w[p.leg], w[p.leg + 1]) - p.along_leg
+                                        : LegMotion(spec, p.leg).timeToEnd(p.along_leg);
+    if (remaining < to_leg_end) {
+      p.along_leg += one_speed ? remaining : LegMotion(spec, p.leg).distanceIn(p.along_leg, remaining);
       placeOnRoute(target.state, spec, p, true);
       return;
     }
-    remaining -= left_on_leg;
+    remaining -= to_leg_end;
     ++p.leg;
     p.along_leg = 0.0;
     if (p.next_stop < spec.stops.size() && static_cast<std::size_t>(spec.stops[p.next_stop].at) == p.leg) {

@@ -58,7 +58,7 @@ EnvironmentalNoiseConfig readNoise(const Reader& r, const common::config::Entry&
 void scriptedTargetSlowerThanSound(const Reader& r, const Scenario& s, const common::TargetSpec& spec,
                                    const Section& item) {
   const auto& ac = common::settingsOf<AcousticSettings>(s.sensor_model).acoustic;
-  const double target_speed = std::hypot(spec.velocity.x, spec.velocity.y) / ac.tick_s;
+  const double target_speed = spec.topSpeed() / ac.tick_s;
   if (!(target_speed < ac.sound_speed))
     r.fail(item.line, "'" + item.path + "' moves at " + compactNumber(target_speed) +
                           " per second, not slower than the sound speed " + compactNumber(ac.sound_speed) +

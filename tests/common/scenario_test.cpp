@@ -217,7 +217,7 @@ TEST_CASE("an unknown key names the key's line, its section and the known keys",
         "network, region, run, sensor_model, sensors, supernodes, targets, terrain, tracker");
   CHECK(errorOf("targets:\n  scripted:\n    - {x: 1, y: 1, vx: 0, vy: 0, z: 3}\n") ==
         "s.yaml:3: unknown key 'z' in 'targets.scripted[0]'; expected one of: appear_tick, class, disappear_tick, sensing_range, "
-        "speed, stops, vx, vy, waypoints, x, y");
+        "speed, speeds, stops, vx, vy, waypoints, x, y");
   CHECK(errorOf("supernodes:\n  - x: 1\n    y: 1\n    z: 1\n") ==
         "s.yaml:4: unknown key 'z' in 'supernodes[0]'; expected one of: x, y");
 }

@@ -107,6 +107,32 @@ TEST_CASE("a waypoint target starts at its first waypoint and reads back the sam
   CHECK(parse(resolved) == s);
 }
 
+TEST_CASE("a waypoint target with a speed per waypoint starts at the first and reads back the same", "[scenario][terrain]") {
+  const Scenario s = parse("targets:\n  scripted:\n    - {waypoints: [[10, 10], [10, 40], [40, 40]], speeds: [2, 4, 4]}\n");
+  const TargetSpec& route = s.targets.scripted.at(0);
+  CHECK(route.speeds == std::vector<double>{2, 4, 4});
+  CHECK(route.speed == 0.0);
+  CHECK(route.velocity == Vec2{0, 2});  // the first waypoint's speed, north
+  CHECK(route.topSpeed() == 4.0);
+  const std::string resolved = resolvedScenarioYaml(s);
+  CHECK_THAT(resolved, Contains("speeds: [2, 4, 4]"));
+  CHECK(parse(resolved) == s);
+}
+
+TEST_CASE("speeds errors name the line and what was expected", "[scenario][terrain][errors]") {
+  CHECK(errorOf("targets:\n  scripted:\n    - {waypoints: [[0, 0], [5, 0]], speeds: [1, 2, 3]}\n") ==
+        "s.yaml:3: 'targets.scripted[0].speeds' has 3 speeds for 2 waypoints; expected one per waypoint");
+  CHECK(errorOf("targets:\n  scripted:\n    - {waypoints: [[0, 0], [5, 0]], speed: 1, speeds: [1, 2]}\n") ==
+        "s.yaml:3: 'targets.scripted[0].speeds' and 'speed' both given; expected one speed for the route or one per "
+        "waypoint, not both");
+  CHECK_THAT(errorOf("targets:\n  scripted:\n    - {waypoints: [[0, 0], [5, 0]], speeds: [1, 0]}\n"),
+             Contains("s.yaml:3:") && Contains("'targets.scripted[0].speeds[1]'") && Contains("(0, 1e6]"));
+  CHECK_THAT(errorOf("targets:\n  scripted:\n    - {waypoints: [[0, 0], [5, 0]], speeds: 3}\n"),
+             Contains("s.yaml:3: 'targets.scripted[0].speeds' must be a list of speeds, one per waypoint"));
+  CHECK(errorOf("targets:\n  scripted:\n    - {x: 1, y: 1, vx: 0, vy: 0, speeds: [1, 2]}\n") ==
+        "s.yaml:3: 'targets.scripted[0].speeds' applies only with 'waypoints'");
+}
+
 TEST_CASE("a scripted target without a class writes what it wrote before", "[scenario][terrain]") {
   const Scenario s = parse("targets:\n  scripted:\n    - {x: 5, y: 5, vx: 1, vy: 0}\n");
   CHECK(s.targets.scripted[0].target_class == TargetClass::kUnknown);

@@ -57,6 +57,36 @@ TEST_CASE("a waypoint target passing a vertex mid-tick goes on along the next le
   checkState(samples[8], 9, 20, 30, 0, 0);
 }
 
+TEST_CASE("a waypoint target with speeds accelerates uniformly along a leg and keeps the next leg's speed", "[truth]") {
+  // East 30 from 2 to 4 per tick, then north at 4: a = (4^2 - 2^2) / (2 x 30) = 0.2 per tick^2, so t
+  // ticks after it appears s = 2t + 0.1 t^2 and v = 2 + 0.2 t. Tick 6 (t = 5): s = 12.5, v = 3.
+  // At t = 10 it reaches (30, 0) at 4 exactly; tick 12 (t = 11) is 4 up the next leg, (30, 4).
+  TargetSpec spec = route(1, {{0, 0}, {30, 0}, {30, 30}}, 0.0);
+  spec.speeds = {2.0, 4.0, 4.0};
+  const auto samples = trajectory(spec, 13);
+  REQUIRE(samples.size() == 13);
+  checkState(samples[0], 1, 0, 0, 2, 0);
+  checkState(samples[1], 2, 2.1, 0, 2.2, 0);
+  checkState(samples[5], 6, 12.5, 0, 3, 0);
+  checkState(samples[9], 10, 26.1, 0, 3.8, 0);
+  checkState(samples[11], 12, 30, 4, 0, 4);
+  checkState(samples[12], 13, 30, 8, 0, 4);
+}
+
+TEST_CASE("a waypoint target slowing into a waypoint carries the tick's time left onto the next leg", "[truth]") {
+  // East 10 from 6 to 4 per tick: a = (16 - 36) / 20 = -1. Tick 2 (t = 1): s = 6 - 0.5 = 5.5, v = 5.
+  // It reaches (10, 0) at t = (4 - 6) / -1 = 2, so tick 3 ends exactly there, at 4 heading north.
+  // Tick 4 is one tick of the second leg, 4 to 8 per tick over 20: a = (64 - 16) / 40 = 1.2,
+  // s = 4 + 0.6 = 4.6 and v = 5.2.
+  TargetSpec spec = route(1, {{0, 0}, {10, 0}, {10, 20}}, 0.0);
+  spec.speeds = {6.0, 4.0, 8.0};
+  const auto samples = trajectory(spec, 4);
+  REQUIRE(samples.size() == 4);
+  checkState(samples[1], 2, 5.5, 0, 5, 0);
+  checkState(samples[2], 3, 10, 0, 0, 4);
+  checkState(samples[3], 4, 10, 4.6, 0, 5.2);
+}
+
 TEST_CASE("a waypoint target halts the stop's ticks at rest, then drives on", "[truth]") {
   // East along y = 10 at 3 per tick: x = 10, 13, 16, 19 at ticks 1-4. Tick 5 reaches (20, 10)
   // with 2 to spare, but the stop ends the tick there; ticks 6 and 7 are the 2 ticks of rest. Tick
