@@ -659,7 +659,7 @@ void writeScriptedTargets(std::ostringstream& out, const std::vector<TargetSpec>
     const auto route_points = [&](const std::string& key) -> const std::vector<Vec2>* {
       return key == "waypoints" ? &target.waypoints : nullptr;
     };
-    const auto stops = [&](const std::string& key) -> std::string {
+    const auto other_lists = [&](const std::string& key) -> std::string {
       if (key == "speeds" && !target.speeds.empty()) {
         std::string text;
         for (const double v : target.speeds) text += (text.empty() ? "[" : ", ") + yamlNumber(v);
@@ -675,7 +675,7 @@ void writeScriptedTargets(std::ostringstream& out, const std::vector<TargetSpec>
     std::erase_if(without_start.fields, [](const auto& field) {
       return field.key == "x" || field.key == "y" || field.key == "vx" || field.key == "vy";
     });
-    out << "    - " << itemText(without_start, target, route_points, stops) << "\n";
+    out << "    - " << itemText(without_start, target, route_points, other_lists) << "\n";
   }
 }
 

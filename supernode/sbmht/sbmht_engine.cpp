@@ -474,7 +474,7 @@ SbmhtEngine::SbmhtEngine(const EngineContext& context)
       roads_(params_.use_road_network == 1 && context.terrain && !context.terrain->sections().empty()),
       imm_(makeImm(params_, context.dynamics.delta, roads_)),
       sprt_(SprtThresholds::fromErrorRates(params_.sprt_alpha, params_.sprt_beta, params_.drop_score)),
-      initial_score_(initialScore(params_.initial_score == 1 ? InitialScore::paper : InitialScore::blackman,
+      initial_score_(initialScore(initialScoreRule(),
                                   params_.detection_probability, params_.false_alarm_density,
                                   params_.birth_density)) {
   birth_tick_sprt_ = sprt_;
@@ -768,66 +768,59 @@ SbmhtEngine::Leaf SbmhtEngine::newTree(common::TrackId id, std::int32_t tick, st
 
 void SbmhtEngine::startBearingPairTrees(std::vector<Leaf>& leaves, std::int32_t tick,
                                         std::span<const common::Observation> slot,
-                                        const std::vector<ReportTerms>& terms, const std::vector<Scan>& scans,
-                                        std::size_t scan, const std::vector<char>& gated) const {
-  // The bearings of a listed sensor that starts trees which no leaf took (a bearing alone starts none).
-  const auto freeBearings = [&](std::size_t s) {
-    std::vector<std::size_t> bearings;
-    const common::SensorCoverage* sensor = scans[s].coverage;
-    if (sensor == nullptr || sensor->presence) return bearings;
-    for (const std::size_t j : scans[s].reports)
-      if (terms[j].usable && terms[j].model.kind == common::MeasurementKind::bearing && !gated[j]) bearings.push_back(j);
-    return bearings;
-  };
-  const std::vector<std::size_t> latest = freeBearings(scan);
+                                        const std::vector<ReportTerms>& terms, const Scan& scan,
+                                        const std::vector<char>& gated, std::vector<FreeBearing>& earlier) const {
+  // This scan's bearings that no leaf took, from a listed sensor that starts trees (alone a bearing starts none).
+  const common::SensorCoverage* sensor = scan.coverage;
+  if (sensor == nullptr || sensor->presence) return;
+  std::vector<std::size_t> latest;
+  for (const std::size_t j : scan.reports)
+    if (terms[j].usable && terms[j].model.kind == common::MeasurementKind::bearing && !gated[j]) latest.push_back(j);
   if (latest.empty()) return;
-  const common::SensorCoverage& sensor_b = *scans[scan].coverage;
+  const common::SensorCoverage& sensor_b = *sensor;
   std::vector<Leaf> born;
   std::uint32_t index = 0;  // births named after this scan's sensor, which starts no tree alone
-  for (std::size_t earlier = 0; earlier < scan; ++earlier) {
-    const std::vector<std::size_t> free = freeBearings(earlier);
-    if (free.empty()) continue;
-    const common::SensorCoverage& sensor_a = *scans[earlier].coverage;
-    for (const std::size_t a : free) {
-      for (const std::size_t b : latest) {
-        if (index >= common::track_id::kMaxBirthsPerSensorTick) break;
-        const ReportTerms& ta = terms[a];
-        const ReportTerms& tb = terms[b];
-        const auto pair = bearingPairFix(ta.model, ta.z, ta.R, tb.model, tb.z, tb.R, kMinBearingCrossingSine);
-        if (!pair) continue;
-        // Both sensors must be able to see a target there: in range, field of view and sight.
-        const common::Vec2 at{pair->fix.position(0), pair->fix.position(1)};
-        if (!(common::detectionProbabilityAt(sensor_a, at, terrain_.get()) > 0.0) ||
-            !(common::detectionProbabilityAt(sensor_b, at, terrain_.get()) > 0.0))
-          continue;
-        // Eq. 20 from a's c, then eq. 19 with b's: a pair whose classes exclude each other is no target.
-        ClassVector classes(common::initialClassVector(ta.classes));
-        double class_increment = 0.0;
-        if (!tb.classes.empty()) {
-          const common::ClassUpdate update = common::updateClassVector(classes, tb.classes);
-          if (std::isinf(update.score_increment) && update.score_increment < 0.0) continue;
-          classes = ClassVector(update.beta);
-          class_increment = update.score_increment;
-        }
-        // The pair's likelihood ratio: a new target (density lambda_nt over the field, seen and
-        // delivered by both) against two false bearings, lambda_a lambda_b per rad^2, that is
-        // lambda_a lambda_b |det J| per m^2 in the field. The initial-score rule then applies as to
-        // any fix. Two reports' evidence: it starts well above a one-report birth.
-        const double pd = sensor_a.detection_probability * sensor_b.detection_probability *
-                          params_.delivery_probability * params_.delivery_probability;
-        const double clutter = ta.clutter_density * tb.clutter_density * pair->jacobian_determinant;
-        const double score =
-            initialScore(params_.initial_score == 1 ? InitialScore::paper : InitialScore::blackman, pd, clutter,
-                         params_.birth_density) +
-            class_increment;
-        const common::TrackId id = common::track_id::birth(supernode_, tick, slot[b].sensor, index++);
-        if (std::any_of(leaves.begin(), leaves.end(), [&](const Leaf& l) { return l.tree == id; })) continue;
-        // a's scan ran first: its entry comes first, as in a leaf that took both through the scans.
-        born.push_back(newTree(id, tick, {static_cast<std::int32_t>(a), static_cast<std::int32_t>(b)}, pair->fix,
-                               score, classes));
+  for (const auto& [a, sensor_of_a] : earlier) {
+    if (index >= common::track_id::kMaxBirthsPerSensorTick) break;
+    const common::SensorCoverage& sensor_a = *sensor_of_a;
+    for (const std::size_t b : latest) {
+      if (index >= common::track_id::kMaxBirthsPerSensorTick) break;
+      const ReportTerms& ta = terms[a];
+      const ReportTerms& tb = terms[b];
+      const auto pair = bearingPairFix(ta.model, ta.z, ta.R, tb.model, tb.z, tb.R, kMinBearingCrossingSine);
+      if (!pair) continue;
+      // Both sensors must be able to see a target there: in range, field of view and sight.
+      const common::Vec2 at{pair->fix.position(0), pair->fix.position(1)};
+      if (!(common::detectionProbabilityAt(sensor_a, at, terrain_.get()) > 0.0) ||
+          !(common::detectionProbabilityAt(sensor_b, at, terrain_.get()) > 0.0))
+        continue;
+      // Eq. 20 from a's c, then eq. 19 with b's: a pair whose classes exclude each other is no target.
+      ClassVector classes(common::initialClassVector(ta.classes));
+      double class_increment = 0.0;
+      if (!tb.classes.empty()) {
+        const common::ClassUpdate update = common::updateClassVector(classes, tb.classes);
+        if (std::isinf(update.score_increment) && update.score_increment < 0.0) continue;
+        classes = ClassVector(update.beta);
+        class_increment = update.score_increment;
       }
+      // The pair's likelihood ratio: a new target (density lambda_nt over the field, seen and
+      // delivered by both) against two false bearings, lambda_a lambda_b per rad^2, that is
+      // lambda_a lambda_b |det J| per m^2 in the field. The initial-score rule then applies as to
+      // any fix. Two reports' evidence: it starts well above a one-report birth.
+      const double pd = sensor_a.detection_probability * sensor_b.detection_probability *
+                        params_.delivery_probability * params_.delivery_probability;
+      const double clutter = ta.clutter_density * tb.clutter_density * pair->jacobian_determinant;
+      const double score =
+          initialScore(initialScoreRule(), pd, clutter, params_.birth_density) +
+          class_increment;
+      const common::TrackId id = common::track_id::birth(supernode_, tick, slot[b].sensor, index++);
+      if (std::any_of(leaves.begin(), leaves.end(), [&](const Leaf& l) { return l.tree == id; })) continue;
+      // a's scan ran first: its entry comes first, as in a leaf that took both through the scans.
+      born.push_back(newTree(id, tick, {static_cast<std::int32_t>(a), static_cast<std::int32_t>(b)}, pair->fix,
+                             score, classes));
     }
   }
+  for (const std::size_t b : latest) earlier.push_back({b, sensor});
   if (born.empty()) return;
   for (Leaf& leaf : born) leaves.push_back(std::move(leaf));
   std::sort(leaves.begin(), leaves.end(), leafOrder);
@@ -954,11 +947,12 @@ void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std:
 
   const std::vector<Scan> scans = scansOf(slot);
   std::vector<char> gated(slot.size(), 0);  // a report some leaf took in its scan
+  std::vector<FreeBearing> free_bearings;   // of the scans so far, for pair births
   for (std::size_t s = 0; s < scans.size(); ++s) {
     runScan(leaves, tick, slot, terms, scans[s], gated);
     // A pair tree started here meets the later sensors' scans of the tick: a third bearing of its
     // target joins it rather than pairing anew, and a sensor that could see it and did not weighs it.
-    if (params_.bearing_pair_births == 1) startBearingPairTrees(leaves, tick, slot, terms, scans, s, gated);
+    if (params_.bearing_pair_births == 1) startBearingPairTrees(leaves, tick, slot, terms, scans[s], gated, free_bearings);
     // Between one sensor's scan and the next, the hypotheses the reports made unlikely go, or the
     // leaves would multiply by two per sensor that saw the target.
     if (s + 1 < scans.size() && !scans[s].reports.empty()) manageHypotheses(leaves, tick, false);

@@ -170,13 +170,23 @@ class SbmhtEngine final : public Engine {
   /// Marks in `gated` the reports some leaf took.
   void runScan(std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot,
                const std::vector<ReportTerms>& terms, const Scan& scan, std::vector<char>& gated) const;
-  /// ONERA §II-C's composite reports: after scan `scan`, every bearing of its sensor that no leaf
-  /// took, paired with each such bearing of an earlier scan's sensor, starts a tentative tree where
-  /// the rays cross, if both sensors could see a target there. The tree took both reports, so it
-  /// conflicts with any leaf that took either; the tick's later scans branch it as any leaf.
+  /// A bearing no leaf took in its scan (index into the tick's slot), and its sensor.
+  struct FreeBearing {
+    std::size_t report = 0;
+    const common::SensorCoverage* sensor = nullptr;
+  };
+  /// ONERA §II-C's composite reports: after `scan`, every bearing of its sensor that no leaf took,
+  /// paired with each of `earlier` (the free bearings of the tick's earlier scans), starts a
+  /// tentative tree where the rays cross, if both sensors could see a target there. The tree took
+  /// both reports, so it conflicts with any leaf that took either; the tick's later scans branch it
+  /// as any leaf. Appends this scan's free bearings to `earlier`.
   void startBearingPairTrees(std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot,
-                             const std::vector<ReportTerms>& terms, const std::vector<Scan>& scans, std::size_t scan,
-                             const std::vector<char>& gated) const;
+                             const std::vector<ReportTerms>& terms, const Scan& scan, const std::vector<char>& gated,
+                             std::vector<FreeBearing>& earlier) const;
+  /// The rule of a new tree's score, from initial_score.
+  InitialScore initialScoreRule() const {
+    return params_.initial_score == 1 ? InitialScore::paper : InitialScore::blackman;
+  }
   /// A tentative tree born at `tick` from `reports` (indices into its slot), at `fix` with the
   /// velocity prior (a radar's range rate along its line of sight), scoring `score`.
   Leaf newTree(common::TrackId id, std::int32_t tick, std::vector<std::int32_t> reports, const PositionFix& fix,
