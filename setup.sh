@@ -2,9 +2,9 @@
 # One-command set-up for a fresh Debian machine: installs what is missing (apt-get), builds,
 # then either runs the default scenario as a multi-process cluster or runs the whole test suite.
 #
-#   ./setup.sh run [wsntrack run options]   # install, build, run scenarios/oh_quadrants.yaml
-#   ./setup.sh test [ctest options]         # install, build, run every test (unit + cluster)
-#   ./setup.sh build                        # install and build only
+#   ./setup.sh run [wsntrack run options]   # install, build what a run needs, run scenarios/oh_quadrants.yaml
+#   ./setup.sh test [ctest options]         # install, build everything, run every test (unit + cluster)
+#   ./setup.sh build                        # install and build everything (tests, benchmarks) only
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -18,7 +18,7 @@ esac
 
 packages=(build-essential cmake pkg-config git cyclonedds-dev cyclonedds-tools libeigen3-dev
           libboost-program-options-dev catch2 libyaml-cpp-dev libbenchmark-dev nlohmann-json3-dev libssl-dev
-          procps python3 python3-numpy python3-matplotlib python3-pil python3-yaml ffmpeg)
+          procps python3 python3-numpy python3-matplotlib python3-pil python3-yaml ffmpeg ninja-build ccache)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -36,8 +36,15 @@ jobs="$(nproc 2>/dev/null || echo 2)"
 # The checked build (build, test) treats warnings as errors; `run` keeps whatever the build dir has.
 config=(-DCMAKE_BUILD_TYPE=RelWithDebInfo)
 [ "$mode" != run ] && config+=(-DWSN_WERROR=ON -DBUILD_TESTING=ON)
+# Ninja for a new build tree (an existing one keeps the generator it was made with). ccache, which
+# the package list installs, is picked up by CMake (cmake/WsnCompilerCache.cmake).
+[ -f "$build_dir/CMakeCache.txt" ] || config+=(-G Ninja)
 cmake -S . -B "$build_dir" "${config[@]}" >/dev/null
-cmake --build "$build_dir" -j"$jobs"
+# A run needs only wsntrack, which depends on the role executables and the plot script; the tests
+# and benchmarks are built by `build` and `test`.
+targets=()
+[ "$mode" = run ] && targets=(--target wsntrack)
+cmake --build "$build_dir" -j"$jobs" "${targets[@]}"
 
 case "$mode" in
   run) exec "$build_dir/bin/wsntrack" run scenarios/oh_quadrants.yaml "$@" ;;
