@@ -34,8 +34,16 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::atomic<bool> g_interrupted{false};
-extern "C" void onInterrupt(int) { g_interrupted.store(true); }
+// The signal that asked the run to stop (SIGINT, SIGTERM), 0 while none has.
+std::atomic<int> g_interrupt_signal{0};
+extern "C" void onInterrupt(int signal_number) { g_interrupt_signal.store(signal_number); }
+
+/// The failure text of a run stopped by a signal, and the result's record of it.
+void markInterrupted(ClusterResult& result) {
+  result.interrupted_by = g_interrupt_signal.load();
+  result.failure = std::string("interrupted by ") + (result.interrupted_by == SIGINT ? "SIGINT" : "SIGTERM") +
+                   " before the last tick; the run directory is incomplete";
+}
 
 /// One role instance of the cluster and its participant index.
 struct RoleSlot {
@@ -217,7 +225,9 @@ ClusterResult runProcesses(const ClusterOptions& options) {
       outcome.peak_rss_kb = usage.ru_maxrss;  // Linux reports kilobytes
       outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
       running.erase(it);
-      if (outcome.exit_code != 0 && result.failure.empty())
+      // After an interrupt the roles stop because they were told to (a terminal's Ctrl-C reaches
+      // every process of the group): their exit codes say nothing about a fault.
+      if (outcome.exit_code != 0 && result.failure.empty() && g_interrupt_signal.load() == 0)
         result.failure = outcome.name + " exited with code " + std::to_string(outcome.exit_code) + "; log " +
                          outcome.log_path + ":\n" + tailOf(outcome.log_path, 8);
       if (block) break;
@@ -237,7 +247,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
       progress.update(tick);
       reap(false);
       if (!failures.empty() && result.failure.empty()) result.failure = failures.front();
-      if (g_interrupted.load()) result.failure = "interrupted";
+      if (g_interrupt_signal.load() != 0) markInterrupted(result);
       if (Clock::now() - started > options.timeout)
         result.failure = "timed out after " + std::to_string(options.timeout.count()) + " s";
     }
@@ -306,7 +316,13 @@ ClusterResult runThreads(const ClusterOptions& options) {
     while (finished.load() < slots.size()) {
       observer.poll(std::chrono::milliseconds(200), tick, failures);
       progress.update(tick);
-      if (g_interrupted.load()) fail("interrupted");
+      if (g_interrupt_signal.load() != 0 && result.interrupted_by == 0) {
+        {
+          std::lock_guard lock(mutex);
+          markInterrupted(result);
+        }
+        stop.request_stop();
+      }
       if (Clock::now() - started > options.timeout) fail("timed out after " + std::to_string(options.timeout.count()) + " s");
     }
     progress.finish();
@@ -324,6 +340,11 @@ ClusterResult runThreads(const ClusterOptions& options) {
 }
 
 }  // namespace
+
+int runExitStatus(const ClusterResult& result) {
+  if (result.ok) return 0;
+  return result.interrupted_by != 0 ? 128 + result.interrupted_by : 1;
+}
 
 int participantCount(const common::Scenario& scenario, bool in_process) {
   if (in_process) return 1;

@@ -43,7 +43,14 @@ struct ClusterResult {
   /// launcher together); 0 in multi-process mode, where each outcome carries its own.
   long in_process_peak_rss_kb = 0;
   std::string failure;  ///< first failure, for the user
+  /// The signal (SIGINT, SIGTERM) that stopped the run before its end; 0 when none did.
+  int interrupted_by = 0;
 };
+
+/// The exit status of `wsntrack run` for a result: 0 when it ran to its end, 128 + the signal for
+/// a run stopped by SIGINT (130) or SIGTERM (143), as a shell reports a command killed by it, and 1
+/// for any other failure.
+int runExitStatus(const ClusterResult& result);
 
 /// Runs the cluster to completion (or failure, timeout, SIGINT) and stops everything it started.
 ClusterResult runCluster(const ClusterOptions& options);

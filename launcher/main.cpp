@@ -221,7 +221,7 @@ int commandRun(const std::vector<std::string>& command_line) {
   const auto result = launcher::runCluster(cluster);
   if (!result.ok) {
     std::cerr << launcher::runFailure(result);
-    return 1;
+    return launcher::runExitStatus(result);
   }
   const auto plots = finishPlots(plot_job);
   std::cout << launcher::runSummary(cluster.run_dir, launcher::readRunFigures(cluster.run_dir), result,

@@ -30,7 +30,11 @@ constexpr const char* kRunUsage =
     "'wsntrack validate'. The --set options apply in order, e.g. --set network.pte=0.4\n"
     "--set tracker.params.max_speed=4; --seed, --nodes and --ticks follow them as overrides\n"
     "of run.seed, run.node_processes and run.ticks. The run directory's scenario.yaml\n"
-    "records the result.\n\n";
+    "records the result.\n\n"
+    "Exit status: 0 when every process ran to the last tick; 1 when one failed, timed out or\n"
+    "stalled (the summary names it, with its log); 130 (SIGINT, Ctrl-C) or 143 (SIGTERM) when\n"
+    "the run was stopped before its end, whose run directory is then incomplete; 2 for bad\n"
+    "options or a scenario that does not validate.\n\n";
 
 /// The options, bound to the fields of `a`.
 po::options_description runOptions(RunArguments& a) {

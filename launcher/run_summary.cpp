@@ -50,7 +50,7 @@ RunFigures parseRunFigures(const std::string& metrics_json, const std::string& n
   f.truth_targets = numberAt(metrics, "/truth_targets");
   f.track_ids = numberAt(metrics, "/metrics/track_ids");
   f.eps_k = numberAt(metrics, "/eps_k");
-  f.eps_x = numberAt(metrics, "/eps_x");
+  f.eps_x_gated = numberAt(metrics, "/eps_x_gated");
   f.ospa_mean = numberAt(metrics, "/metrics/ospa_mean");
   f.settled_eps_k = numberAt(metrics, "/streams/settled/eps_k");
   f.settled_ospa_mean = numberAt(metrics, "/streams/settled/metrics/ospa_mean");
@@ -83,7 +83,7 @@ std::string runSummary(const std::string& run_dir, const RunFigures& f, const Cl
   row(out, "targets (truth)", show(f.truth_targets, 0));
   row(out, "tracks (global ids)", show(f.track_ids, 0));
   row(out, "eps_K  (Oh eq. 9)", show(f.eps_k, 4));
-  row(out, "eps_X  (Oh eq. 10)", show(f.eps_x, 4));
+  row(out, "eps_X gated (Oh eq. 10)", show(f.eps_x_gated, 4));
   row(out, "OSPA (mean)", show(f.ospa_mean, 4));
   row(out, "eps_K  settled", show(f.settled_eps_k, 4));
   row(out, "OSPA settled (mean)", show(f.settled_ospa_mean, 4));
@@ -110,6 +110,11 @@ std::string runSummary(const std::string& run_dir, const RunFigures& f, const Cl
 
 std::string runFailure(const ClusterResult& result) {
   std::ostringstream out;
+  if (result.interrupted_by != 0) {
+    // Every process was told to stop; listing their exit codes would read like a row of crashes.
+    out << "wsntrack run: " << result.failure << " (exit status " << runExitStatus(result) << ")\n";
+    return out.str();
+  }
   out << "wsntrack run: FAILED: " << result.failure << "\n";
   for (const auto& outcome : result.outcomes)
     if (outcome.exit_code != 0)

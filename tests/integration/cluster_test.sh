@@ -242,6 +242,23 @@ EOF
     [ "$rc" -ne 0 ] || fail "launcher exited 0 after a node was killed"
     grep -q "node" k.stderr || { cat k.stderr >&2; fail "failure message does not name the node"; }
     no_leftovers ;;
+  interrupted)
+    # Ctrl-C in a terminal: SIGINT reaches the launcher and every role of its process group. The run
+    # is named as interrupted (exit status 130, as a shell reports a command stopped by SIGINT), and
+    # no role's exit code is listed as if it had crashed.
+    setsid "$wsntrack" run "$scenario" --quiet --no-plot --out "$PWD/i" --ticks 100000 >i.stdout 2>i.stderr & launcher=$!
+    for _ in $(seq 1 100); do
+      [ "$(pgrep -fc "wsntrack-.*--run-dir $PWD/i")" -ge 8 ] && break
+      sleep 0.1
+    done
+    [ "$(pgrep -fc "wsntrack-.*--run-dir $PWD/i")" -ge 8 ] || fail "the cluster did not start"
+    sleep 2; kill -INT -- "-$launcher"
+    wait "$launcher"; rc=$?
+    [ "$rc" -eq 130 ] || { cat i.stderr >&2; fail "an interrupted run exited $rc, not 130"; }
+    grep -q "^wsntrack run: interrupted by SIGINT before the last tick; the run directory is incomplete (exit status 130)$" \
+      i.stderr || { cat i.stderr >&2; fail "the interruption is not named as one"; }
+    ! grep -q "FAILED\|: exit [0-9]" i.stderr || { cat i.stderr >&2; fail "an interrupted run lists failures"; }
+    no_leftovers ;;
   acoustic)
     # An et al.'s world through the real cluster: acoustic Doppler sensors whose raw detections
     # cross a lossy, delaying network to the rule-based engine. Byte-identical with 1 and 2 node

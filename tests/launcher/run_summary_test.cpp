@@ -1,6 +1,8 @@
 // What `wsntrack run` prints (launcher/run_summary.cpp), from hand-made run files and results.
 #include "launcher/run_summary.hpp"
 
+#include <csignal>
+
 #include <catch2/catch.hpp>
 
 namespace wsn::launcher {
@@ -8,7 +10,7 @@ namespace {
 
 /// The keys the summary reads, where the aggregator and the network model put them.
 constexpr const char* kMetrics = R"({
-  "scenario": "s", "truth_targets": 5, "eps_k": 0.123456, "eps_x": 1.5, "ospa": 2.25,
+  "scenario": "s", "truth_targets": 5, "eps_k": 0.123456, "eps_x": 1.5, "eps_x_gated": 0.75, "ospa": 2.25,
   "observations_dropped_stale": 3,
   "metrics": {"eps_k": 9, "ospa_mean": 2.25, "track_ids": 7},
   "streams": {"settled": {"eps_k": 0.0625, "metrics": {"ospa_mean": 1.125}}},
@@ -31,7 +33,8 @@ TEST_CASE("the figures come from their own keys in metrics.json and network.json
   const auto f = parseRunFigures(kMetrics, kNetwork);
   CHECK(f.truth_targets == 5);
   CHECK(f.eps_k == 0.123456);  // the headline value, not the one under "metrics"
-  CHECK(f.eps_x == 1.5);
+  // The summary's eps_X is the gated one; the ungated 1.5 is left in metrics.json.
+  CHECK(f.eps_x_gated == 0.75);
   CHECK(f.ospa_mean == 2.25);
   CHECK(f.track_ids == 7);
   CHECK(f.dropped_stale == 3);
@@ -46,10 +49,10 @@ TEST_CASE("missing files, keys and undefined metrics give no figure", "[launcher
   const auto none = parseRunFigures("", "not json");
   CHECK_FALSE(none.truth_targets);
   CHECK_FALSE(none.reports_sent);
-  // eps_x is written as null when no track was ever matched.
-  const auto f = parseRunFigures(R"({"eps_k": 0.5, "eps_x": null, "metrics": 3})", "[]");
+  // eps_x_gated is written as null when no match was closer than the gate.
+  const auto f = parseRunFigures(R"({"eps_k": 0.5, "eps_x": 2, "eps_x_gated": null, "metrics": 3})", "[]");
   CHECK(f.eps_k == 0.5);
-  CHECK_FALSE(f.eps_x);
+  CHECK_FALSE(f.eps_x_gated);
   CHECK_FALSE(f.track_ids);  // "metrics" is not an object here
   CHECK_FALSE(f.reports_sent);
 }
@@ -67,7 +70,7 @@ TEST_CASE("the summary of a multi-process run lists figures and each process's m
         "  targets (truth)           5\n"
         "  tracks (global ids)       7\n"
         "  eps_K  (Oh eq. 9)         0.1235\n"
-        "  eps_X  (Oh eq. 10)        1.5000\n"
+        "  eps_X gated (Oh eq. 10)   0.7500\n"
         "  OSPA (mean)               2.2500\n"
         "  eps_K  settled            0.0625\n"
         "  OSPA settled (mean)       1.1250\n"
@@ -108,6 +111,25 @@ TEST_CASE("a failed run names the failure and every process that exited non-zero
         "wsntrack run: FAILED: supernode 1 exited with 3\n"
         "  supernode 1: exit 3 (bad engine)\n"
         "  network 0: exit 143\n");
+}
+
+TEST_CASE("an interrupted run is named as one, with its exit status, and lists no process as failed",
+          "[launcher][run_summary]") {
+  auto result = processes();
+  result.ok = false;
+  result.interrupted_by = SIGINT;
+  result.failure = "interrupted by SIGINT before the last tick; the run directory is incomplete";
+  // Every role stops with a non-zero code when it is told to: none of them is a fault.
+  for (auto& outcome : result.outcomes) outcome.exit_code = 1;
+  CHECK(runFailure(result) ==
+        "wsntrack run: interrupted by SIGINT before the last tick; the run directory is incomplete (exit status 130)\n");
+  CHECK(runExitStatus(result) == 130);
+  result.interrupted_by = SIGTERM;
+  CHECK(runExitStatus(result) == 143);
+  result.interrupted_by = 0;
+  CHECK(runExitStatus(result) == 1);
+  result.ok = true;
+  CHECK(runExitStatus(result) == 0);
 }
 
 TEST_CASE("the start line says what runs where", "[launcher][run_summary]") {
