@@ -476,7 +476,8 @@ SbmhtEngine::SbmhtEngine(const EngineContext& context)
       sprt_(SprtThresholds::fromErrorRates(params_.sprt_alpha, params_.sprt_beta, params_.drop_score)),
       initial_score_(initialScore(initialScoreRule(),
                                   params_.detection_probability, params_.false_alarm_density,
-                                  params_.birth_density)) {
+                                  params_.birth_density)),
+      replay_(&Leaf::tree, &leafOrder) {
   birth_tick_sprt_ = sprt_;
   birth_tick_sprt_.delete_tentative = -std::numeric_limits<double>::infinity();
   // A report rules out the stop model (eq. 9): a new track moves, model unknown.
@@ -507,11 +508,6 @@ SbmhtEngine::SbmhtEngine(const EngineContext& context)
     if (id >= coverage_of_sensor_.size()) coverage_of_sensor_.resize(id + 1, -1);
     coverage_of_sensor_[id] = static_cast<std::int32_t>(c);
   }
-}
-
-void SbmhtEngine::inject(std::vector<Leaf>& leaves, const Leaf& leaf) {
-  std::erase_if(leaves, [&](const Leaf& l) { return l.tree == leaf.tree; });
-  leaves.insert(std::upper_bound(leaves.begin(), leaves.end(), leaf, leafOrder), leaf);
 }
 
 // Leaves of one tree agree on all but their last few ticks, so their histories share a prefix as
@@ -928,9 +924,6 @@ void SbmhtEngine::projectRoadMode(Leaf& leaf, bool with_covariance) const {
 }
 
 void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot) {
-  for (const auto& adoption : adoptions_)
-    if (adoption.tick == tick) inject(leaves, adoption.leaf);
-
   const double r2 = params_.measurement_sigma * params_.measurement_sigma;
   std::vector<ReportTerms> terms;
   terms.reserve(slot.size());
@@ -961,9 +954,6 @@ void SbmhtEngine::processTick(std::vector<Leaf>& leaves, std::int32_t tick, std:
   mergeDuplicates(leaves);
   std::sort(leaves.begin(), leaves.end(), leafOrder);
   manageHypotheses(leaves, tick, true);
-
-  for (const auto& release : releases_)
-    if (release.tick == tick) std::erase_if(leaves, [&](const Leaf& l) { return l.tree == release.id; });
 }
 
 void SbmhtEngine::manageHypotheses(std::vector<Leaf>& leaves, std::int32_t tick, bool n_scan_pruning) {
@@ -1124,56 +1114,22 @@ void SbmhtEngine::confirmByCount(Leaf& leaf) const {
     leaf.score.status = TrackStatus::confirmed;
 }
 
-void SbmhtEngine::foldAnchorTo(std::int32_t tick) {
-  for (std::int32_t t = anchor_tick_ + 1; t <= tick; ++t) {
-    std::span<const common::Observation> slot;
-    const std::int64_t index = std::int64_t{t} - cached_oldest_tick_;
-    if (index >= 0 && index < static_cast<std::int64_t>(cached_slots_.size()))
-      slot = cached_slots_[static_cast<std::size_t>(index)];
-    processTick(anchor_, t, slot);
-    anchor_tick_ = t;
-  }
-  std::erase_if(adoptions_, [&](const Adoption& a) { return a.tick <= anchor_tick_; });
-  std::erase_if(releases_, [&](const Release& r) { return r.tick <= anchor_tick_; });
+void SbmhtEngine::catchUp(Leaf& leaf, std::int32_t first_tick, std::int32_t anchor_tick) const {
+  for (std::int32_t t = first_tick; t <= anchor_tick; ++t) timeUpdate(leaf);
+  leaf.first_tick = anchor_tick + 1;
 }
 
 void SbmhtEngine::step(const ObservationWindow& window) {
-  const std::int32_t newest = window.newestTick();
-  if (newest < 1) return;
-  const std::int32_t oldest = window.oldestTick();
-  if (!started_) {
-    started_ = true;
-    anchor_tick_ = oldest - 1;
-    cached_oldest_tick_ = oldest;
-  }
-
-  // A handoff too old to enter at its own tick enters the anchor, predicted up to it.
-  for (const auto& adoption : adoptions_) {
-    if (adoption.tick > anchor_tick_) continue;
-    Leaf leaf = adoption.leaf;
-    for (std::int32_t t = adoption.tick; t <= anchor_tick_; ++t) timeUpdate(leaf);
-    leaf.first_tick = anchor_tick_ + 1;
-    inject(anchor_, leaf);
-  }
-  std::erase_if(adoptions_, [&](const Adoption& a) { return a.tick <= anchor_tick_; });
-
-  foldAnchorTo(oldest - 1);
-
   std::optional<ObservationWindow> merged;
   // With coverage each sensor is a scan of its own: merging two sensors' reports into one would
   // leave the other sensor silent where it saw the target.
   if (params_.merge_radius > 0.0 && coverage_.empty()) merged = window.merged(params_.merge_radius);
-  const ObservationWindow& replayed = merged ? *merged : window;
-  current_ = anchor_;
-  for (std::int32_t t = oldest; t <= newest; ++t) processTick(current_, t, replayed.slot(t));
-  current_tick_ = newest;
-
-  cached_oldest_tick_ = oldest;
-  cached_slots_.clear();
-  for (std::int32_t t = oldest; t <= newest; ++t) {
-    const auto slot = replayed.slot(t);
-    cached_slots_.emplace_back(slot.begin(), slot.end());
-  }
+  replay_.step(
+      merged ? *merged : window,
+      [this](std::vector<Leaf>& leaves, std::int32_t tick, std::span<const common::Observation> slot) {
+        processTick(leaves, tick, slot);
+      },
+      [this](Leaf& leaf, std::int32_t first_tick, std::int32_t anchor_tick) { catchUp(leaf, first_tick, anchor_tick); });
 }
 
 void SbmhtEngine::adopt(const common::TrackHandoff& handoff) {
@@ -1203,12 +1159,12 @@ void SbmhtEngine::adopt(const common::TrackHandoff& handoff) {
   leaf.hits = handoff.hits;
   leaf.misses = handoff.misses;
   leaf.last_seen_tick = handoff.last_tick - handoff.misses;
-  adoptions_.push_back(Adoption{handoff.last_tick + 1, std::move(leaf)});
+  replay_.adopt(handoff.last_tick + 1, std::move(leaf));
 }
 
 std::vector<common::TrackEstimate> SbmhtEngine::confirmedTracks() const {
   std::vector<common::TrackEstimate> out;
-  for (const auto& leaf : current_) {
+  for (const auto& leaf : replay_.current()) {
     if (!leaf.best || leaf.score.status != TrackStatus::confirmed) continue;
     const GaussianState s = leaf.imm.combined();
     out.push_back({leaf.tree, s.x(kX), s.x(kY), s.x(kVx), s.x(kVy), common::toRowMajor(s.P), leaf.last_seen_tick,
@@ -1229,9 +1185,10 @@ std::vector<TrackClass> SbmhtEngine::confirmedClasses() const {
 
 std::vector<TrackPrediction> SbmhtEngine::predictions() const {
   std::vector<TrackPrediction> out;
-  for (std::size_t k = 0; k < current_.size(); ++k) {
-    if (k > 0 && current_[k].tree == current_[k - 1].tree) continue;
-    const Leaf* leaf = representative(current_, current_[k].tree);
+  const std::vector<Leaf>& leaves = replay_.current();
+  for (std::size_t k = 0; k < leaves.size(); ++k) {
+    if (k > 0 && leaves[k].tree == leaves[k - 1].tree) continue;
+    const Leaf* leaf = representative(leaves, leaves[k].tree);
     const GaussianState s = leaf->imm.combined();
     out.push_back({leaf->tree, {s.x(kX) + delta_ * s.x(kVx), s.x(kY) + delta_ * s.x(kVy)}});
   }
@@ -1239,21 +1196,20 @@ std::vector<TrackPrediction> SbmhtEngine::predictions() const {
 }
 
 common::TrackHandoff SbmhtEngine::release(common::TrackId track_id, std::uint32_t to_supernode) {
-  const Leaf* leaf = representative(current_, track_id);
+  const Leaf* leaf = representative(replay_.current(), track_id);
   if (!leaf) throw std::invalid_argument("sbmht: release of unknown track " + std::to_string(track_id));
   const GaussianState s = leaf->imm.combined();
   common::TrackHandoff handoff;
   handoff.track = track_id;
   handoff.to_supernode = to_supernode;
-  handoff.last_tick = current_tick_;
+  handoff.last_tick = replay_.currentTick();
   for (int r = 0; r < common::kStateDim; ++r) handoff.state[static_cast<std::size_t>(r)] = s.x(r);
   handoff.covariance = common::toRowMajor(s.P);
   handoff.hits = leaf->hits;
   handoff.misses = leaf->misses;
   handoff.confirmed = leaf->score.status == TrackStatus::confirmed;
   handoff.class_probabilities.assign(leaf->classes.begin(), leaf->classes.end());
-  releases_.push_back(Release{current_tick_, track_id});
-  std::erase_if(current_, [&](const Leaf& l) { return l.tree == track_id; });
+  replay_.release(track_id);
   return handoff;
 }
 

@@ -22,6 +22,7 @@
 #include "supernode/engine.hpp"
 #include "supernode/sbmht/imm.hpp"
 #include "supernode/sbmht/track_score.hpp"
+#include "supernode/window_replay.hpp"
 
 namespace wsn::supernode::sbmht {
 
@@ -77,11 +78,11 @@ struct TrackClass {
 /// The parameters' one description: key, member, unit, range, default (SbmhtParams{}) and meaning.
 const config::FieldTable<SbmhtParams>& paramTable();
 
-/// Track-oriented MHT with window replay (as GNN): the engine keeps an anchor (its track trees after
-/// every tick that already left the window) and replays the window's ticks from it at every step, so
-/// a delayed report is processed at its generation tick as if it had been on time. Handoffs are events
-/// in that timeline (an adopted track enters at the tick after its last_tick, a released tree leaves
-/// after the tick it was released at).
+/// Track-oriented MHT with window replay (supernode/window_replay.hpp, shared with GNN): the engine
+/// keeps an anchor (its track trees after every tick that already left the window) and replays the
+/// window's ticks from it at every step, so a delayed report is processed at its generation tick as
+/// if it had been on time. Handoffs are events in that timeline (an adopted track enters at the tick
+/// after its last_tick, a released tree leaves after the tick it was released at).
 class SbmhtEngine final : public Engine {
  public:
   explicit SbmhtEngine(const EngineContext& context);
@@ -137,7 +138,7 @@ class SbmhtEngine final : public Engine {
   struct ReportTerms;
 
   /// Leaves at the newest tick, sorted by (tree, history).
-  const std::vector<Leaf>& leaves() const { return current_; }
+  const std::vector<Leaf>& leaves() const { return replay_.current(); }
   /// Clusters whose hypothesis search hit its node budget (the k best found so far were used).
   std::uint64_t truncatedSearches() const { return truncated_searches_; }
   std::uint64_t rejectedHandoffs() const { return rejected_handoffs_; }
@@ -146,15 +147,6 @@ class SbmhtEngine final : public Engine {
   std::uint64_t unusableReports() const { return unusable_reports_; }
 
  private:
-  struct Adoption {
-    std::int32_t tick = 0;  // first tick at which the tree takes part (handoff.last_tick + 1)
-    Leaf leaf;
-  };
-  struct Release {
-    std::int32_t tick = 0;  // the tree is gone after this tick
-    common::TrackId id = 0;
-  };
-
   /// The reports one sensor gave at a tick (all reports when the engine has no coverage).
   struct Scan {
     const common::SensorCoverage* coverage = nullptr;  ///< null: uniform detection_probability
@@ -214,8 +206,8 @@ class SbmhtEngine final : public Engine {
   void confirmByCount(Leaf& leaf) const;
   /// Clusters, k best hypotheses, P(T), hypothesis pruning and (at a tick's end) N-scan pruning.
   void manageHypotheses(std::vector<Leaf>& leaves, std::int32_t tick, bool n_scan_pruning);
-  void foldAnchorTo(std::int32_t tick);
-  static void inject(std::vector<Leaf>& leaves, const Leaf& leaf);
+  /// A handed-over leaf that should have joined at first_tick, brought up to the anchor at anchor_tick.
+  void catchUp(Leaf& leaf, std::int32_t first_tick, std::int32_t anchor_tick) const;
   /// The leaf that speaks for tree `tree` in leaves (best hypothesis, else most probable).
   static const Leaf* representative(const std::vector<Leaf>& leaves, common::TrackId tree);
 
@@ -242,15 +234,7 @@ class SbmhtEngine final : public Engine {
   SprtThresholds birth_tick_sprt_;
   double initial_score_ = 0.0;
   ModeVector initial_probabilities_;
-  bool started_ = false;
-  std::int32_t anchor_tick_ = 0;
-  std::vector<Leaf> anchor_;
-  std::int32_t current_tick_ = 0;
-  std::vector<Leaf> current_;
-  std::vector<Adoption> adoptions_;
-  std::vector<Release> releases_;
-  std::int32_t cached_oldest_tick_ = 0;
-  std::vector<std::vector<common::Observation>> cached_slots_;
+  WindowReplay<Leaf> replay_;
   std::uint64_t truncated_searches_ = 0;
   std::uint64_t rejected_handoffs_ = 0;
   std::uint64_t unusable_reports_ = 0;
