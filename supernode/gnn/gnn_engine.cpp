@@ -161,15 +161,8 @@ GnnEngine::GnnEngine(const EngineContext& context)
       region_(context.region),
       params_(GnnParams::fromContext(context)),
       model_(context.dynamics.delta, context.dynamics.process_noise_sigma,
-             params_.measurement_sigma) {}
-
-void GnnEngine::inject(std::vector<Track>& tracks, const Track& track) {
-  const auto it = std::lower_bound(tracks.begin(), tracks.end(), track, byId);
-  if (it != tracks.end() && it->id == track.id)
-    *it = track;  // a newer handoff of the same track supersedes what we had
-  else
-    tracks.insert(it, track);
-}
+             params_.measurement_sigma),
+      replay_(&Track::id, &byId) {}
 
 std::vector<int> GnnEngine::associate(const std::vector<Track>& tracks,
                                       std::span<const common::Observation> slot) const {
@@ -244,9 +237,7 @@ std::vector<int> GnnEngine::associate(const std::vector<Track>& tracks,
 
 void GnnEngine::processTick(std::vector<Track>& tracks, std::int32_t tick,
                             std::span<const common::Observation> slot) const {
-  // Handoffs whose state is at tick - 1 join before the scan, like every other track.
-  for (const auto& adoption : adoptions_)
-    if (adoption.tick == tick) inject(tracks, adoption.track);
+  // The replay put this tick's handoffs (state at tick - 1) into `tracks`: they are scanned like any other.
 
   // Oh et al., eq. (8): time update of every track.
   for (auto& track : tracks) track.state = common::predict(model_, track.state);
@@ -319,64 +310,23 @@ void GnnEngine::processTick(std::vector<Track>& tracks, std::int32_t tick,
     next.push_back(born);
   }
   std::sort(next.begin(), next.end(), byId);
-
-  for (const auto& release : releases_) {
-    if (release.tick != tick) continue;
-    const auto it = std::lower_bound(next.begin(), next.end(), Track{release.id, {}, 0, 0, false}, byId);
-    if (it != next.end() && it->id == release.id) next.erase(it);
-  }
   tracks = std::move(next);
 }
 
-void GnnEngine::foldAnchorTo(std::int32_t tick) {
-  for (std::int32_t t = anchor_tick_ + 1; t <= tick; ++t) {
-    std::span<const common::Observation> slot;
-    const std::int64_t index = std::int64_t{t} - cached_oldest_tick_;
-    if (index >= 0 && index < static_cast<std::int64_t>(cached_slots_.size()))
-      slot = cached_slots_[static_cast<std::size_t>(index)];
-    processTick(anchor_, t, slot);
-    anchor_tick_ = t;
-  }
-  std::erase_if(adoptions_, [&](const Adoption& a) { return a.tick <= anchor_tick_; });
-  std::erase_if(releases_, [&](const Release& r) { return r.tick <= anchor_tick_; });
-}
-
 void GnnEngine::step(const ObservationWindow& window) {
-  const std::int32_t newest = window.newestTick();
-  if (newest < 1) return;
-  const std::int32_t oldest = window.oldestTick();
-  if (!started_) {
-    started_ = true;
-    anchor_tick_ = oldest - 1;
-    cached_oldest_tick_ = oldest;
-  }
-
-  // A handoff too old to enter at its own tick enters the anchor, predicted up to it.
-  for (const auto& adoption : adoptions_) {
-    if (adoption.tick > anchor_tick_) continue;
-    Track track = adoption.track;
-    for (std::int32_t t = adoption.state_tick; t < anchor_tick_; ++t) track.state = common::predict(model_, track.state);
-    inject(anchor_, track);
-  }
-  std::erase_if(adoptions_, [&](const Adoption& a) { return a.tick <= anchor_tick_; });
-
-  foldAnchorTo(oldest - 1);
-
   // Replay the window from the anchor: a late observation now sits in its own slot. A model that
   // reports every detecting sensor has each tick's reports merged first (merge_radius).
   std::optional<ObservationWindow> merged;
   if (params_.merge_radius > 0.0) merged = window.merged(params_.merge_radius);
-  const ObservationWindow& replayed = merged ? *merged : window;
-  current_ = anchor_;
-  for (std::int32_t t = oldest; t <= newest; ++t) processTick(current_, t, replayed.slot(t));
-  current_tick_ = newest;
-
-  cached_oldest_tick_ = oldest;
-  cached_slots_.clear();
-  for (std::int32_t t = oldest; t <= newest; ++t) {
-    const auto slot = replayed.slot(t);
-    cached_slots_.emplace_back(slot.begin(), slot.end());
-  }
+  replay_.step(
+      merged ? *merged : window,
+      [this](std::vector<Track>& tracks, std::int32_t tick, std::span<const common::Observation> slot) {
+        processTick(tracks, tick, slot);
+      },
+      // A handoff too old to enter at its own tick enters the anchor, predicted up to it.
+      [this](Track& track, std::int32_t first_tick, std::int32_t anchor_tick) {
+        for (std::int32_t t = first_tick; t <= anchor_tick; ++t) track.state = common::predict(model_, track.state);
+      });
 }
 
 void GnnEngine::adopt(const common::TrackHandoff& handoff) {
@@ -392,23 +342,23 @@ void GnnEngine::adopt(const common::TrackHandoff& handoff) {
   track.hits = handoff.hits;
   track.misses = handoff.misses;
   track.confirmed = handoff.confirmed;
-  adoptions_.push_back(Adoption{handoff.last_tick + 1, handoff.last_tick, track});
+  replay_.adopt(handoff.last_tick + 1, track);
 }
 
 std::vector<common::TrackEstimate> GnnEngine::confirmedTracks() const {
   std::vector<common::TrackEstimate> out;
-  for (const auto& track : current_) {
+  for (const auto& track : replay_.current()) {
     if (!track.confirmed) continue;
     const auto& x = track.state.x;
-    out.push_back({track.id, x(kX), x(kY), x(kVx), x(kVy), common::toRowMajor(track.state.P), current_tick_ - track.misses, {}, {}});
+    out.push_back({track.id, x(kX), x(kY), x(kVx), x(kVy), common::toRowMajor(track.state.P), replay_.currentTick() - track.misses, {}, {}});
   }
   return out;
 }
 
 std::vector<TrackPrediction> GnnEngine::predictions() const {
   std::vector<TrackPrediction> out;
-  out.reserve(current_.size());
-  for (const auto& track : current_) {
+  out.reserve(replay_.current().size());
+  for (const auto& track : replay_.current()) {
     const common::StateVector next = model_.F * track.state.x;
     out.push_back({track.id, {next(kX), next(kY)}});
   }
@@ -416,20 +366,20 @@ std::vector<TrackPrediction> GnnEngine::predictions() const {
 }
 
 common::TrackHandoff GnnEngine::release(common::TrackId track_id, std::uint32_t to_supernode) {
-  const auto it = std::lower_bound(current_.begin(), current_.end(), Track{track_id, {}, 0, 0, false}, byId);
-  if (it == current_.end() || it->id != track_id)
+  const auto& tracks = replay_.current();
+  const auto it = std::lower_bound(tracks.begin(), tracks.end(), Track{track_id, {}, 0, 0, false}, byId);
+  if (it == tracks.end() || it->id != track_id)
     throw std::invalid_argument("gnn: release of unknown track " + std::to_string(track_id));
   common::TrackHandoff handoff;
   handoff.track = track_id;
   handoff.to_supernode = to_supernode;
-  handoff.last_tick = current_tick_;
+  handoff.last_tick = replay_.currentTick();
   for (int r = 0; r < common::kStateDim; ++r) handoff.state[static_cast<std::size_t>(r)] = it->state.x(r);
   handoff.covariance = common::toRowMajor(it->state.P);
   handoff.hits = it->hits;
   handoff.misses = it->misses;
   handoff.confirmed = it->confirmed;
-  releases_.push_back(Release{current_tick_, track_id});
-  current_.erase(it);
+  replay_.release(track_id);
   return handoff;
 }
 
