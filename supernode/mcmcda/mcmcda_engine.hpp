@@ -4,13 +4,13 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "supernode/engine.hpp"
-#include "supernode/mcmcda/mcmcda_params.hpp"
 #include "supernode/mcmcda/live_track.hpp"
+#include "supernode/mcmcda/mcmcda_params.hpp"
 #include "supernode/mcmcda/problem.hpp"
 #include "supernode/mcmcda/sampler.hpp"
 #include "supernode/mcmcda/start_state.hpp"
