@@ -70,15 +70,23 @@ struct SensorMeasurement {
   std::int32_t empty_ticks = 0;
 };
 
-/// Runs the scenario's sensor model over its whole field as one tile, with probe targets on a
-/// jittered lattice far enough apart that their reports never mix, and compares the reports
-/// with them.
-SensorMeasurement measureSensorModel(const common::Scenario& scenario, const common::SensorLayout& layout,
-                                     double rms_speed) {
-  const common::SensorLayoutConfig& placement = scenario.sensors;
-  const auto tiles = node::makeTiles(layout, 1);
-  const common::Rect& region = scenario.region;
+/// Where the probe targets go: a lattice of nx x ny cells over the region less a margin, one probe
+/// per cell jittered by up to `jitter`, for `generations` generations.
+struct ProbeLattice {
+  double jitter = 0.0;
+  double margin = 0.0;
+  std::int64_t nx = 1;
+  std::int64_t ny = 1;
+  double cell_x = 0.0;
+  double cell_y = 0.0;
+  std::int32_t generations = 0;
+};
 
+/// Probes far enough apart that their reports never mix, and enough generations of them for
+/// kWantedSamples scored samples.
+ProbeLattice probeLattice(const common::Scenario& scenario, double rms_speed) {
+  const common::SensorLayoutConfig& placement = scenario.sensors;
+  const common::Rect& region = scenario.region;
   double reach = scenario.sensor_model.sensing_range;
   for (const auto& t : scenario.targets.scripted) reach = std::max(reach, t.sensing_range);
   const double spacing = placement.kind == common::SensorLayoutConfig::Kind::kGrid
@@ -86,67 +94,91 @@ SensorMeasurement measureSensorModel(const common::Scenario& scenario, const com
                              : std::sqrt(region.area() / std::max<double>(1.0, placement.count));
   // Reports of two probes must never interact: Oh eq. 6 elects over 2 Rs, so keep 5 Rs between
   // probes plus the jitter that moves each over a whole sensor cell.
-  const double jitter = std::max(spacing, reach);
-  const double pitch = 5.0 * reach + 2.0 * jitter + rms_speed * kProbeLife;
-  const double margin = reach;
+  ProbeLattice lattice;
+  lattice.jitter = std::max(spacing, reach);
+  const double pitch = 5.0 * reach + 2.0 * lattice.jitter + rms_speed * kProbeLife;
+  lattice.margin = reach;
   const auto fit = [&](double extent) {
-    return std::max<std::int64_t>(1, std::llround(std::floor((extent - 2 * margin) / pitch)));
+    return std::max<std::int64_t>(1, std::llround(std::floor((extent - 2 * lattice.margin) / pitch)));
   };
-  const std::int64_t nx = fit(region.width());
-  const std::int64_t ny = fit(region.height());
-  const double cell_x = (region.width() - 2 * margin) / static_cast<double>(nx);
-  const double cell_y = (region.height() - 2 * margin) / static_cast<double>(ny);
-  const auto per_generation = static_cast<double>(nx * ny * (kProbeLife - 1));
-  const auto generations =
+  lattice.nx = fit(region.width());
+  lattice.ny = fit(region.height());
+  lattice.cell_x = (region.width() - 2 * lattice.margin) / static_cast<double>(lattice.nx);
+  lattice.cell_y = (region.height() - 2 * lattice.margin) / static_cast<double>(lattice.ny);
+  const auto per_generation = static_cast<double>(lattice.nx * lattice.ny * (kProbeLife - 1));
+  lattice.generations =
       static_cast<std::int32_t>(std::clamp(std::ceil(kWantedSamples / per_generation), 4.0, 400.0));
+  return lattice;
+}
 
-  // Each generation is a simulation of its own, kGenerationTicks long with its own noise seed:
-  // a model's cost per tick may grow with every target it was ever given (the acoustic model
-  // keeps each target's trajectory), so the probes of one generation never meet the others.
-  SensorMeasurement m;
-  double squared_error = 0.0;
-  std::size_t clutter = 0;
-  std::int32_t empty_ticks = 0;
-  struct ScoredTick {
-    std::vector<common::Report> reports;
-    std::vector<common::TargetState> targets;
-  };
+/// Generation g's simulation: kGenerationTicks long with its own noise seed, one straight-moving
+/// probe per lattice cell, at its jittered aim at its first scored tick.
+common::TruthConfig probeGeneration(const common::Scenario& scenario, const ProbeLattice& lattice, std::int32_t g,
+                                    double rms_speed) {
+  const common::Rect& region = scenario.region;
+  common::TruthConfig truth_config;
+  truth_config.region = region;
+  truth_config.dynamics = scenario.dynamics;
+  truth_config.dynamics.process_noise_sigma = 0.0;  // probes move straight: only the sensors are measured
+  truth_config.seed = kProbeSeed + static_cast<std::uint64_t>(g);
+  truth_config.ticks = kGenerationTicks;
+  std::vector<common::TargetSpec>& probes = truth_config.targets.scripted;
+  common::Stream stream(kProbeSeed, common::Purpose::kDerivationProbe, static_cast<std::uint64_t>(g), 0);
+  const double jitter = lattice.jitter;
+  const double cell_x = lattice.cell_x;
+  const double cell_y = lattice.cell_y;
+  for (std::int64_t i = 0; i < lattice.nx; ++i)
+    for (std::int64_t j = 0; j < lattice.ny; ++j) {
+      const double cx = region.x_min + lattice.margin + (static_cast<double>(i) + 0.5) * cell_x;
+      const double cy = region.y_min + lattice.margin + (static_cast<double>(j) + 0.5) * cell_y;
+      const common::Vec2 aim{cx + stream.uniform(-jitter, jitter) * std::min(1.0, 0.5 * cell_x / (jitter + 1e-12)),
+                             cy + stream.uniform(-jitter, jitter) * std::min(1.0, 0.5 * cell_y / (jitter + 1e-12))};
+      const double heading = stream.uniform(0.0, 2.0 * std::numbers::pi);
+      const common::Vec2 v{rms_speed * std::cos(heading), rms_speed * std::sin(heading)};
+      common::TargetSpec probe;  // at `aim` at its first scored tick
+      probe.appear_tick = 1;
+      probe.disappear_tick = 1 + kProbeLife;
+      probe.position = {aim.x - v.x, aim.y - v.y};
+      probe.velocity = v;
+      if (!scenario.targets.scripted.empty())  // loud and quiet targets in the scenario's mix
+        probe.sensing_range =
+            scenario.targets.scripted[static_cast<std::size_t>(g * lattice.nx * lattice.ny + i * lattice.ny + j) %
+                                      scenario.targets.scripted.size()]
+                .sensing_range;
+      probes.push_back(probe);
+    }
+  return truth_config;
+}
+
+/// One tick on which every probe was live and had been for a tick: its reports and the truth.
+struct ScoredTick {
+  std::vector<common::Report> reports;
+  std::vector<common::TargetState> targets;
+};
+
+/// What the sensor model reported over every generation of probes.
+struct ProbeReports {
   std::vector<ScoredTick> scored;
-  for (std::int32_t g = 0; g < generations; ++g) {
-    const std::uint64_t seed = kProbeSeed + static_cast<std::uint64_t>(g);
-    common::TruthConfig truth_config;
-    truth_config.region = region;
-    truth_config.dynamics = scenario.dynamics;
-    truth_config.dynamics.process_noise_sigma = 0.0;  // probes move straight: only the sensors are measured
-    truth_config.seed = seed;
-    truth_config.ticks = kGenerationTicks;
-    std::vector<common::TargetSpec>& probes = truth_config.targets.scripted;
-    common::Stream stream(kProbeSeed, common::Purpose::kDerivationProbe, static_cast<std::uint64_t>(g), 0);
-    for (std::int64_t i = 0; i < nx; ++i)
-      for (std::int64_t j = 0; j < ny; ++j) {
-        const double cx = region.x_min + margin + (static_cast<double>(i) + 0.5) * cell_x;
-        const double cy = region.y_min + margin + (static_cast<double>(j) + 0.5) * cell_y;
-        const common::Vec2 aim{cx + stream.uniform(-jitter, jitter) * std::min(1.0, 0.5 * cell_x / (jitter + 1e-12)),
-                               cy + stream.uniform(-jitter, jitter) * std::min(1.0, 0.5 * cell_y / (jitter + 1e-12))};
-        const double heading = stream.uniform(0.0, 2.0 * std::numbers::pi);
-        const common::Vec2 v{rms_speed * std::cos(heading), rms_speed * std::sin(heading)};
-        common::TargetSpec probe;  // at `aim` at its first scored tick
-        probe.appear_tick = 1;
-        probe.disappear_tick = 1 + kProbeLife;
-        probe.position = {aim.x - v.x, aim.y - v.y};
-        probe.velocity = v;
-        if (!scenario.targets.scripted.empty())  // loud and quiet targets in the scenario's mix
-          probe.sensing_range =
-              scenario.targets.scripted[static_cast<std::size_t>(g * nx * ny + i * ny + j) %
-                                        scenario.targets.scripted.size()]
-                  .sensing_range;
-        probes.push_back(probe);
-      }
+  std::size_t clutter = 0;  ///< false reports on the ticks without probes
+  std::int32_t empty_ticks = 0;
+  std::int32_t ticks = 0;
+};
+
+/// Runs the scenario's sensor model over its whole field as one tile, generation by generation.
+/// Each generation is a simulation of its own: a model's cost per tick may grow with every target
+/// it was ever given (the acoustic model keeps each target's trajectory), so the probes of one
+/// generation never meet the others.
+ProbeReports runProbes(const common::Scenario& scenario, const common::SensorLayout& layout, double rms_speed) {
+  const auto tiles = node::makeTiles(layout, 1);
+  const ProbeLattice lattice = probeLattice(scenario, rms_speed);
+  ProbeReports out;
+  for (std::int32_t g = 0; g < lattice.generations; ++g) {
+    const common::TruthConfig truth_config = probeGeneration(scenario, lattice, g, rms_speed);
     const common::Truth truth(truth_config);
-    const node::TileContext context{scenario.sensor_model, seed, probes, layout, tiles.front(), truth,
-                                    &scenario.terrain};
+    const node::TileContext context{scenario.sensor_model, truth_config.seed, truth_config.targets.scripted, layout,
+                                    tiles.front(), truth, &scenario.terrain};
     const auto sensors = node::makeTileSensors(context);
-    m.ticks += truth_config.ticks;
+    out.ticks += truth_config.ticks;
     for (std::int32_t tick = 1; tick <= truth_config.ticks; ++tick) {
       (void)sensors->sense(tick);
       auto reports = sensors->report(tick, {});
@@ -154,19 +186,21 @@ SensorMeasurement measureSensorModel(const common::Scenario& scenario, const com
       if (phase >= kProbeLife) {
         // Only reports of no target: a model with propagation delay (sound) still hears the
         // probes that just ended, and those reports name them.
-        clutter += static_cast<std::size_t>(std::count_if(
+        out.clutter += static_cast<std::size_t>(std::count_if(
             reports.begin(), reports.end(), [](const common::Report& r) { return r.target == common::kFalseAlarm; }));
-        ++empty_ticks;
+        ++out.empty_ticks;
       }
-      if (phase >= 1 && phase < kProbeLife) scored.push_back({std::move(reports), truth.at(tick)});
+      if (phase >= 1 && phase < kProbeLife) out.scored.push_back({std::move(reports), truth.at(tick)});
     }
   }
+  return out;
+}
 
-  // A model that reports a target more than once a tick (every detecting sensor, unfused) is
-  // merged before tracking: the radius that joins one target's reports to its strongest one (at
-  // the 95th percentile of target-ticks), and the errors below are those of the merged reports.
-  // Only positions count: a report of another kind is never merged (common::mergeNearby), and a
-  // bearing or radar plot lies at its sensor, not at its target.
+/// A model that reports a target more than once a tick (every detecting sensor, unfused) is
+/// merged before tracking: the radius that joins one target's reports to its strongest one (at
+/// the 95th percentile of target-ticks). Only positions count: a report of another kind is never
+/// merged (common::mergeNearby), and a bearing or radar plot lies at its sensor, not at its target.
+void measureMerging(const std::vector<ScoredTick>& scored, SensorMeasurement& m) {
   std::size_t labelled = 0, targets_heard = 0;
   std::vector<double> joining;
   for (const auto& tick : scored) {
@@ -188,7 +222,12 @@ SensorMeasurement measureSensorModel(const common::Scenario& scenario, const com
     const auto rank = static_cast<std::size_t>(std::ceil(0.95 * static_cast<double>(joining.size())));
     m.merge_radius = joining[std::clamp<std::size_t>(rank, 1, joining.size()) - 1];
   }
+}
 
+/// The share of probe samples with a report and the rms error per axis of each probe's nearest
+/// report, after merging with m.merge_radius.
+void measureDetection(const std::vector<ScoredTick>& scored, SensorMeasurement& m) {
+  double squared_error = 0.0;
   for (const auto& tick : scored) {
     const std::vector<common::Report> reports =
         common::mergeNearby(std::span<const common::Report>(tick.reports), m.merge_radius);
@@ -216,13 +255,25 @@ SensorMeasurement measureSensorModel(const common::Scenario& scenario, const com
   }
   m.sensing_probability = m.samples > 0 ? static_cast<double>(m.detected) / static_cast<double>(m.samples) : 0.0;
   m.position_sigma = m.detected > 0 ? std::sqrt(squared_error / (2.0 * static_cast<double>(m.detected))) : 0.0;
+}
+
+/// Runs the scenario's sensor model over its whole field as one tile, with probe targets on a
+/// jittered lattice far enough apart that their reports never mix, and compares the reports
+/// with them.
+SensorMeasurement measureSensorModel(const common::Scenario& scenario, const common::SensorLayout& layout,
+                                     double rms_speed) {
+  const ProbeReports probes = runProbes(scenario, layout, rms_speed);
+  SensorMeasurement m;
+  m.ticks = probes.ticks;
+  measureMerging(probes.scored, m);
+  measureDetection(probes.scored, m);
   // None seen is not none: with no false report in n ticks, the rate is below 3 per n ticks with
   // 95 % confidence (the rule of three), and that bound is what the model may rely on. A density
   // of exactly 0 also makes an engine's posterior brittle: one report that fits no track then
   // costs without limit (MCMCDA at pde = 0.6 lost most targets at lambda_f = 1e-12).
-  m.false_report_density =
-      static_cast<double>(std::max<std::size_t>(clutter, 3)) / (region.area() * static_cast<double>(empty_ticks));
-  m.empty_ticks = empty_ticks;
+  m.false_report_density = static_cast<double>(std::max<std::size_t>(probes.clutter, 3)) /
+                           (scenario.region.area() * static_cast<double>(probes.empty_ticks));
+  m.empty_ticks = probes.empty_ticks;
   return m;
 }
 

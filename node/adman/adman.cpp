@@ -5,6 +5,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -264,41 +265,32 @@ double viewReach(const MlmcSettings& settings) {
   return ranges * settings.interaction_range + sweep_one + settings.neighbours.n8() + settings.neighbours.n4();
 }
 
-std::vector<Placement> place(std::span<const Reading> view, std::span<const Attachment> attachments,
-                             std::span<const std::size_t> attached, std::int32_t tick, const MlmcSettings& settings) {
-  if (settings.particles < 1) throw std::invalid_argument("adman place: particles must be >= 1");
-  if (settings.sweeps < 1 || settings.sweeps > kMaxSweeps)
-    throw std::invalid_argument("adman place: sweeps must be in [1, " + std::to_string(kMaxSweeps) + "]");
-  const ViewIndex index(view, settings.neighbours.n8());
-  const std::size_t count = attachments.size();
-  std::vector<common::Vec2> sensor_at(count);
-  for (std::size_t a = 0; a < count; ++a) sensor_at[a] = view[indexOf(view, attachments[a].sensor)].at;
+namespace {
 
-  // Each attachment's block, and the others that enter its likelihood, on demand.
-  std::vector<std::vector<std::size_t>> blocks(count);
-  std::vector<bool> block_known(count, false);
-  const auto blockOf = [&](std::size_t a) -> const std::vector<std::size_t>& {
-    if (!block_known[a]) {
-      blocks[a] = index.within(sensor_at[a], settings.neighbours.n8());
-      block_known[a] = true;
-    }
-    return blocks[a];
-  };
-  const auto othersOf = [&](std::size_t a) {
-    std::vector<std::size_t> others;
-    const double r2 = settings.interaction_range * settings.interaction_range;
-    for (std::size_t b = 0; b < count; ++b)
-      if (b != a && common::squaredDistance(sensor_at[a], sensor_at[b]) <= r2) others.push_back(b);
-    return others;
-  };
-  const auto streamKey = [tick](std::int32_t sweep) { return static_cast<std::int64_t>(tick) * kStreamsPerTick + sweep; };
+/// One call of place(): the view and its attachments, with each attached sensor's block (the
+/// view's readings within n8()) and others (the attached sensors within the interaction range)
+/// found on demand and kept.
+class Placer {
+ public:
+  Placer(std::span<const Reading> view, std::span<const Attachment> attachments, std::int32_t tick,
+         const MlmcSettings& settings)
+      : view_(view),
+        attachments_(attachments),
+        tick_(tick),
+        settings_(settings),
+        index_(view, settings.neighbours.n8()),
+        sensor_at_(attachments.size()),
+        blocks_(attachments.size()),
+        others_(attachments.size()) {
+    for (std::size_t a = 0; a < attachments.size(); ++a) sensor_at_[a] = view[indexOf(view, attachments[a].sensor)].at;
+  }
 
-  std::vector<Placement> out;
-  if (settings.joint) {
-    // [A]'s eq. (15): P joint particles over the target and the targets around it.
+  /// [A]'s eq. (15): P joint particles over the target and the targets around it.
+  std::vector<Placement> joint(std::span<const std::size_t> attached) {
+    std::vector<Placement> out;
     for (const std::size_t a : attached) {
       std::vector<std::size_t> group{a};
-      for (const std::size_t b : othersOf(a)) group.push_back(b);
+      for (const std::size_t b : others(a)) group.push_back(b);
       std::vector<std::size_t> block;
       for (const std::size_t g : group) {
         const auto& own = blockOf(g);
@@ -307,87 +299,135 @@ std::vector<Placement> place(std::span<const Reading> view, std::span<const Atta
       std::sort(block.begin(), block.end());
       block.erase(std::unique(block.begin(), block.end()), block.end());
       const std::vector<double> nothing(block.size(), 0.0);
-      common::Stream draw(settings.seed, common::Purpose::kMlmcParticles, attachments[a].sensor, streamKey(kJointStream));
-      std::vector<std::vector<common::Vec2>> candidates(static_cast<std::size_t>(settings.particles));
+      common::Stream draw(settings_.seed, common::Purpose::kMlmcParticles, attachments_[a].sensor,
+                          streamKey(kJointStream));
+      std::vector<std::vector<common::Vec2>> candidates(static_cast<std::size_t>(settings_.particles));
       std::vector<double> scores(candidates.size());
       for (std::size_t p = 0; p < candidates.size(); ++p) {
-        for (const std::size_t g : group)
-          candidates[p].push_back(
-              uniformInDisc(draw, sensor_at[g], samplingRadius(attachments[g].kind, settings.inside_radius)));
-        scores[p] = blockLogLikelihood(view, block, nothing, candidates[p], settings.power, settings.sigma_db);
+        for (const std::size_t g : group) candidates[p].push_back(drawAround(draw, g));
+        scores[p] = blockLogLikelihood(view_, block, nothing, candidates[p], settings_.power, settings_.sigma_db);
       }
-      const Best best = bestOf(candidates, scores, 0, cloudResolution(attachments[a].kind, settings));
-      out.push_back({attachments[a], candidates[best.index][0], best.cov_xx, best.cov_xy, best.cov_yy,
-                     scores[best.index]});
+      out.push_back(best(a, candidates, scores));
     }
     return out;
   }
 
-  // Factorised: sweep s places each target on its own block with the others at sweep s - 1. The
-  // targets each sweep needs: the asked ones at the last, and the others of those a sweep earlier.
-  const auto sweeps = static_cast<std::size_t>(settings.sweeps);
-  std::vector<std::vector<bool>> needed(sweeps + 1, std::vector<bool>(count, false));
-  for (const std::size_t a : attached) needed[sweeps][a] = true;
-  std::vector<std::vector<std::size_t>> others(count);
-  std::vector<bool> others_known(count, false);
-  for (std::size_t s = sweeps; s > 1; --s)
-    for (std::size_t a = 0; a < count; ++a) {
-      if (!needed[s][a]) continue;
-      needed[s - 1][a] = true;  // its own last estimate is a candidate of sweep s
-      if (!others_known[a]) {
-        others[a] = othersOf(a);
-        others_known[a] = true;
+  /// Factorised: sweep s places each target on its own block with the others at sweep s - 1.
+  std::vector<Placement> factorised(std::span<const std::size_t> attached) {
+    const auto sweeps = static_cast<std::size_t>(settings_.sweeps);
+    const std::vector<std::vector<bool>> needed = neededAtSweeps(attached);
+    std::vector<Placement> previous(sensor_at_.size()), current(sensor_at_.size());
+    for (std::size_t s = 1; s <= sweeps; ++s) {
+      for (std::size_t a = 0; a < sensor_at_.size(); ++a)
+        if (needed[s][a]) current[a] = placeAtSweep(a, static_cast<std::int32_t>(s), previous);
+      std::swap(previous, current);
+    }
+    std::vector<Placement> out;
+    for (const std::size_t a : attached) out.push_back(previous[a]);
+    return out;
+  }
+
+ private:
+  /// The targets each sweep needs (index 1..sweeps): the asked ones at the last, and the others of
+  /// those a sweep earlier.
+  std::vector<std::vector<bool>> neededAtSweeps(std::span<const std::size_t> attached) {
+    const auto sweeps = static_cast<std::size_t>(settings_.sweeps);
+    const std::size_t count = sensor_at_.size();
+    std::vector<std::vector<bool>> needed(sweeps + 1, std::vector<bool>(count, false));
+    for (const std::size_t a : attached) needed[sweeps][a] = true;
+    for (std::size_t s = sweeps; s > 1; --s)
+      for (std::size_t a = 0; a < count; ++a) {
+        if (!needed[s][a]) continue;
+        needed[s - 1][a] = true;  // its own last estimate is a candidate of sweep s
+        for (const std::size_t b : others(a)) needed[s - 1][b] = true;
       }
-      for (const std::size_t b : others[a]) needed[s - 1][b] = true;
-    }
-  const auto othersKnown = [&](std::size_t a) -> const std::vector<std::size_t>& {
-    if (!others_known[a]) {
-      others[a] = othersOf(a);
-      others_known[a] = true;
-    }
-    return others[a];
-  };
-  // Sweep 1 knows nothing of the others yet: it scores only the block sensors no nearer to another
-  // attached sensor than to its own, so that a neighbour's target does not pull it over.
-  const auto ownShare = [&](std::size_t a) {
+    return needed;
+  }
+
+  /// Target a at sweep s, the others held at their estimates of sweep s - 1 (`previous`).
+  Placement placeAtSweep(std::size_t a, std::int32_t s, const std::vector<Placement>& previous) {
+    const std::vector<std::size_t> block = s == 1 ? ownShare(a) : blockOf(a);
+    std::vector<double> fixed(block.size(), 0.0);
+    if (s > 1)
+      for (std::size_t k = 0; k < block.size(); ++k)
+        for (const std::size_t b : others(a))
+          fixed[k] += settings_.power.linearAt(common::distance(view_[block[k]].at, previous[b].at));
+    common::Stream draw(settings_.seed, common::Purpose::kMlmcParticles, attachments_[a].sensor, streamKey(s));
+    std::vector<std::vector<common::Vec2>> candidates;
+    candidates.reserve(static_cast<std::size_t>(settings_.particles) + 1);
+    for (std::int32_t p = 0; p < settings_.particles; ++p) candidates.push_back({drawAround(draw, a)});
+    if (s > 1) candidates.push_back({previous[a].at});  // a later sweep never loses the best so far
+    std::vector<double> scores(candidates.size());
+    for (std::size_t p = 0; p < candidates.size(); ++p)
+      scores[p] = blockLogLikelihood(view_, block, fixed, candidates[p], settings_.power, settings_.sigma_db);
+    return best(a, candidates, scores);
+  }
+
+  /// Sweep 1 knows nothing of the others yet: it scores only the block sensors no nearer to another
+  /// attached sensor than to its own, so that a neighbour's target does not pull it over.
+  std::vector<std::size_t> ownShare(std::size_t a) {
     std::vector<std::size_t> share;
     for (const std::size_t m : blockOf(a)) {
-      const double own = common::squaredDistance(view[m].at, sensor_at[a]);
+      const double own = common::squaredDistance(view_[m].at, sensor_at_[a]);
       bool mine = true;
-      for (const std::size_t b : othersKnown(a))
-        if (common::squaredDistance(view[m].at, sensor_at[b]) < own) mine = false;
+      for (const std::size_t b : others(a))
+        if (common::squaredDistance(view_[m].at, sensor_at_[b]) < own) mine = false;
       if (mine) share.push_back(m);
     }
     return share;
-  };
-  std::vector<Placement> previous(count), current(count);
-  for (std::size_t s = 1; s <= sweeps; ++s) {
-    for (std::size_t a = 0; a < count; ++a) {
-      if (!needed[s][a]) continue;
-      const std::vector<std::size_t> block = s == 1 ? ownShare(a) : blockOf(a);
-      std::vector<double> fixed(block.size(), 0.0);
-      if (s > 1)
-        for (std::size_t k = 0; k < block.size(); ++k)
-          for (const std::size_t b : others[a]) fixed[k] += settings.power.linearAt(common::distance(view[block[k]].at, previous[b].at));
-      common::Stream draw(settings.seed, common::Purpose::kMlmcParticles, attachments[a].sensor,
-                          streamKey(static_cast<std::int32_t>(s)));
-      std::vector<std::vector<common::Vec2>> candidates;
-      candidates.reserve(static_cast<std::size_t>(settings.particles) + 1);
-      for (std::int32_t p = 0; p < settings.particles; ++p)
-        candidates.push_back(
-            {uniformInDisc(draw, sensor_at[a], samplingRadius(attachments[a].kind, settings.inside_radius))});
-      if (s > 1) candidates.push_back({previous[a].at});  // a later sweep never loses the best so far
-      std::vector<double> scores(candidates.size());
-      for (std::size_t p = 0; p < candidates.size(); ++p)
-        scores[p] = blockLogLikelihood(view, block, fixed, candidates[p], settings.power, settings.sigma_db);
-      const Best best = bestOf(candidates, scores, 0, cloudResolution(attachments[a].kind, settings));
-      current[a] = {attachments[a], candidates[best.index][0], best.cov_xx, best.cov_xy, best.cov_yy,
-                    scores[best.index]};
-    }
-    std::swap(previous, current);
   }
-  for (const std::size_t a : attached) out.push_back(previous[a]);
-  return out;
+
+  const std::vector<std::size_t>& blockOf(std::size_t a) {
+    if (!blocks_[a]) blocks_[a] = index_.within(sensor_at_[a], settings_.neighbours.n8());
+    return *blocks_[a];
+  }
+
+  const std::vector<std::size_t>& others(std::size_t a) {
+    if (!others_[a]) {
+      std::vector<std::size_t> found;
+      const double r2 = settings_.interaction_range * settings_.interaction_range;
+      for (std::size_t b = 0; b < sensor_at_.size(); ++b)
+        if (b != a && common::squaredDistance(sensor_at_[a], sensor_at_[b]) <= r2) found.push_back(b);
+      others_[a] = std::move(found);
+    }
+    return *others_[a];
+  }
+
+  /// A particle for the target attached at a, uniform over its attachment's sampling disc.
+  common::Vec2 drawAround(common::Stream& draw, std::size_t a) const {
+    return uniformInDisc(draw, sensor_at_[a], samplingRadius(attachments_[a].kind, settings_.inside_radius));
+  }
+
+  /// The placement of the target attached at a by the best of `candidates` (its first component).
+  Placement best(std::size_t a, const std::vector<std::vector<common::Vec2>>& candidates,
+                 const std::vector<double>& scores) const {
+    const Best b = bestOf(candidates, scores, 0, cloudResolution(attachments_[a].kind, settings_));
+    return {attachments_[a], candidates[b.index][0], b.cov_xx, b.cov_xy, b.cov_yy, scores[b.index]};
+  }
+
+  std::int64_t streamKey(std::int32_t sweep) const {
+    return static_cast<std::int64_t>(tick_) * kStreamsPerTick + sweep;
+  }
+
+  std::span<const Reading> view_;
+  std::span<const Attachment> attachments_;
+  std::int32_t tick_;
+  const MlmcSettings& settings_;
+  ViewIndex index_;
+  std::vector<common::Vec2> sensor_at_;
+  std::vector<std::optional<std::vector<std::size_t>>> blocks_;
+  std::vector<std::optional<std::vector<std::size_t>>> others_;
+};
+
+}  // namespace
+
+std::vector<Placement> place(std::span<const Reading> view, std::span<const Attachment> attachments,
+                             std::span<const std::size_t> attached, std::int32_t tick, const MlmcSettings& settings) {
+  if (settings.particles < 1) throw std::invalid_argument("adman place: particles must be >= 1");
+  if (settings.sweeps < 1 || settings.sweeps > kMaxSweeps)
+    throw std::invalid_argument("adman place: sweeps must be in [1, " + std::to_string(kMaxSweeps) + "]");
+  Placer placer(view, attachments, tick, settings);
+  return settings.joint ? placer.joint(attached) : placer.factorised(attached);
 }
 
 }  // namespace wsn::node::adman

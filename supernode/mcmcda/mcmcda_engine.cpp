@@ -3,18 +3,14 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <map>
 #include <memory>
 #include <optional>
-#include <set>
-#include <span>
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <utility>
 
 #include "common/rng.hpp"
-#include "common/shared_derivations.hpp"
-#include "common/track_confirmation.hpp"
 #include "common/track_id.hpp"
 
 namespace wsn::supernode::mcmcda {
@@ -54,116 +50,7 @@ common::TrackEstimate estimate(common::TrackId id, const TrackState& s, std::int
   return {id, s.x, s.y, s.vx, s.vy, fullCovariance(s.cov), last_seen_tick, {}, {}};
 }
 
-using common::Derived;
-using common::shortNumber;
-using Statistics = common::ObservationStatistics;
-using Resolved = std::map<std::string, common::EngineParam>;
-
-/// A run of misses this rare ends a track.
-constexpr double kRareMissRun = 0.01;
-
-/// The model of eq. (3) follows the scenario: each parameter with a physical meaning is measured
-/// on the scenario's own sensor, network and target models (observation_model/).
-std::map<std::string, common::ParamDerivation> derivations() {
-  std::map<std::string, common::ParamDerivation> d;
-  d["detection_probability"] = {
-      "the sensor model's sensing probability x the network's delivery into the window",
-      [](const common::StatisticsSource& stats, const Resolved&) {
-        const Statistics& s = stats();
-        return Derived{s.detectionProbability(), shortNumber(s.sensing_probability.value) + " sensed (" +
-                                                     s.sensing_probability.how + ") x " +
-                                                     shortNumber(s.delivery_probability.value) + " delivered (" +
-                                                     s.delivery_probability.how + ")"};
-      }};
-  d["termination_probability"] = common::terminationDerivation();
-  d["birth_density"] = common::birthDensityDerivation();
-  d["false_alarm_density"] = {
-      "the sensor model's false reports x the network's delivery",
-      [](const common::StatisticsSource& stats, const Resolved&) {
-        const Statistics& s = stats();
-        return Derived{s.falseAlarmDensity(), shortNumber(s.false_report_density.value) + " reported (" +
-                                                  s.false_report_density.how + ") x " +
-                                                  shortNumber(s.delivery_probability.value) + " delivered"};
-      }};
-  d["measurement_sigma"] = common::reportErrorDerivation();
-  d["merge_radius"] = common::mergeRadiusDerivation();
-  d["initial_velocity_sigma"] = common::newTrackVelocityDerivation();
-  d["max_speed"] = common::linkSpeedDerivation();
-  d["max_gap"] = {"ticks until a run of misses at the newest tick (sensed and not delayed) is rarer than 1 %, at "
-                  "most window_size",
-                  [](const common::StatisticsSource& stats, const Resolved&) {
-                    const Statistics& s = stats();
-                    // Judged at the live edge, where a delayed report has not arrived yet: a
-                    // track whose reports are late must still be continued and reported.
-                    const double pd = s.onTimeDetectionProbability();
-                    return Derived{static_cast<double>(common::rareMissRun(pd, kRareMissRun, s.window_size)),
-                                   "smallest k with (1 - pd)^k <= 0.01 at pd " + shortNumber(pd) +
-                                       " on time, at most window_size " + std::to_string(s.window_size)};
-                  }};
-  d["confirm_observations"] = {
-      "observations that balance reported chains of clutter against the wait of every new target",
-      [](const common::StatisticsSource& stats, const Resolved& r) {
-        return common::clutterConfirmation(stats(), r, "greedy_gate_chi2", "max_gap", std::max(2, stats().window_size));
-      }};
-  return d;
-}
-
 }  // namespace
-
-const config::FieldTable<McmcdaParams>& paramTable() {
-  using config::integer;
-  using config::real;
-  static const config::FieldTable<McmcdaParams> table{
-      "tracker.params (mcmcda)",
-      {
-          integer<McmcdaParams>("iterations", &McmcdaParams::iterations, 1.0, 1e7, "",
-                                "nmc: chain iterations per tick"),
-          real<McmcdaParams>(
-              "detection_probability", [](McmcdaParams & p) -> auto& { return p.model.detection_probability; },
-              config::closed(1e-3, 0.999), "",
-              "pd of eq. (3): probability that a live target's report reaches the window at a tick (detection "
-              "times delivery)"),
-          real<McmcdaParams>(
-              "termination_probability", [](McmcdaParams & p) -> auto& { return p.model.termination_probability; },
-              config::closed(1e-6, 0.999), "", "pz of eq. (3): probability that a target disappears at a tick"),
-          real<McmcdaParams>(
-              "birth_density", [](McmcdaParams & p) -> auto& { return p.model.birth_density; },
-              config::closed(1e-12, 1.0), "1/(separation² tick)",
-              "lambda_b of eq. (3): new targets per unit area per tick"),
-          real<McmcdaParams>(
-              "false_alarm_density", [](McmcdaParams & p) -> auto& { return p.model.false_alarm_density; },
-              config::closed(1e-12, 1.0), "1/(separation² tick)",
-              "lambda_f of eq. (3): delivered false reports per unit area per tick"),
-          real<McmcdaParams>(
-              "measurement_sigma", [](McmcdaParams & p) -> auto& { return p.model.measurement_sigma; },
-              config::closed(1e-3, 100.0), "separations",
-              "std. deviation of a fused observation's position error per axis, R = sigma^2 I (sensor separations)"),
-          real<McmcdaParams>(
-              "initial_velocity_sigma", [](McmcdaParams & p) -> auto& { return p.model.initial_velocity_sigma; },
-              config::closed(1e-3, 100.0), "separations/tick",
-              "prior std. deviation of a new track's velocity per axis (sensor separations per tick)"),
-          real<McmcdaParams>(
-              "max_speed", [](McmcdaParams & p) -> auto& { return p.model.max_speed; }, config::closed(1e-3, 1000.0),
-              "separations/tick",
-              "v-bar: an observation d ticks after another is a candidate successor within d * v-bar"),
-          integer<McmcdaParams>(
-              "max_gap", [](McmcdaParams & p) -> auto& { return p.model.max_gap; }, 1.0, 50.0, "ticks",
-              "d-bar: largest tick gap inside a track (d-bar - 1 consecutive misses)"),
-          real<McmcdaParams>(
-              "stop_probability", [](McmcdaParams & p) -> auto& { return p.model.stop_probability; },
-              config::closed(1e-3, 0.999), "",
-              "gamma: the extension proposal stops after each step with this probability"),
-          real<McmcdaParams>(
-              "greedy_gate_chi2", &McmcdaParams::greedy_gate_chi2, config::closed(0.1, 1000.0), "",
-              "gate (squared Mahalanobis distance) of the greedy start that joins the newest observations to tracks"),
-          integer<McmcdaParams>(
-              "confirm_observations", &McmcdaParams::confirm_observations, 1.0, 1000.0, "observations",
-              "observations a track needs (in all, before the window included) before it is reported"),
-          real<McmcdaParams>("merge_radius", &McmcdaParams::merge_radius, config::closed(0.0, 1e6), "separations",
-                             common::kMergeRadiusMeaning),
-      }};
-  return table;
-}
 
 EngineSpec engineSpec() {
   EngineSpec spec;
@@ -171,26 +58,11 @@ EngineSpec engineSpec() {
   spec.description =
       "sliding-window Markov chain Monte Carlo data association (Oh et al. §VI): samples partitions of the "
       "window's observations into tracks and false alarms under eq. (3), keeps the best";
-  spec.params = common::paramSpecs(paramTable(), derivations());
+  spec.params = common::paramSpecs(paramTable(), paramDerivations());
   spec.create = [](const EngineContext& context) -> std::unique_ptr<Engine> {
     return std::make_unique<McmcdaEngine>(context);
   };
   return spec;
-}
-
-McmcdaParams McmcdaParams::fromContext(const EngineContext& context) {
-  McmcdaParams p = common::decodeParams(paramTable(), context.params);
-  p.model.process_noise_sigma = context.dynamics.process_noise_sigma;
-  p.model.delta = context.dynamics.delta;
-  return p;
-}
-
-std::int32_t McmcdaEngine::LiveTrack::lastSeenTick() const {
-  return observations.empty() ? anchor.value().tick - anchor_misses : observations.back().tick;
-}
-
-const TrackState& McmcdaEngine::LiveTrack::lastState() const {
-  return states.empty() ? anchor.value().prior : states.back();
 }
 
 McmcdaEngine::McmcdaEngine(const EngineContext& context)
@@ -202,12 +74,6 @@ McmcdaEngine::McmcdaEngine(const McmcdaParams& params, const common::Rect& regio
     : stream_key_(stream_key), ids_(ids), seed_(seed), region_(region), params_(params), motion_(params_.model) {}
 
 common::TrackId McmcdaEngine::mintId() { return ids_.mint(next_serial_++); }
-
-bool McmcdaEngine::canContinue(const LiveTrack& track, std::int32_t oldest) const {
-  // A report generated up to d-bar ticks after the last one continues the track, and it may
-  // arrive late, as long as its slot is in the window.
-  return track.lastSeenTick() + params_.model.max_gap >= oldest;
-}
 
 void McmcdaEngine::adopt(const common::TrackHandoff& handoff) {
   const TrackState state = stateFromHandoff(handoff);
@@ -251,19 +117,22 @@ void McmcdaEngine::step(const ObservationWindow& window) {
 
 void McmcdaEngine::associate(const ObservationWindow& window, std::int32_t newest) {
   const WindowProblem wp = buildProblem(window);
-  std::vector<std::int32_t> owner;
-  const Partition start = startState(wp, owner);
+  const StartState start = startState(wp, tracks_, group_of_, params_);
 
   // Algorithm 1: nmc iterations from there, keeping the best partition.
   Sampler sampler(wp.problem);
-  sampler.setState(start);
+  sampler.setState(start.partition);
   common::Stream rng(seed_, common::Purpose::kTracker, stream_key_, newest);
   sampler.run(params_.iterations, rng);
   const Partition best = sampler.bestState();
   last_step_ = StepStats{wp.problem.size(), static_cast<std::int32_t>(best.size()), sampler.bestLogPosterior(),
                          sampler.stats()};
   learnDelivery(window, wp.problem, best);
-  adoptBest(window, wp, best, owner);
+  // Step 5: ω̂'s tracks under the ids they continue, and the anchored tracks a report of the next
+  // window could still continue.
+  const std::int32_t next_oldest = std::max(1, newest_tick_ + 1 - window.windowSize() + 1);
+  tracks_ = adoptBest(std::move(tracks_), wp, best, start.owner, {propose_id_, [this] { return mintId(); }}, params_,
+                      next_oldest);
 }
 
 void McmcdaEngine::commitLeavingObservations(std::int32_t oldest) {
@@ -293,7 +162,7 @@ void McmcdaEngine::commitLeavingObservations(std::int32_t oldest) {
   std::erase_if(released_, [&](const ObservationKey& k) { return k.tick < oldest; });
 }
 
-McmcdaEngine::WindowProblem McmcdaEngine::buildProblem(const ObservationWindow& window) const {
+WindowProblem McmcdaEngine::buildProblem(const ObservationWindow& window) const {
   // One anchor per track that has one, then the window's observations — except those of tracks
   // handed to a neighbour: the neighbour's track accounts for them.
   struct Entry {
@@ -325,247 +194,6 @@ McmcdaEngine::WindowProblem McmcdaEngine::buildProblem(const ObservationWindow& 
   }
   return WindowProblem{Problem(params_.model, std::move(observations), window.newestTick()), std::move(keys),
                        std::move(anchor_of), std::move(anchor_index)};
-}
-
-Partition McmcdaEngine::startState(const WindowProblem& wp, std::vector<std::int32_t>& owner) const {
-  const Problem& problem = wp.problem;
-  const auto n = static_cast<std::size_t>(problem.size());
-
-  // Observation key -> problem index (first unclaimed match, so duplicate reports stay distinct).
-  std::vector<std::pair<ObservationKey, std::int32_t>> index_of;
-  for (std::size_t i = 0; i < n; ++i)
-    if (wp.anchor_of[i] < 0) index_of.emplace_back(wp.keys[i], static_cast<std::int32_t>(i));
-  std::sort(index_of.begin(), index_of.end());
-  std::vector<bool> claimed(n, false);
-  const auto lookup = [&](const ObservationKey& key) -> std::int32_t {
-    auto it = std::lower_bound(index_of.begin(), index_of.end(), std::make_pair(key, std::int32_t{-1}));
-    for (; it != index_of.end() && it->first == key; ++it)
-      if (!claimed[static_cast<std::size_t>(it->second)]) return it->second;
-    return -1;
-  };
-
-  // The previous ω̂ restricted to the window, cut where a link no longer holds (the chain places
-  // what is left out). owner[i] is the previous track of problem element i, or -1.
-  std::vector<std::vector<std::int32_t>> lists(tracks_.size());
-  owner.assign(n, -1);
-  for (std::size_t k = 0; k < tracks_.size(); ++k) {
-    auto& list = lists[k];
-    if (wp.anchor_index[k] >= 0) list.push_back(wp.anchor_index[k]);
-    for (const auto& key : tracks_[k].observations) {
-      const std::int32_t i = lookup(key);
-      // Gone from the window: an identical report arrived twice, or (merge_radius > 0) a late report
-      // joined the cluster and moved its centre; the chain places what is left out.
-      if (i < 0) continue;
-      claimed[static_cast<std::size_t>(i)] = true;
-      owner[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(k);
-      if (!list.empty() && !problem.linked(list.back(), i)) continue;
-      list.push_back(i);
-    }
-  }
-
-  // New observations of a known group follow the track that holds their group's latest member.
-  if (group_of_) joinGroups(wp, claimed, lists);
-
-  // The newest tick's observations joined greedily to tracks that ended one tick before, nearest
-  // (in Mahalanobis distance) first, within the gate.
-  std::vector<bool> used(n, false);
-  for (const auto& list : lists)
-    if (list.size() >= 2)
-      for (const auto i : list) used[static_cast<std::size_t>(i)] = true;
-  struct Candidate {
-    double d2;
-    std::int32_t track;
-    std::int32_t observation;
-  };
-  std::vector<Candidate> candidates;
-  const double r2 = params_.model.measurement_sigma * params_.model.measurement_sigma;
-  const std::int32_t newest_begin = problem.newestBegin();
-  for (std::size_t k = 0; k < lists.size(); ++k) {
-    const auto& list = lists[k];
-    if (list.empty() || problem.tick(list.back()) != newest_tick_ - 1) continue;
-    // A lone report starts a list only as a newborn track (confirmation at one report).
-    if (list.size() == 1 && !problem.isAnchor(list.front()) && params_.confirm_observations > 1) continue;
-    TrackState last;
-    if (list.size() >= 2 || !problem.isAnchor(list.front()))
-      problem.trackScore(list, &last);
-    else
-      last = problem.observation(list.front()).prior;
-    const TrackState predicted = problem.motion().predict(last, 1);
-    const double S = predicted.cov.pp + r2;
-    for (std::int32_t i = newest_begin; i < problem.size(); ++i) {
-      if (used[static_cast<std::size_t>(i)] || !problem.linked(list.back(), i)) continue;
-      const double dx = problem.observation(i).x - predicted.x;
-      const double dy = problem.observation(i).y - predicted.y;
-      const double d2 = (dx * dx + dy * dy) / S;
-      if (d2 <= params_.greedy_gate_chi2) candidates.push_back({d2, static_cast<std::int32_t>(k), i});
-    }
-  }
-  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
-    return std::tie(a.d2, a.track, a.observation) < std::tie(b.d2, b.track, b.observation);
-  });
-  std::vector<bool> extended(lists.size(), false);
-  for (const auto& c : candidates) {
-    if (extended[static_cast<std::size_t>(c.track)] || used[static_cast<std::size_t>(c.observation)]) continue;
-    extended[static_cast<std::size_t>(c.track)] = true;
-    used[static_cast<std::size_t>(c.observation)] = true;
-    lists[static_cast<std::size_t>(c.track)].push_back(c.observation);
-  }
-  Partition start;
-  for (auto& list : lists)
-    if (list.size() >= 2) start.push_back(std::move(list));
-  return start;
-}
-
-void McmcdaEngine::joinGroups(const WindowProblem& wp, const std::vector<bool>& claimed,
-                              std::vector<std::vector<std::int32_t>>& lists) const {
-  const Problem& problem = wp.problem;
-  // group -> the list holding its latest member so far
-  std::map<std::uint64_t, std::size_t> holder;
-  const auto note = [&](std::int32_t i, std::size_t k) {
-    if (problem.isAnchor(i)) return;
-    const std::uint64_t group = group_of_(wp.keys[static_cast<std::size_t>(i)]);
-    if (group != 0) holder[group] = k;
-  };
-  // Elements in tick order, so a group's later member finds the list its earlier one joined.
-  std::vector<std::int32_t> list_of(static_cast<std::size_t>(problem.size()), -1);
-  for (std::size_t k = 0; k < lists.size(); ++k)
-    for (const auto i : lists[k]) list_of[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(k);
-  for (std::int32_t i = 0; i < problem.size(); ++i) {
-    if (problem.isAnchor(i)) continue;
-    if (list_of[static_cast<std::size_t>(i)] >= 0) {
-      note(i, static_cast<std::size_t>(list_of[static_cast<std::size_t>(i)]));
-      continue;
-    }
-    if (claimed[static_cast<std::size_t>(i)]) continue;
-    const std::uint64_t group = group_of_(wp.keys[static_cast<std::size_t>(i)]);
-    const auto it = group == 0 ? holder.end() : holder.find(group);
-    if (it == holder.end()) {
-      // The group's first element in the window starts a list of its own; a second member makes
-      // it a track.
-      lists.push_back({i});
-      list_of[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(lists.size() - 1);
-      if (group != 0) holder[group] = lists.size() - 1;
-      continue;
-    }
-    auto& list = lists[it->second];
-    if (!problem.linked(list.back(), i)) continue;
-    list.push_back(i);
-    list_of[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(it->second);
-  }
-}
-
-void McmcdaEngine::adoptBest(const ObservationWindow& window, const WindowProblem& wp, const Partition& best,
-                             const std::vector<std::int32_t>& owner) {
-  const Problem& problem = wp.problem;
-  // Identities. A track that starts at an anchor is that anchor's track. Any other keeps the id of
-  // the previous track it shares most observations with (each id once, ties to the smaller id);
-  // the rest are new.
-  std::vector<std::int32_t> previous_of(best.size(), -1);     // new track -> previous track
-  std::vector<std::int32_t> successor_of(tracks_.size(), -1);  // previous track -> new track
-  const auto link = [&](std::size_t n, std::int32_t k) {
-    previous_of[n] = k;
-    successor_of[static_cast<std::size_t>(k)] = static_cast<std::int32_t>(n);
-  };
-  for (std::size_t n = 0; n < best.size(); ++n) {
-    const std::int32_t k = wp.anchor_of[static_cast<std::size_t>(best[n].front())];
-    if (k >= 0) link(n, k);
-  }
-  struct Overlap {
-    std::int32_t shared;
-    std::int32_t track;  // new
-    std::int32_t previous;
-  };
-  std::vector<Overlap> overlaps;
-  for (std::size_t n = 0; n < best.size(); ++n) {
-    if (previous_of[n] >= 0) continue;
-    std::map<std::int32_t, std::int32_t> shared;
-    for (const auto i : best[n])
-      if (owner[static_cast<std::size_t>(i)] >= 0) ++shared[owner[static_cast<std::size_t>(i)]];
-    for (const auto& [previous, count] : shared) overlaps.push_back({count, static_cast<std::int32_t>(n), previous});
-  }
-  std::sort(overlaps.begin(), overlaps.end(), [&](const Overlap& a, const Overlap& b) {
-    if (a.shared != b.shared) return a.shared > b.shared;
-    const auto ida = tracks_[static_cast<std::size_t>(a.previous)].id;
-    const auto idb = tracks_[static_cast<std::size_t>(b.previous)].id;
-    return std::tie(ida, a.track) < std::tie(idb, b.track);
-  });
-  for (const auto& o : overlaps)
-    if (previous_of[static_cast<std::size_t>(o.track)] < 0 && successor_of[static_cast<std::size_t>(o.previous)] < 0)
-      link(static_cast<std::size_t>(o.track), o.previous);
-
-  // Ids that stay in use whatever the new tracks are called: continued tracks and the anchored
-  // tracks kept below for a late continuation.
-  std::set<common::TrackId> in_use;
-  for (std::size_t k = 0; k < tracks_.size(); ++k)
-    if (successor_of[k] >= 0 || tracks_[k].anchor) in_use.insert(tracks_[k].id);
-  const auto newId = [&](std::span<const std::int32_t> elements) {
-    common::TrackId proposed = 0;
-    if (propose_id_) {
-      std::vector<ObservationKey> keys;
-      for (const auto i : elements) keys.push_back(wp.keys[static_cast<std::size_t>(i)]);
-      proposed = propose_id_(keys);
-    }
-    const common::TrackId id = proposed != 0 && !in_use.contains(proposed) ? proposed : mintId();
-    in_use.insert(id);
-    return id;
-  };
-
-  // The new track set: ω̂'s tracks, plus the previous anchored tracks nobody continued that a later
-  // (or late) observation can still continue.
-  std::vector<LiveTrack> next;
-  std::vector<TrackState> states;
-  for (std::size_t n = 0; n < best.size(); ++n) {
-    LiveTrack track;
-    const std::int32_t previous = previous_of[n];
-    if (previous >= 0) {
-      const LiveTrack& before = tracks_[static_cast<std::size_t>(previous)];
-      track.id = before.id;
-      track.past_observations = before.past_observations;
-    } else {
-      track.id = newId(best[n]);
-    }
-    problem.filterTrack(best[n], states);
-    std::size_t from = 0;
-    if (problem.isAnchor(best[n].front())) {
-      track.anchor = problem.observation(best[n].front());
-      from = 1;
-    }
-    for (std::size_t m = from; m < best[n].size(); ++m) {
-      track.observations.push_back(wp.keys[static_cast<std::size_t>(best[n][m])]);
-      track.states.push_back(states[m]);
-    }
-    next.push_back(std::move(track));
-  }
-  if (params_.confirm_observations <= 1) {
-    // Confirmation at one report means a report is decisive: nothing but a target could have made
-    // it (lambda_f ~ 0). A report of the newest tick that ω̂ leaves out of every track is then a
-    // target born now, reported at once; its next report makes it a track of ω̂, which keeps its id
-    // by the overlap above. One not continued is gone a tick later, as eq. (3) would call it a
-    // false alarm.
-    std::vector<bool> in_track(static_cast<std::size_t>(problem.size()), false);
-    for (const auto& track : best)
-      for (const auto i : track) in_track[static_cast<std::size_t>(i)] = true;
-    for (std::int32_t i = problem.newestBegin(); i < problem.size(); ++i) {
-      if (in_track[static_cast<std::size_t>(i)] || problem.isAnchor(i)) continue;
-      const std::int32_t lone[] = {i};
-      LiveTrack track;
-      track.id = newId(lone);
-      problem.filterTrack(lone, states);
-      track.observations.push_back(wp.keys[static_cast<std::size_t>(i)]);
-      track.states.push_back(states.front());
-      next.push_back(std::move(track));
-    }
-  }
-  const std::int32_t next_oldest = std::max(1, newest_tick_ + 1 - window.windowSize() + 1);
-  for (std::size_t k = 0; k < tracks_.size(); ++k) {
-    auto& track = tracks_[k];
-    if (successor_of[k] >= 0 || !track.anchor) continue;
-    track.observations.clear();  // whatever it had in the window now belongs elsewhere or is clutter
-    track.states.clear();
-    if (canContinue(track, next_oldest)) next.push_back(std::move(track));
-  }
-  std::sort(next.begin(), next.end(), [](const LiveTrack& a, const LiveTrack& b) { return a.id < b.id; });
-  tracks_ = std::move(next);
 }
 
 void McmcdaEngine::learnDelivery(const ObservationWindow& window, const Problem& problem, const Partition& best) {

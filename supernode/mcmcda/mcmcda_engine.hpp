@@ -4,33 +4,21 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "supernode/engine.hpp"
+#include "supernode/mcmcda/live_track.hpp"
+#include "supernode/mcmcda/mcmcda_params.hpp"
 #include "supernode/mcmcda/problem.hpp"
 #include "supernode/mcmcda/sampler.hpp"
+#include "supernode/mcmcda/start_state.hpp"
 
 namespace wsn::supernode::mcmcda {
 
 /// The engine's registration: name "mcmcda", parameters with defaults and ranges, factory.
 EngineSpec engineSpec();
-
-/// Resolved parameters (see engineSpec() for meaning, defaults and ranges).
-struct McmcdaParams {
-  ModelParams model;
-  std::int64_t iterations = 1000;        ///< nmc per tick
-  double greedy_gate_chi2 = 9.21;        ///< gate of the greedy start for the newest tick
-  std::int32_t confirm_observations = 3;  ///< observations (all time) before a track is reported
-  double merge_radius = 0.0;             ///< same-tick reports this close are merged first (0: none)
-
-  /// From the engine context's resolved params (paramTable() decodes them) and its dynamics.
-  static McmcdaParams fromContext(const EngineContext& context);
-};
-
-/// The parameters' one description: key, member, unit, range, default (McmcdaParams{}) and meaning.
-const config::FieldTable<McmcdaParams>& paramTable();
 
 /// Online MCMCDA. Association is revised inside the window only: when an observation leaves the
 /// window, its track's filtered state there becomes the track's *anchor* (Problem's prior element),
@@ -62,14 +50,8 @@ class McmcdaEngine final : public Engine {
   /// window, before and after (Rauch-Tung-Striebel over eq. (8)); the settled stream.
   std::optional<std::vector<common::TrackEstimate>> revisedTracks(std::int32_t tick) const override;
 
-  /// An observation's identity across windows (a late arrival shifts slot indices, not this).
-  struct ObservationKey {
-    std::int32_t tick = 0;
-    common::SensorId sensor = 0;
-    double x = 0.0;
-    double y = 0.0;
-    auto operator<=>(const ObservationKey&) const = default;
-  };
+  /// An observation's identity across windows (live_track.hpp).
+  using ObservationKey = mcmcda::ObservationKey;
 
   /// A live track of ω̂ (or one kept for a late continuation) with what the reporting rule of
   /// confirmedTracks() looks at, for callers that add evidence of their own (the aggregator).
@@ -86,14 +68,14 @@ class McmcdaEngine final : public Engine {
 
   /// Chooses the id of a track that continues no previous track, from its observations in the
   /// window; 0 (or an id in use) means "mint one". The default mints every id.
-  using IdProposer = std::function<common::TrackId(const std::vector<ObservationKey>& observations)>;
+  using IdProposer = mcmcda::IdProposer;
   void setIdProposer(IdProposer proposer) { propose_id_ = std::move(proposer); }
 
   /// Names a group of observations known to belong together (the aggregator: elements of one
   /// supernode track); 0 means none. The start state appends a new observation to the track that
   /// holds the latest earlier member of its group, when it can follow that track's last element
   /// (ω_init "from the tracks themselves", Oh §VI). The default knows no groups.
-  using GroupOf = std::function<std::uint64_t(const ObservationKey& observation)>;
+  using GroupOf = mcmcda::GroupOf;
   void setGroupOf(GroupOf group_of) { group_of_ = std::move(group_of); }
 
   /// Statistics of the last step, for benchmarks and logs.
@@ -108,51 +90,21 @@ class McmcdaEngine final : public Engine {
   std::uint64_t rejectedHandoffs() const { return rejected_handoffs_; }
 
  private:
-  /// A track as the engine keeps it between ticks. Invariant: a track without observations in the
-  /// window has an anchor.
-  struct LiveTrack {
-    common::TrackId id = 0;
-    std::optional<ProblemObservation> anchor;  ///< the track's past, summarised
-    std::int32_t anchor_misses = 0;            ///< ticks the target was unseen before a handed-over anchor
-    std::vector<ObservationKey> observations;  ///< in the window, tick order
-    std::vector<TrackState> states;            ///< filtered state at each of them
-    std::int32_t past_observations = 0;        ///< before the window (and at the sender, if handed over)
-
-    /// Tick at which the target was last observed.
-    std::int32_t lastSeenTick() const;
-    const TrackState& lastState() const;
-    std::int32_t totalObservations() const { return past_observations + static_cast<std::int32_t>(observations.size()); }
-  };
-
-  /// One tick's association problem and what maps its elements back to tracks and reports.
-  struct WindowProblem {
-    Problem problem;
-    std::vector<ObservationKey> keys;       ///< per element (meaningless for anchors)
-    std::vector<std::int32_t> anchor_of;    ///< per element: index into tracks_ of its anchor's track, or -1
-    std::vector<std::int32_t> anchor_index; ///< per track in tracks_: its anchor's element, or -1
-  };
-
   /// Step 1: observations older than the window become anchors; tracks that cannot go on end.
   void commitLeavingObservations(std::int32_t oldest);
-  /// Step 2: anchors and the window's reports as a Problem.
-  /// Algorithm 1 on the window (merged when merge_radius > 0), at its newest tick.
+  /// Algorithm 1 on the window (merged when merge_radius > 0), at its newest tick: steps 2 to 5,
+  /// with the start state (step 3) and the new track set (step 5) of start_state.hpp.
   void associate(const ObservationWindow& window, std::int32_t newest);
+  /// Step 2: anchors and the window's reports as a Problem.
   WindowProblem buildProblem(const ObservationWindow& window) const;
-  /// Step 3: the previous ω̂ restricted to the window plus the greedy join of the newest tick;
-  /// `owner` receives each element's previous track (or -1).
-  Partition startState(const WindowProblem& wp, std::vector<std::int32_t>& owner) const;
-  /// Step 3a: new observations appended to the track of their group's latest member (group_of_).
-  void joinGroups(const WindowProblem& wp, const std::vector<bool>& claimed,
-                  std::vector<std::vector<std::int32_t>>& lists) const;
-  /// Step 5: ids for ω̂'s tracks and the new track set.
-  void adoptBest(const ObservationWindow& window, const WindowProblem& wp, const Partition& best,
-                 const std::vector<std::int32_t>& owner);
 
   /// A report in a window starting at `oldest` could still continue the track.
-  bool canContinue(const LiveTrack& track, std::int32_t oldest) const;
+  bool canContinue(const LiveTrack& track, std::int32_t oldest) const {
+    return track.canContinue(oldest, params_.model.max_gap);
+  }
   /// The track may still be continued in the current window.
   bool isLive(const LiveTrack& track) const { return canContinue(track, oldest_tick_); }
-  /// A one-report track of confirmation at one report (adoptBest), not yet continued.
+  /// A one-report track of confirmation at one report (adoptBest, start_state.hpp), not yet continued.
   static bool isNewborn(const LiveTrack& track) {
     return !track.anchor && track.past_observations == 0 && track.observations.size() == 1;
   }
