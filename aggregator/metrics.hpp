@@ -55,7 +55,7 @@
 
 #include "common/geometry.hpp"
 #include "common/messages.hpp"
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
 #include "common/truth.hpp"
 
 namespace wsn::aggregator {

@@ -18,7 +18,7 @@
 #include "aggregator/metric/metric.hpp"
 #include "common/geometry.hpp"
 #include "common/messages.hpp"
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
 #include "common/truth.hpp"
 
 namespace wsn::aggregator {

@@ -8,16 +8,16 @@
 #include <cstdint>
 #include <string>
 
-#include "common/scenario.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
 #include "node/acoustic/acoustic_field.hpp"
 #include "node/tiling.hpp"
+#include "scenario/loader.hpp"
 
 namespace {
 
 wsn::common::Scenario scenarioWith(std::int64_t targets, bool noise) {
-  auto s = wsn::common::loadScenario(WSN_SCENARIO_DIR "/an2014_scenario3.yaml");
+  auto s = wsn::scenario::loadScenario(WSN_SCENARIO_DIR "/an2014_scenario3.yaml");
   s.targets.scripted.resize(static_cast<std::size_t>(targets));
   s.run.ticks = 200;
   if (noise) {

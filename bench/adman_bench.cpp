@@ -8,12 +8,12 @@
 #include <cstdint>
 #include <memory>
 
-#include "common/scenario.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
 #include "node/adman/adman_field.hpp"
 #include "node/adman/config.hpp"
 #include "node/tiling.hpp"
+#include "scenario/loader.hpp"
 
 namespace {
 
@@ -23,7 +23,7 @@ using wsn::node::adman::Localisation;
 /// The shipped scenario (grid = 0) or a grid x grid field of its pitch crossed by `targets`
 /// targets in rows; joint or factorised MLMC.
 wsn::common::Scenario scenarioWith(std::int64_t grid, std::int64_t targets, bool joint) {
-  auto s = wsn::common::loadScenario(WSN_SCENARIO_DIR "/adman_three_targets.yaml");
+  auto s = wsn::scenario::loadScenario(WSN_SCENARIO_DIR "/adman_three_targets.yaml");
   auto settings = std::make_shared<AdmanSettings>(wsn::common::settingsOf<AdmanSettings>(s.sensor_model));
   settings->localisation = joint ? Localisation::joint : Localisation::factorised;
   s.sensor_model.settings = settings;

@@ -6,17 +6,17 @@
 
 #include <cstdint>
 
-#include "common/scenario.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
 #include "node/magnetometer/magnetometer_field.hpp"
 #include "node/tiling.hpp"
+#include "scenario/loader.hpp"
 
 namespace {
 
 /// The testbed (grid = 0) or a grid x grid field of pitch 1 with `cars` cars crossing it.
 wsn::common::Scenario scenarioWith(std::int64_t grid, std::int64_t cars) {
-  auto s = wsn::common::loadScenario(WSN_SCENARIO_DIR "/oh_testbed.yaml");
+  auto s = wsn::scenario::loadScenario(WSN_SCENARIO_DIR "/oh_testbed.yaml");
   if (grid > 0) {
     const auto side = static_cast<double>(grid);
     s.region = {-0.5, -0.5, side - 0.5, side - 0.5};

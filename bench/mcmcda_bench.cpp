@@ -25,7 +25,7 @@
 
 #include "common/messages.hpp"
 #include "common/rng.hpp"
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
 #include "supernode/engine.hpp"
 #include "supernode/mcmcda/mcmcda_engine.hpp"
 #include "supernode/mcmcda/problem.hpp"

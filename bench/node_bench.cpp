@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "common/rng.hpp"
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
 #include "node/signal_strength/sensor_field.hpp"

@@ -10,11 +10,11 @@
 #include <vector>
 
 #include "common/messages.hpp"
-#include "common/scenario.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
 #include "node/acoustic/acoustic_field.hpp"
 #include "node/tiling.hpp"
+#include "scenario/loader.hpp"
 #include "supernode/supernode_tracker.hpp"
 
 namespace {
@@ -28,7 +28,7 @@ struct Input {
 /// The scenario's detections of every tick, delivered at once to supernode 0.
 Input loadInput(const std::string& name) {
   Input in;
-  in.scenario = wsn::common::loadScenario(std::string(WSN_SCENARIO_DIR "/") + name + ".yaml");
+  in.scenario = wsn::scenario::loadScenario(std::string(WSN_SCENARIO_DIR "/") + name + ".yaml");
   wsn::supernode::resolveEngineParams(in.scenario, wsn::common::kNoStatistics);
   const wsn::common::Truth truth(truthConfig(in.scenario));
   const wsn::common::SensorLayout layout(sensorFieldConfig(in.scenario));

@@ -13,7 +13,8 @@
 
 #include "common/config/field_table.hpp"
 #include "common/observation_statistics.hpp"
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
+#include "common/scenario_error.hpp"
 
 namespace wsn::common {
 

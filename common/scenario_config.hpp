@@ -1,6 +1,6 @@
 // The scenario's configuration: plain structs, one per section, every parameter of a run named
 // as in the papers with the paper's values as defaults. No loading code here: the field tables
-// (common/scenario_schema.hpp) describe each key once, and common/scenario.hpp loads and writes.
+// (common/scenario_schema.hpp) describe each key once, and scenario/ loads and writes them.
 #pragma once
 
 #include <algorithm>

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "common/dds/cyclone_config.hpp"
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
 #include "launcher/run_description.hpp"
 
 namespace wsn::launcher {

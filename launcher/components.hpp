@@ -7,7 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
+#include "common/scenario_error.hpp"
 
 namespace wsn::launcher {
 

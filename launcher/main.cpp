@@ -10,7 +10,6 @@
 
 #include "aggregator/association.hpp"
 #include "common/provenance.hpp"
-#include "common/scenario.hpp"
 #include "common/version.hpp"
 #include "launcher/cluster.hpp"
 #include "launcher/components.hpp"
@@ -21,6 +20,7 @@
 #include "launcher/run_summary.hpp"
 #include "launcher/watch.hpp"
 #include "observation_model/observation_statistics.hpp"
+#include "scenario/overrides.hpp"
 #include "supernode/engine.hpp"
 
 namespace po = boost::program_options;
@@ -45,11 +45,11 @@ constexpr const char* kUsage =
     "  help               show this text\n\n"
     "'wsntrack <command> --help' explains each command's options.\n";
 
-/// The --set options, in the order given; throws common::OverrideError for one without '='.
-std::vector<common::ScenarioOverride> overridesOf(const po::variables_map& vm) {
-  std::vector<common::ScenarioOverride> overrides;
+/// The --set options, in the order given; throws scenario::OverrideError for one without '='.
+std::vector<scenario::ScenarioOverride> overridesOf(const po::variables_map& vm) {
+  std::vector<scenario::ScenarioOverride> overrides;
   if (vm.count("set"))
-    for (const auto& text : vm["set"].as<std::vector<std::string>>()) overrides.push_back(common::parseOverride(text));
+    for (const auto& text : vm["set"].as<std::vector<std::string>>()) overrides.push_back(scenario::parseOverride(text));
   return overrides;
 }
 
@@ -63,8 +63,8 @@ void resolveComponentParams(common::Scenario& scenario) {
 
 /// Loads a scenario with its overrides and resolves its component parameters: every check a run
 /// would make, applied to the scenario as overridden.
-common::Scenario loadResolved(const std::string& path, const std::vector<common::ScenarioOverride>& overrides) {
-  return common::loadScenario(path, overrides, resolveComponentParams);
+common::Scenario loadResolved(const std::string& path, const std::vector<scenario::ScenarioOverride>& overrides) {
+  return scenario::loadScenario(path, overrides, resolveComponentParams);
 }
 
 int commandValidate(const std::vector<std::string>& args) {
@@ -88,7 +88,7 @@ int commandValidate(const std::vector<std::string>& args) {
               << options << "\n";
     return vm.count("help") ? 0 : 2;
   }
-  std::vector<common::ScenarioOverride> overrides;
+  std::vector<scenario::ScenarioOverride> overrides;
   try {
     overrides = overridesOf(vm);
     // The same overrides, reported as typed, that wsntrack run makes of these options.
@@ -98,7 +98,7 @@ int commandValidate(const std::vector<std::string>& args) {
         const auto value = vm[option].as<std::string>();
         overrides.push_back({key, value, "--" + std::string(option) + " " + value});
       }
-  } catch (const common::OverrideError& error) {
+  } catch (const scenario::OverrideError& error) {
     std::cerr << "wsntrack validate: " << error.what() << "\n";
     return 2;
   }
@@ -112,7 +112,7 @@ int commandValidate(const std::vector<std::string>& args) {
                                             (overrides.size() == 1 ? " override" : " overrides"))
                 << ": ok (" << scenario.name << ": " << scenario.run.ticks << " ticks, " << scenario.supernodes.size()
                 << " supernodes, engine " << scenario.tracker.engine << ")\n";
-    } catch (const common::OverrideError& error) {
+    } catch (const scenario::OverrideError& error) {
       std::cerr << file << ": " << error.what() << "\n";
       ++failures;
     } catch (const std::exception& error) {
@@ -178,7 +178,7 @@ int commandRun(const std::vector<std::string>& command_line) {
   common::Scenario scenario;
   try {
     scenario = launcher::loadRunScenario(args, resolveComponentParams);
-  } catch (const common::OverrideError& error) {
+  } catch (const scenario::OverrideError& error) {
     std::cerr << "wsntrack run: " << error.what() << "\n";
     return 2;
   } catch (const std::exception& error) {

@@ -69,9 +69,9 @@ std::optional<std::string> optionText(const po::variables_map& vm, const char* n
 /// `load` with the run's overrides (an OverrideError names each as the user typed it).
 common::Scenario namingOptions(
     const RunArguments& args,
-    const std::function<common::Scenario(const std::vector<common::ScenarioOverride>&)>& load) {
+    const std::function<common::Scenario(const std::vector<scenario::ScenarioOverride>&)>& load) {
   const auto overrides = runOverrides(args);
-  std::vector<common::ScenarioOverride> sets;
+  std::vector<scenario::ScenarioOverride> sets;
   for (const auto& o : overrides) sets.push_back(o.set);
   return load(sets);
 }
@@ -123,7 +123,7 @@ std::optional<std::string> checkRunOptions(const RunArguments& a) {
 std::vector<RunOverride> runOverrides(const RunArguments& a) {
   std::vector<RunOverride> overrides;
   for (const auto& text : a.sets) {
-    auto set = common::parseOverride(text);
+    auto set = scenario::parseOverride(text);
     overrides.push_back({set, set.text()});
   }
   for (const auto& [option, key, value] : {std::tuple{"--seed", "run.seed", a.seed},
@@ -137,12 +137,12 @@ std::vector<RunOverride> runOverrides(const RunArguments& a) {
 }
 
 common::Scenario applyRunOverrides(const std::string& yaml_text, const std::string& name_for_errors,
-                                   const RunArguments& args, const common::ScenarioCheck& check) {
-  return namingOptions(args, [&](const auto& sets) { return common::applyOverrides(yaml_text, name_for_errors, sets, check); });
+                                   const RunArguments& args, const scenario::ScenarioCheck& check) {
+  return namingOptions(args, [&](const auto& sets) { return scenario::applyOverrides(yaml_text, name_for_errors, sets, check); });
 }
 
-common::Scenario loadRunScenario(const RunArguments& args, const common::ScenarioCheck& check) {
-  return namingOptions(args, [&](const auto& sets) { return common::loadScenario(args.scenario_path, sets, check); });
+common::Scenario loadRunScenario(const RunArguments& args, const scenario::ScenarioCheck& check) {
+  return namingOptions(args, [&](const auto& sets) { return scenario::loadScenario(args.scenario_path, sets, check); });
 }
 
 }  // namespace wsn::launcher

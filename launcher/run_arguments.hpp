@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "common/scenario.hpp"
+#include "scenario/overrides.hpp"
 
 namespace wsn::launcher {
 
@@ -48,20 +48,20 @@ std::optional<std::string> checkRunOptions(const RunArguments& args);
 
 /// One scenario override and the option the user wrote for it.
 struct RunOverride {
-  common::ScenarioOverride set;
+  scenario::ScenarioOverride set;
   std::string as_typed;  ///< "--set KEY=VALUE", or "--nodes 4" for the run.node_processes=4 it stands for
 };
 
 /// The overrides of a run in the order they apply: every --set, then --seed, --nodes and --ticks
-/// as run.seed, run.node_processes and run.ticks. Throws common::OverrideError for a --set without '='.
+/// as run.seed, run.node_processes and run.ticks. Throws scenario::OverrideError for a --set without '='.
 std::vector<RunOverride> runOverrides(const RunArguments& args);
 
 /// applyOverrides() of the scenario text with the run's overrides; an OverrideError names the
 /// options as the user typed them: "--nodes 0: 'run.node_processes' must be in [1, 64], got 0".
 common::Scenario applyRunOverrides(const std::string& yaml_text, const std::string& name_for_errors,
-                                   const RunArguments& args, const common::ScenarioCheck& check = {});
+                                   const RunArguments& args, const scenario::ScenarioCheck& check = {});
 
-/// The same from args.scenario_path (common::loadScenario, with its messages for a missing file).
-common::Scenario loadRunScenario(const RunArguments& args, const common::ScenarioCheck& check = {});
+/// The same from args.scenario_path (scenario::loadScenario, with its messages for a missing file).
+common::Scenario loadRunScenario(const RunArguments& args, const scenario::ScenarioCheck& check = {});
 
 }  // namespace wsn::launcher

@@ -20,6 +20,7 @@
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
 #include "launcher/cluster.hpp"
+#include "scenario/writer.hpp"
 
 namespace wsn::launcher {
 
@@ -128,7 +129,7 @@ void createRunDirectory(const std::string& path, bool overwrite) {
 
 void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario, const RunIdentity& identity,
                     int participants) {
-  common::writeTextFile(run_dir + "/scenario.yaml", common::resolvedScenarioYaml(scenario));
+  common::writeTextFile(run_dir + "/scenario.yaml", scenario::resolvedScenarioYaml(scenario));
   common::writeTextFile(run_dir + "/cyclonedds.xml", dds::cycloneConfigTemplate(identity.run_id, participants));
 
   const common::Truth truth(truthConfig(scenario));

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
 #include "launcher/run_description.hpp"
 
 namespace wsn::launcher {

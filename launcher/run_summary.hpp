@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
 #include "launcher/cluster.hpp"
 #include "launcher/plot_job.hpp"
 

@@ -12,7 +12,8 @@
 #include "common/messages.hpp"
 #include "common/param_spec.hpp"
 #include "common/registry.hpp"
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
+#include "common/scenario_error.hpp"
 #include "supernode/observation_window.hpp"
 
 namespace wsn::supernode {

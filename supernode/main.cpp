@@ -1,5 +1,6 @@
 // wsntrack-supernode: one supernode (tracking group) of a wsntrack cluster.
 #include "common/dds/process_main.hpp"
+#include "scenario/loader.hpp"
 #include "supernode/role.hpp"
 
 int main(int argc, char** argv) {
@@ -9,5 +10,5 @@ int main(int argc, char** argv) {
       "a sliding window of ws ticks of delivered observations, delayed ones in their own slots,\n"
       "processed by the scenario's tracking engine; tracks predicted to leave the group are handed\n"
       "to the neighbouring supernode under the same id (Oh §VI).",
-      true, wsn::supernode::runSupernodeRole);
+      true, wsn::scenario::loadScenario, wsn::supernode::runSupernodeRole);
 }

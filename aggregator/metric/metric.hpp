@@ -13,7 +13,7 @@
 #include "common/geometry.hpp"
 #include "common/messages.hpp"
 #include "common/registry.hpp"
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
 #include "common/truth.hpp"
 
 namespace wsn::aggregator {

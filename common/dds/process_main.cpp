@@ -73,7 +73,7 @@ std::string readConfigTemplate(const std::string& run_dir) {
 }
 
 int runRoleProcess(int argc, char** argv, const std::string& role, const std::string& summary, bool indexed,
-                   const RoleRunner& runner) {
+                   ScenarioLoader load_scenario, const RoleRunner& runner) {
   namespace po = boost::program_options;
   RoleContext context;
   context.role = role;
@@ -141,7 +141,7 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
   try {
     // Before the domain: Cyclone's threads must inherit the blocked signals.
     const StopSignals stop_signals(stop_source);
-    context.scenario = common::loadScenario(context.run_dir + "/scenario.yaml");
+    context.scenario = load_scenario(context.run_dir + "/scenario.yaml");
     context.shape.supernodes = static_cast<std::int32_t>(context.scenario.supernodes.size());
     Domain domain_handle(context.domain, cycloneConfigFor(readConfigTemplate(context.run_dir), participant_index));
     runner(context);

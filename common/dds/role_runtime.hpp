@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "common/dds/entity.hpp"
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
 #include "wsntrack.h"
 
 namespace wsn::dds {

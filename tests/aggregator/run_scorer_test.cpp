@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "common/scenario.hpp"
 #include "common/truth.hpp"
+#include "scenario/loader.hpp"
 #include "tests/aggregator/test_support.hpp"
 
 using wsn::aggregator::Json;
@@ -82,7 +82,7 @@ std::vector<std::string> lines(const std::string& text) {
 
 TEST_CASE("a perfect tracker over a real truth with births and deaths scores no error anywhere",
           "[run_scorer][property]") {
-  const auto scenario = wsn::common::parseScenario(kBirthsAndDeaths, "births_and_deaths.yaml");
+  const auto scenario = wsn::scenario::parseScenario(kBirthsAndDeaths, "births_and_deaths.yaml");
   const wsn::common::Truth truth(truthConfig(scenario));
   RunScorer scorer(kLiveStream, scenario.metrics, scenario.supernodes);
 

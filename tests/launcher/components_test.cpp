@@ -5,9 +5,9 @@
 #include "aggregator/association.hpp"
 #include "aggregator/metric/metric.hpp"
 #include "common/measurement.hpp"
-#include "common/scenario.hpp"
 #include "common/scenario_schema.hpp"
 #include "node/sensor_model_registry.hpp"
+#include "scenario/loader.hpp"
 #include "supernode/engine.hpp"
 
 namespace wsn::launcher {
@@ -113,7 +113,7 @@ TEST_CASE("a model whose sensors differ by type fits an engine by the kinds its 
   // field_sensors reports positions from beacons and magnetic detectors, bearings from antennas:
   // gnn takes positions only, so the first scenario fits it and the second does not; sbmht takes both.
   const auto scenario = [](const std::string& second_type, const std::string& engine) {
-    return common::parseScenario(
+    return scenario::parseScenario(
         "region: {x_min: 0, y_min: 0, x_max: 1000, y_max: 1000}\n"
         "sensors:\n  layout: list\n  list:\n"
         "    - {name: b, type: acoustic_beacon, x: 100, y: 100}\n"

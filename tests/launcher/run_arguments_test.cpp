@@ -28,7 +28,7 @@ common::Scenario apply(const std::vector<std::string>& args) { return applyRunOv
 std::string errorOf(const std::vector<std::string>& args) {
   try {
     apply(args);
-  } catch (const common::OverrideError& error) {
+  } catch (const scenario::OverrideError& error) {
     return std::string("override: ") + error.what();
   } catch (const common::ScenarioError& error) {
     return error.what();
@@ -106,7 +106,7 @@ TEST_CASE("a bad seed, nodes or ticks is the loader's message naming the option"
   CHECK(both.rfind("override: --set sensor_model.sensing_range=2.5 --nodes 5: 'run.node_processes' 5 exceeds the 4 cells",
                    0) == 0);
   // A --set without '=' is rejected before any loading.
-  REQUIRE_THROWS_MATCHES(runOverrides(parsed({"--set", "foo"})), common::OverrideError,
+  REQUIRE_THROWS_MATCHES(runOverrides(parsed({"--set", "foo"})), scenario::OverrideError,
                          Catch::Message("--set foo: expected KEY=VALUE, e.g. --set network.pte=0.4"));
 }
 

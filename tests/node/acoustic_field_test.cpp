@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "common/scenario.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
 #include "node/tiling.hpp"
+#include "scenario/loader.hpp"
 
 namespace wsn::node::acoustic {
 namespace {
@@ -20,7 +20,7 @@ constexpr double kVs = 343.0;
 /// An acoustic scenario on the paper's 50 x 50 grid at Ds = 25 m, with `targets` (YAML list items)
 /// and `extra` sensor_model lines.
 common::Scenario acousticScenario(const std::string& targets, const std::string& extra = "", int ticks = 60) {
-  return common::parseScenario(
+  return scenario::parseScenario(
       "region: {x_min: 0, y_min: 0, x_max: 1250, y_max: 1250}\n"
       "sensors: {layout: grid, spacing: 25}\n"
       "sensor_model:\n  kind: acoustic_doppler\n  alpha: 2\n  sensing_range: 40\n" + extra +
@@ -237,7 +237,7 @@ TEST_CASE("the detections do not depend on the tiling and are deterministic", "[
 }
 
 TEST_CASE("the acoustic field refuses a non-acoustic scenario and more than 8 noise components", "[acoustic]") {
-  const auto scenario = common::parseScenario("run: {ticks: 5}\n", "plain.yaml");
+  const auto scenario = scenario::parseScenario("run: {ticks: 5}\n", "plain.yaml");
   const common::Truth truth(truthConfig(scenario));
   const common::SensorLayout layout(sensorFieldConfig(scenario));
   CHECK_THROWS_AS(fieldConfigOf(scenario), std::invalid_argument);

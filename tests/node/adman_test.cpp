@@ -2,8 +2,8 @@
 // the attach rules and MLMC, each expected number derived in a comment, and the locality viewReach promises.
 #include "node/adman/adman.hpp"
 
-#include "common/scenario.hpp"
 #include "common/scenario_error.hpp"
+#include "scenario/loader.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -769,7 +769,7 @@ TEST_CASE("place with the joint switch gives a finite placement near the truth f
 
 TEST_CASE("settings that leave no in-between band or no noise are rejected with their line", "[adman]") {
   const auto parse = [](const std::string& extra) {
-    return common::parseScenario("region: {x_min: -17.3205, y_min: -17.3205, x_max: 225.1665, y_max: 225.1665}\n"
+    return scenario::parseScenario("region: {x_min: -17.3205, y_min: -17.3205, x_max: 225.1665, y_max: 225.1665}\n"
                                  "sensors: {layout: grid, spacing: 34.641}\n"
                                  "sensor_model:\n  kind: adman\n  sensing_range: 24.4949\n" +
                                      extra + "run: {ticks: 5}\n",

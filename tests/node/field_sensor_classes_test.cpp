@@ -9,11 +9,11 @@
 #include <vector>
 
 #include "common/class_evidence.hpp"
-#include "common/scenario.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
 #include "node/field_sensors/field_sensors.hpp"
 #include "node/tiling.hpp"
+#include "scenario/loader.hpp"
 
 namespace wsn::node::field_sensors {
 namespace {
@@ -22,7 +22,7 @@ namespace {
 /// and sensor_model lines.
 common::Scenario field(const std::string& sensors, const std::string& targets, const std::string& model = "",
                        int ticks = 300, std::uint64_t seed = 1) {
-  return common::parseScenario(
+  return scenario::parseScenario(
       "region: {x_min: -2000, y_min: -2000, x_max: 2000, y_max: 2000}\n"
       "sensors:\n  layout: list\n  list:\n" + sensors +
           "sensor_model:\n  kind: field_sensors\n  sensing_range: 100\n" + model +

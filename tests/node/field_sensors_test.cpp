@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "common/kalman.hpp"
-#include "common/scenario.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
 #include "node/tiling.hpp"
+#include "scenario/loader.hpp"
 #include "supernode/sbmht/measurement_models.hpp"
 
 namespace wsn::node::field_sensors {
@@ -191,7 +191,7 @@ TEST_CASE("each type's R is the spec's proposed noise", "[field_sensors]") {
 /// A 2000 x 2000 m field with the given sensors lines and targets lines (YAML list items).
 common::Scenario field(const std::string& sensors, const std::string& targets, const std::string& model = "",
                        int node_processes = 1, const std::string& terrain = "") {
-  return common::parseScenario(
+  return scenario::parseScenario(
       "region: {x_min: -1000, y_min: -1000, x_max: 1000, y_max: 1000}\n" + terrain +
           "sensors:\n  layout: list\n  list:\n" + sensors +
           "sensor_model:\n  kind: field_sensors\n  sensing_range: 100\n" + model +

@@ -11,10 +11,10 @@
 #include <vector>
 
 #include "common/rng.hpp"
-#include "common/scenario.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
 #include "node/tiling.hpp"
+#include "scenario/loader.hpp"
 
 namespace wsn::node::magnetometer {
 namespace {
@@ -28,7 +28,7 @@ constexpr int kW = 5;          // W of eq. (11)
 /// points), default magnetometer settings, one target along y = 2 at 0.5 pitch per tick from
 /// x = -0.5, no process noise. `extra` adds sensor_model lines.
 common::Scenario testbed(const std::string& extra = "") {
-  return common::parseScenario(
+  return scenario::parseScenario(
       "region: {x_min: -0.5, y_min: -0.5, x_max: 8.5, y_max: 4.5}\n"
       "sensors: {layout: grid, spacing: 1}\n"
       "sensor_model:\n  kind: magnetometer\n  sensing_range: 0.6\n" + extra +
@@ -362,7 +362,7 @@ TEST_CASE("the magnetometer reports do not depend on the tiling", "[magnetometer
 }
 
 TEST_CASE("the magnetometer field config refuses other sensor models", "[magnetometer]") {
-  const auto scenario = common::parseScenario("run: {ticks: 5}\n", "plain.yaml");
+  const auto scenario = scenario::parseScenario("run: {ticks: 5}\n", "plain.yaml");
   CHECK_THROWS_AS(fieldConfigOf(scenario.sensor_model, 1), std::invalid_argument);
 }
 

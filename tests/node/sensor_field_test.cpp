@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
 #include "node/tiling.hpp"

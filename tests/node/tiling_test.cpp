@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
 #include "common/sensor_layout.hpp"
 
 namespace {

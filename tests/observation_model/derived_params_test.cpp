@@ -2,8 +2,10 @@
 // load time, noted in the resolved scenario.yaml, overridden by an explicit value.
 #include <catch2/catch.hpp>
 
-#include "common/scenario.hpp"
 #include "observation_model/observation_statistics.hpp"
+#include "scenario/loader.hpp"
+#include "scenario/overrides.hpp"
+#include "scenario/writer.hpp"
 #include "supernode/engine.hpp"
 
 using namespace wsn;
@@ -12,16 +14,16 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-std::vector<common::ScenarioOverride> overridesOf(const std::vector<std::string>& sets) {
-  std::vector<common::ScenarioOverride> overrides;
-  for (const auto& text : sets) overrides.push_back(common::parseOverride(text));
+std::vector<scenario::ScenarioOverride> overridesOf(const std::vector<std::string>& sets) {
+  std::vector<scenario::ScenarioOverride> overrides;
+  for (const auto& text : sets) overrides.push_back(scenario::parseOverride(text));
   return overrides;
 }
 
 void resolve(Scenario& s) { supernode::resolveEngineParams(s, observation_model::lazyStatistics(s)); }
 
 Scenario resolved(const std::string& name, const std::vector<std::string>& sets = {}) {
-  return common::loadScenario(std::string(WSN_SCENARIO_DIR) + "/" + name + ".yaml", overridesOf(sets), resolve);
+  return scenario::loadScenario(std::string(WSN_SCENARIO_DIR) + "/" + name + ".yaml", overridesOf(sets), resolve);
 }
 
 double param(const Scenario& s, const std::string& name) { return s.tracker.params.at(name).value; }
@@ -36,7 +38,7 @@ TEST_CASE("parameters left out are derived and the resolved file says how") {
     CHECK(s.derived.contains(std::string("tracker.params.") + name));
   CHECK_FALSE(s.derived.contains("tracker.params.iterations"));  // no physical meaning: a fixed default
   CHECK(param(s, "iterations") == 1000);
-  const std::string yaml = common::resolvedScenarioYaml(s);
+  const std::string yaml = scenario::resolvedScenarioYaml(s);
   // pd = sensing 1 x delivery into the window 0.725 (Oh eq. 7 at pte = pde = 0.3 over the
   // quadrant topology). At the newest tick only the undelayed reports are there, 0.345: a run of
   // misses as rare as 1 % would take 0.655^k <= 0.01, k = 11, so the gap is capped at ws = 10.
@@ -46,7 +48,7 @@ TEST_CASE("parameters left out are derived and the resolved file says how") {
 
 TEST_CASE("the resolved file loads back to the same parameters") {
   const Scenario s = resolved("oh_quadrants");
-  Scenario again = common::parseScenario(common::resolvedScenarioYaml(s), "resolved.yaml");
+  Scenario again = scenario::parseScenario(scenario::resolvedScenarioYaml(s), "resolved.yaml");
   resolve(again);
   CHECK(again.tracker.params == s.tracker.params);
   CHECK(again.derived.empty());  // every value is now written out
@@ -142,5 +144,5 @@ TEST_CASE("the rule-based residual-noise and birth cluster sizes follow the weak
   const Scenario sr15 = resolved("an2013_noise3", {"targets.scripted[0].sensing_range=15"});
   CHECK(param(sr15, "noise_cluster_sensors") == 0);
   CHECK(param(sr15, "birth_min_sensors") == 1);
-  CHECK_THAT(common::resolvedScenarioYaml(sr15), Contains("at the weakest SR 15"));
+  CHECK_THAT(scenario::resolvedScenarioYaml(sr15), Contains("at the weakest SR 15"));
 }

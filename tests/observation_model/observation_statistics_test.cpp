@@ -6,26 +6,26 @@
 #include <cmath>
 #include <numbers>
 
-#include "common/scenario.hpp"
 #include "common/sensor_layout.hpp"
 #include "network_model/link_model.hpp"
 #include "network_model/role_config.hpp"
 #include "network_model/topology.hpp"
 #include "observation_model/observation_statistics.hpp"
+#include "scenario/overrides.hpp"
 
 using namespace wsn;
 using common::Scenario;
 
 namespace {
 
-std::vector<common::ScenarioOverride> overridesOf(const std::vector<std::string>& sets) {
-  std::vector<common::ScenarioOverride> overrides;
-  for (const auto& text : sets) overrides.push_back(common::parseOverride(text));
+std::vector<scenario::ScenarioOverride> overridesOf(const std::vector<std::string>& sets) {
+  std::vector<scenario::ScenarioOverride> overrides;
+  for (const auto& text : sets) overrides.push_back(scenario::parseOverride(text));
   return overrides;
 }
 
 Scenario shipped(const std::string& name, const std::vector<std::string>& sets = {}) {
-  return common::loadScenario(std::string(WSN_SCENARIO_DIR) + "/" + name + ".yaml", overridesOf(sets));
+  return scenario::loadScenario(std::string(WSN_SCENARIO_DIR) + "/" + name + ".yaml", overridesOf(sets));
 }
 
 }  // namespace

@@ -6,7 +6,8 @@
 #include <vector>
 
 #include "common/messages.hpp"
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
+#include "common/scenario_error.hpp"
 #include "supernode/engine.hpp"
 #include "supernode/supernode_tracker.hpp"
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "common/messages.hpp"
-#include "common/scenario.hpp"
+#include "common/scenario_config.hpp"
 #include "supernode/engine.hpp"
 #include "supernode/observation_window.hpp"
 #include "supernode/sbmht/measurement_models.hpp"

@@ -4,9 +4,12 @@
 
 #include <string>
 
-#include "common/scenario.hpp"
+#include "scenario/loader.hpp"
 
-namespace wsn::common::test_support {
+namespace wsn::scenario::test_support {
+
+using common::Scenario;
+using common::ScenarioError;
 
 /// parseScenario with the file name "s.yaml".
 inline Scenario parse(const std::string& text) { return parseScenario(text, "s.yaml"); }
@@ -21,4 +24,4 @@ inline std::string errorOf(const std::string& text) {
   return "";
 }
 
-}  // namespace wsn::common::test_support
+}  // namespace wsn::scenario::test_support

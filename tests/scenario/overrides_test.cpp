@@ -1,6 +1,6 @@
-// Command-line overrides (--set KEY=VALUE) of common/scenario.cpp: applied to the file's YAML,
+// Command-line overrides (--set KEY=VALUE) of scenario/overrides.cpp: applied to the file's YAML,
 // validated like a file, and every error naming the --set that caused it.
-#include "common/scenario.hpp"
+#include "scenario/overrides.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -8,9 +8,13 @@
 #include <vector>
 
 #include "node/signal_strength/config.hpp"
+#include "scenario/loader.hpp"
+#include "scenario/writer.hpp"
 
-namespace wsn::common {
+namespace wsn::scenario {
 namespace {
+
+using namespace common;
 
 /// A small valid scenario; line 5 holds network.pte, line 8 tracker.engine.
 constexpr const char* kBase =
@@ -198,4 +202,4 @@ TEST_CASE("loadScenario with overrides reads the file and names it in its own er
 }
 
 }  // namespace
-}  // namespace wsn::common
+}  // namespace wsn::scenario

@@ -3,11 +3,13 @@
 #include <catch2/catch.hpp>
 #include <string>
 
-#include "common/scenario.hpp"
-#include "tests/common/scenario_test_support.hpp"
+#include "scenario/writer.hpp"
+#include "tests/scenario/test_support.hpp"
 
-namespace wsn::common {
+namespace wsn::scenario {
 namespace {
+
+using namespace common;
 
 using Catch::Matchers::Contains;
 
@@ -175,4 +177,4 @@ TEST_CASE("waypoint errors name the line and what was expected", "[scenario][ter
 }
 
 }  // namespace
-}  // namespace wsn::common
+}  // namespace wsn::scenario

@@ -1,10 +1,14 @@
-#include "common/scenario.hpp"
-#include "tests/common/scenario_test_support.hpp"
+// The strict scenario loader (scenario/loader.cpp, rules.cpp): defaults, values, every kind of
+// error with file and line, the resolved scenario.yaml that loads back to the same scenario
+// (writer.cpp), and the shipped scenarios as their papers describe them.
+#include "scenario/loader.hpp"
 
 #include <catch2/catch.hpp>
 
 #include "node/acoustic/config.hpp"
 #include "node/signal_strength/config.hpp"
+#include "scenario/writer.hpp"
+#include "tests/scenario/test_support.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -13,8 +17,10 @@
 #include <regex>
 #include <string>
 
-namespace wsn::common {
+namespace wsn::scenario {
 namespace {
+
+using namespace common;
 
 using node::acoustic::AcousticSettings;
 using node::acoustic::NoiseComponent;
@@ -636,4 +642,4 @@ TEST_CASE("the integration test's bad scenarios fail with the messages it greps 
 }
 
 }  // namespace
-}  // namespace wsn::common
+}  // namespace wsn::scenario

@@ -5,12 +5,14 @@
 #include <numbers>
 #include <string>
 
-#include "common/scenario.hpp"
 #include "common/sensor_layout.hpp"
-#include "tests/common/scenario_test_support.hpp"
+#include "scenario/writer.hpp"
+#include "tests/scenario/test_support.hpp"
 
-namespace wsn::common {
+namespace wsn::scenario {
 namespace {
+
+using namespace common;
 
 /// A valid list scenario; line numbers below count from 1 in this text.
 const std::string kSensorLines[] = {
@@ -131,4 +133,4 @@ TEST_CASE("a list layout and the sensor model must both have sensor types", "[sc
 }
 
 }  // namespace
-}  // namespace wsn::common
+}  // namespace wsn::scenario
