@@ -13,7 +13,8 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "python"))
-from wsntrack.plots.cli import run  # noqa: E402
+from wsntrack.entry import run  # noqa: E402
+from wsntrack.plots.cli import main  # noqa: E402
 
 if __name__ == "__main__":
-    sys.exit(run(sys.argv[1:]))
+    sys.exit(run(main, sys.argv[1:]))

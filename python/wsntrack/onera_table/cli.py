@@ -177,10 +177,3 @@ def main(argv):
         print(f"onera_table.py: wrote the plot to {args.plot}", file=sys.stderr)
     return 0
 
-
-def run(argv):
-    """The entry point: main(argv), and exit status 130 for Ctrl-C."""
-    try:
-        return main(argv)
-    except KeyboardInterrupt:
-        return 130

@@ -193,10 +193,3 @@ def _draw_stills(args, loaded):
     print(f"plot_run.py: wrote {', '.join(written)} in {time.monotonic() - started:.2f} s")
     return 0
 
-
-def run(argv):
-    """The entry point: main(argv), and exit status 130 for Ctrl-C."""
-    try:
-        return main(argv)
-    except KeyboardInterrupt:
-        return 130
