@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <stdexcept>
 
 #include "aggregator/association.hpp"
 #include "aggregator/metric/metric.hpp"
@@ -93,6 +94,26 @@ std::string componentsMarkdown() {
     markdownBlock(out, "tracker.params " + engine.name, markdownParamTable(engine.params));
   for (const auto& method : aggregator::associationRegistry())
     markdownBlock(out, "aggregator.params " + method.name, markdownParamTable(method.params));
+  return out.str();
+}
+
+std::vector<std::string> componentKinds() { return {"sensor-models", "engines", "associations", "metrics"}; }
+
+std::string componentNames(const std::string& kind) {
+  std::ostringstream out;
+  const auto list = [&out](const auto& registry) {
+    for (const auto& entry : registry) out << entry.name << "\n";
+  };
+  if (kind == "sensor-models")
+    list(node::sensorModelRegistry());
+  else if (kind == "engines")
+    list(supernode::engineRegistry());
+  else if (kind == "associations")
+    list(aggregator::associationRegistry());
+  else if (kind == "metrics")
+    list(aggregator::metricRegistry());
+  else
+    throw std::invalid_argument("--names takes one of " + joined(componentKinds()) + ", got '" + kind + "'");
   return out.str();
 }
 

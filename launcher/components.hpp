@@ -18,6 +18,14 @@ std::string componentsText();
 /// "<!-- end table -->" (`wsntrack components --markdown`; a test checks the README against it).
 std::string componentsMarkdown();
 
+/// The registered names of one kind of component, one per line, in registry order
+/// (`wsntrack components --names KIND`, for scripts such as the golden outputs). KIND is one of
+/// componentKinds(); throws std::invalid_argument naming them for any other.
+std::string componentNames(const std::string& kind);
+
+/// The kinds componentNames takes: sensor-models, engines, associations, metrics.
+std::vector<std::string> componentKinds();
+
 /// The engines and associations only (`wsntrack engines`, kept for scripts that use it).
 std::string enginesText();
 

@@ -37,7 +37,8 @@ constexpr const char* kUsage =
     "  watch RUN_DIR      live view of a running cluster's tracks and metrics (from another terminal)\n"
     "  validate FILE...   check scenario files without running them\n"
     "  components         list every sensor model, tracking engine and track association with its parameters\n"
-    "                     (--markdown: the key tables of scenarios/README.md)\n"
+    "                     (--markdown: the key tables of scenarios/README.md; --names KIND: the names of one\n"
+    "                     kind, one per line: sensor-models, engines, associations or metrics)\n"
     "  engines            list the tracking engines and association methods only\n"
     "  replay RUN_DIR     write an animation of a finished run (GIF, MP4 or HTML) with plot_run.py --animate\n"
     "  version            print the version, git commit and Cyclone DDS version (also --version)\n"
@@ -250,8 +251,18 @@ int main(int argc, char** argv) {
       std::cout << launcher::componentsMarkdown();
       return 0;
     }
+    if (command == "components" && args.size() == 2 && args[0] == "--names") {
+      try {
+        std::cout << launcher::componentNames(args[1]);
+      } catch (const std::invalid_argument& error) {
+        std::cerr << "wsntrack components: " << error.what() << "\n";
+        return 2;
+      }
+      return 0;
+    }
     if ((command == "components" || command == "engines") && !args.empty()) {
-      std::cerr << "Usage: wsntrack " << command << (command == "components" ? " [--markdown]" : "") << "\n";
+      std::cerr << "Usage: wsntrack " << command << (command == "components" ? " [--markdown | --names KIND]" : "")
+                << "\n";
       return 2;
     }
     if (command == "components" || command == "engines") {

@@ -31,6 +31,23 @@ TEST_CASE("wsntrack components lists every registered component of every kind", 
   CHECK(listed >= 2 + 3 + 2 + 5);  // today's: 2 sensor models, 3 engines, 2 associations, 5 metrics
 }
 
+TEST_CASE("components --names lists each registry's names in order, one per line", "[launcher][components]") {
+  const auto names_of = [](const auto& registry) {
+    std::string out;
+    for (const auto& entry : registry) out += entry.name + "\n";
+    return out;
+  };
+  CHECK(componentNames("engines") == names_of(supernode::engineRegistry()));
+  CHECK(componentNames("associations") == names_of(aggregator::associationRegistry()));
+  CHECK(componentNames("sensor-models") == names_of(node::sensorModelRegistry()));
+  CHECK(componentNames("metrics") == names_of(aggregator::metricRegistry()));
+  // The golden outputs take their engine list from here: sbmht must be on it.
+  CHECK(componentNames("engines").find("sbmht\n") != std::string::npos);
+  CHECK(componentKinds().size() == 4);
+  CHECK_THROWS_WITH(componentNames("engine"),
+                    Catch::Contains("sensor-models, engines, associations, metrics") && Catch::Contains("'engine'"));
+}
+
 TEST_CASE("every key a sensor model or metric reads is listed with its unit, default and range",
           "[launcher][components]") {
   const std::string text = componentsText();
