@@ -224,6 +224,7 @@ def run_all(runs, args, fixed, metrics):
 
 
 def parse_args(argv):
+    """The flag form's command line."""
     usage = ("%(prog)s SPEC.yaml [--out DIR] [-j N] ...   (the spec form: %(prog)s SPEC.yaml --help)\n"
              "       %(prog)s --scenario SCENARIO [--seeds SEEDS] [--engines ENGINES] [--set-grid KEY=V1,V2,...]\n"
              "                [--set KEY=VALUE] [--out OUT] [-j JOBS] [--wsntrack WSNTRACK] [--metrics METRICS]\n"

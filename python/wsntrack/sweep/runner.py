@@ -123,6 +123,8 @@ def port_clash(run):
 
 
 def start_spec_run(run, again=False):
+    """Starts a run (`again`: after it lost its DDS ports), its output appended to its log; its
+    record is removed until it finishes again."""
     (run.run_dir / RECORD).unlink(missing_ok=True)  # never complete until it finishes again
     run.attempts = run.attempts + 1 if again else 1
     run.log_file = open(run.log, "a" if again else "w", encoding="utf-8")
@@ -137,6 +139,8 @@ def start_spec_run(run, again=False):
 
 
 def finish_spec_run(run, scenario_sha, metrics):
+    """Records how a run that ended went: its status and metrics, and RECORD in its directory
+    (written whole, then renamed) for the next invocation to reuse."""
     run.log_file.close()
     run.wall_s = time.monotonic() - run.started
     run.exit_code = run.process.returncode

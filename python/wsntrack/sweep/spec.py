@@ -62,6 +62,8 @@ class Spec:
 
 
 def load_spec(path):
+    """The spec in `path`, validated (Spec); UsageError without PyYAML or for an unreadable file,
+    SpecError (SPEC:LINE) for anything the spec gets wrong."""
     try:
         import yaml
     except ImportError:

@@ -112,6 +112,7 @@ def shown(value):
 
 
 def differences(old, new, fields):
+    """Lines saying how `fields` of two sweep descriptions (sweep.json) differ, old -> new."""
     lines = []
     for field in fields:
         if old.get(field) != new.get(field):
@@ -129,6 +130,7 @@ def differences(old, new, fields):
 
 
 def parse_spec_args(argv):
+    """The spec form's command line."""
     parser = argparse.ArgumentParser(
         prog="sweep.py", description=SPEC_DESCRIPTION, epilog=SPEC_EPILOG,
         usage="%(prog)s SPEC.yaml [--out DIR] [-j N] [--force] [--seeds SEEDS] [--set KEY=VALUE]... [--wsntrack PATH]",

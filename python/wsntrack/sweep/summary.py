@@ -30,10 +30,12 @@ def describe_stats(values):
 
 
 def cell_text(value):
+    """A CSV cell: empty for None, a float in full (repr), anything else as text."""
     return "" if value is None else repr(float(value)) if isinstance(value, float) else str(value)
 
 
 def write_spec_results(path, spec, runs):
+    """results.csv: one row per run, finished or not, with its command."""
     keys = [k for k, *_ in spec.grid]
     with open(path, "w", newline="", encoding="utf-8") as f:
         writer = csv.writer(f)
@@ -64,6 +66,7 @@ def summarise(spec, points, runs):
 
 
 def write_summary(path, spec, points, cells):
+    """summary.csv: one row per grid point and engine, each metric's n, mean, sd and interval."""
     keys = [k for k, *_ in spec.grid]
     with open(path, "w", newline="", encoding="utf-8") as f:
         writer = csv.writer(f)
@@ -81,6 +84,7 @@ def write_summary(path, spec, points, cells):
 
 
 def spec_table(spec, points, names, cells, fixed_text):
+    """table.md: the means ± the half-width of their 95 % interval, per grid point and engine."""
     lines = [f"## {spec.title or 'Sweep of ' + spec.scenario.name}", ""]
     if spec.notes:
         lines += [spec.notes.strip(), ""]
