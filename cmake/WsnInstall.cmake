@@ -10,6 +10,9 @@ install(TARGETS wsntrack-node wsntrack-network wsntrack-supernode wsntrack-aggre
 
 # The run loader is imported, and run alone it prints what a run directory holds.
 install(PROGRAMS tools/plot_run.py tools/sweep.py tools/wsntrack_run.py tools/onera_table.py DESTINATION ${WSN_INSTALL_TOOLS_DIR})
+# The package the tools are entry points over, where they look for it: ../python from the tools.
+install(DIRECTORY python/wsntrack DESTINATION ${WSN_INSTALL_PYTHON_DIR} FILES_MATCHING PATTERN "*.py"
+        PATTERN "__pycache__" EXCLUDE)
 
 install(DIRECTORY scenarios/ DESTINATION ${WSN_INSTALL_SCENARIO_DIR} FILES_MATCHING PATTERN "*.yaml")
 # The sweep specs name their scenario relative to the data directory, where the scenarios are too.

@@ -13,6 +13,9 @@ set(WSN_INSTALL_DATA_DIR "${CMAKE_INSTALL_DATADIR}/wsntrack")
 set(WSN_INSTALL_SCENARIO_DIR "${WSN_INSTALL_DATA_DIR}/scenarios")
 set(WSN_INSTALL_IDL_DIR "${WSN_INSTALL_DATA_DIR}/idl")
 set(WSN_INSTALL_TOOLS_DIR "${WSN_INSTALL_DATA_DIR}/tools")
+# The python package the tools are thin entry points over; each tool finds it as ../python from
+# its own directory, so it sits beside the tools.
+set(WSN_INSTALL_PYTHON_DIR "${WSN_INSTALL_DATA_DIR}/python")
 
 # Relative to bindir, so that the installed tree works under any prefix (`cmake --install --prefix P`,
 # the .deb's /usr). With relative GNUInstallDirs the configured prefix cancels out. An absolute

@@ -29,7 +29,7 @@ set(CPACK_STRIP_FILES ON)
 find_program(WSN_DPKG_SHLIBDEPS dpkg-shlibdeps)
 if(WSN_DPKG_SHLIBDEPS)
   set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-  # The scripts are not ELF: python3 for the tools (plot_run.py, sweep.py, the loader).
+  # The scripts are not ELF: python3 for the tools (plot_run.py, sweep.py, the loader) and their package.
   set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3")
 else()
   message(STATUS "dpkg-shlibdeps not found (package dpkg-dev): the .deb's Depends are the Debian 12 list")
@@ -37,8 +37,9 @@ else()
       "python3, libboost-program-options1.74.0 (>= 1.74.0+ds1), libc6 (>= 2.35), libddsc0debian (>= 0.8.0), \
 libgcc-s1 (>= 3.0), libssl3 (>= 3.0.0), libstdc++6 (>= 11), libyaml-cpp0.7 (>= 0.7.0)")
 endif()
-# Plots (plot_run.py) need matplotlib, the run loader numpy, both PyYAML; a run works without them.
-set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3-matplotlib, python3-numpy, python3-yaml")
+# Plots (plot_run.py) need matplotlib, the run loader numpy, both PyYAML, a sweep spec's confidence
+# intervals SciPy; a run works without them.
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3-matplotlib, python3-numpy, python3-yaml, python3-scipy")
 
 # A source package of the repository, should anyone make one, without build trees and runs.
 set(CPACK_SOURCE_GENERATOR TGZ)

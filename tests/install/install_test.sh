@@ -34,6 +34,10 @@ check_tree() {
     [ -x "$root/$WSN_DATA_DIR/tools/$name" ] || fail "$root/$WSN_DATA_DIR/tools/$name missing or not executable"
   done
   [ -x "$root/$WSN_DATA_DIR/tools/wsntrack_run.py" ] || fail "$root/$WSN_DATA_DIR/tools/wsntrack_run.py missing or not executable"
+  # The package the tools are entry points over, beside them (each looks for ../python), every module of it.
+  (cd "$src/python" && find wsntrack -name '*.py' -not -path '*/__pycache__/*') | while read -r name; do
+    cmp -s "$src/python/$name" "$root/$WSN_DATA_DIR/python/$name" || fail "$root/$WSN_DATA_DIR/python/$name missing or different"
+  done || exit 1
   for name in "$src"/scenarios/*.yaml; do
     cmp -s "$name" "$root/$WSN_DATA_DIR/scenarios/$(basename "$name")" ||
       fail "$root/$WSN_DATA_DIR/scenarios/$(basename "$name") missing or different"

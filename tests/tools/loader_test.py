@@ -22,7 +22,8 @@ REAL = Path(sys.argv[4]) if len(sys.argv) == 5 and sys.argv[3] == "--real" else 
 sys.path.insert(0, str(SOURCE / "tools"))
 sys.path.insert(0, str(SOURCE / "tests" / "tools"))
 import tiny_run  # noqa: E402
-import wsntrack_run  # noqa: E402
+import wsntrack_run  # noqa: E402  (the entry point, which puts the package on sys.path)
+import wsntrack.loader  # noqa: E402
 from wsntrack_run import RunError, ToolMissing, load_run, track_label  # noqa: E402
 
 
@@ -124,7 +125,7 @@ class TinyRun(unittest.TestCase):
 
     def test_doctests(self):
         import doctest
-        result = doctest.testmod(wsntrack_run)
+        result = doctest.testmod(wsntrack.loader)
         self.assertEqual(result.failed, 0)
         self.assertGreater(result.attempted, 0)
 

@@ -113,8 +113,8 @@ class OneAlgorithm(unittest.TestCase):
         # No truth.csv in these runs: one note per run, and "reported" is '-'.
         self.assertEqual(self.result.stderr.count("onera_table.py: note: "), 2, self.result.stderr)
         for seed in (self.seed1, self.seed2):
-            self.assertIn(f"note: {seed / 'truth.csv'}: missing; the reported column is shown as '-'",
-                          self.result.stderr)
+            self.assertIn(f"note: {seed / 'truth.csv'}: missing (is {seed} a wsntrack run directory?); the reported "
+                          "column is shown as '-'", self.result.stderr)
         self.assertNotIn("reported share", self.result.stdout)
 
     def test_per_target_means_over_runs(self):
@@ -286,7 +286,8 @@ class Reported(unittest.TestCase):
 
     def test_missing_files(self):
         run = reported_run("reported/no_obs", SEED2_REPORTS, **{"observations.csv": None})
-        self.check_dash(run, f"note: {run / 'observations.csv'}: missing; the reported column is shown as '-'")
+        self.check_dash(run, f"note: {run / 'observations.csv'}: missing (is {run} a wsntrack run directory?); the "
+                             "reported column is shown as '-'")
         run = reported_run("reported/no_truth", SEED2_REPORTS, **{"truth.csv": None})
         self.check_dash(run, f"note: {run / 'truth.csv'}: missing")
 
@@ -297,15 +298,17 @@ class Reported(unittest.TestCase):
     def test_malformed_csv(self):
         run = reported_run("reported/no_fate", SEED2_REPORTS, **{"observations.csv": observations_csv(
             SEED2_REPORTS).replace(",fate,", ",what,", 1)})
-        self.check_dash(run, f"{run / 'observations.csv'}: line 1: header has no column fate")
+        self.check_dash(run, f"{run / 'observations.csv'}:1: expected the header 'tick_generated,target,fate', got "
+                             "'tick_generated,tick_delivered,sensor,supernode,hops,delay,x,y,target,what,level' (no "
+                             "column 'fate')")
         run = reported_run("reported/bad_tick", SEED2_REPORTS, **{"truth.csv": truth_csv(ALIVE).replace(
             "\n10,19,", "\nten,19,", 1)})
-        self.check_dash(run, f"{run / 'truth.csv'}: line 2: tick: expected an integer, got 'ten'")
+        self.check_dash(run, f"{run / 'truth.csv'}:2: column 'tick' must be a whole number, got 'ten'")
         run = reported_run("reported/bad_target", SEED2_REPORTS, **{"observations.csv": observations_csv(
             SEED2_REPORTS).replace(",0,delivered,0\n", ",0.5,delivered,0\n", 1)})
-        self.check_dash(run, f"{run / 'observations.csv'}: line 2: target: expected an integer, got '0.5'")
+        self.check_dash(run, f"{run / 'observations.csv'}:2: column 'target' must be a whole number, got '0.5'")
         run = reported_run("reported/short_row", SEED2_REPORTS, **{"truth.csv": "tick,target,x,y,vx,vy\n10\n"})
-        self.check_dash(run, f"{run / 'truth.csv'}: line 2: 1 fields, expected 6")
+        self.check_dash(run, f"{run / 'truth.csv'}:2: expected 6 fields (tick,target,x,y,vx,vy), got 1")
 
 CLASS_COLUMNS = ("wheeled_light", "wheeled_heavy", "tracked", "human", "group", "aerial", "none")
 
@@ -813,7 +816,7 @@ class Errors(unittest.TestCase):
 
     def test_not_json(self):
         path = run_dir("errors/truncated", text='{"track_quality": {"targets": [')
-        self.check([path], f"{path / 'metrics.json'}: not JSON (line 1, column")
+        self.check([path], f"{path / 'metrics.json'}:1: malformed JSON (")
 
     def test_no_track_quality(self):
         path = run_dir("errors/no_quality", text='{"eps_k": 0.1}')

@@ -15,6 +15,10 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 [ -x "$python" ] && "$python" -c "import matplotlib" 2>/dev/null || { echo "SKIP: no matplotlib for $python"; exit 77; }
 [ -f "$plot" ] || fail "$plot missing: the build should copy tools/plot_run.py next to wsntrack"
 cmp -s "$plot" "$src/tools/plot_run.py" || fail "$plot differs from $src/tools/plot_run.py (stale copy)"
+# The package the script is an entry point over, copied beside bin/ (it looks for ../python).
+(cd "$src/python" && find wsntrack -name '*.py' -not -path '*/__pycache__/*') | while read -r name; do
+  cmp -s "$src/python/$name" "$bin/../python/$name" || fail "$bin/../python/$name differs from $src/python/$name (stale copy)"
+done || exit 1
 
 is_png() { [ "$(head -c 8 "$1" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ]; }
 is_svg() { head -c 2000 "$1" | grep -q "<svg"; }

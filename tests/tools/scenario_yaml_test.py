@@ -1,7 +1,7 @@
 #!/usr/bin/python3
-"""scenario.yaml as 'wsntrack run' writes it, read back by tools/plot_run.py (PyYAML) and the run
-loader: for the acoustic scenario of An et al. 2014 (nested mappings, flow lists, an exponent
-float) and for oh_quadrants, the values read are the ones the C++ wrote, and the line recorded
+"""scenario.yaml as 'wsntrack run' writes it, read back by the run-directory reader (wsntrack.rundir,
+PyYAML) that tools/plot_run.py draws from and by the run loader: for the acoustic scenario of An et
+al. 2014 (nested mappings, flow lists, an exponent float) and for oh_quadrants, the values read are the ones the C++ wrote, and the line recorded
 for each is the line that holds it.
 
 Usage: scenario_yaml_test.py SOURCE_DIR BIN_DIR WORK_DIR
@@ -15,8 +15,8 @@ from pathlib import Path
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 SOURCE, BIN, WORK = Path(sys.argv[1]), Path(sys.argv[2]), Path(sys.argv[3])
 sys.path.insert(0, str(SOURCE / "tools"))
-import plot_run  # noqa: E402
-from wsntrack_run import load_run  # noqa: E402
+from wsntrack_run import load_run  # noqa: E402  (the entry point, which puts the package on sys.path)
+from wsntrack import rundir  # noqa: E402
 
 TICKS = 3  # the scenario file is written before the first tick; a short run keeps the test quick
 
@@ -43,7 +43,7 @@ class WrittenScenario:
         cls.path = cls.run_dir / "scenario.yaml"
         cls.text = cls.path.read_text(encoding="utf-8")
         cls.lines = {}
-        cls.data = plot_run.parse_yaml(cls.text, cls.path, cls.lines)
+        cls.data = rundir.parse_yaml(cls.text, cls.path, cls.lines)
 
     def expect(self, written, keys, value):
         """`written` is in the text at the line recorded for `keys`, and `keys` reads as `value`,
@@ -64,7 +64,7 @@ class WrittenScenario:
         self.expect("  seed: 1", ("run", "seed"), 1)
 
     def test_summary_and_loader_agree(self):
-        summary = plot_run.read_scenario(self.run_dir)
+        summary = rundir.read_scenario(self.run_dir)
         self.assertEqual(summary["ticks"], TICKS)
         self.assertEqual(summary["name"], self.scenario)
         self.assertEqual(summary["region"], tuple(float(self.data["region"][k])
@@ -91,7 +91,7 @@ class AcousticScenario(WrittenScenario, unittest.TestCase):
         self.expect("vy: 0.1", ("targets", "scripted", 2, "vy"), 0.1)
         self.expect("- {x: 625, y: 625}", ("supernodes", 0), {"x": 625, "y": 625})
         self.assertEqual(len(self.data["supernodes"]), 1)
-        self.assertEqual(plot_run.read_scenario(self.run_dir)["supernodes"], [(625.0, 625.0)])
+        self.assertEqual(rundir.read_scenario(self.run_dir)["supernodes"], [(625.0, 625.0)])
 
 
 class OhQuadrants(WrittenScenario, unittest.TestCase):
@@ -105,7 +105,7 @@ class OhQuadrants(WrittenScenario, unittest.TestCase):
         self.expect('  association: "mcmcda"', ("aggregator", "association"), "mcmcda")
         self.expect("vx: -1.2, vy: 1}", ("targets", "scripted", 1, "vx"), -1.2)
         self.expect("- {x: 75, y: 75}", ("supernodes", 3), {"x": 75, "y": 75})
-        self.assertEqual(plot_run.read_scenario(self.run_dir)["supernodes"],
+        self.assertEqual(rundir.read_scenario(self.run_dir)["supernodes"],
                          [(25.0, 25.0), (75.0, 25.0), (25.0, 75.0), (75.0, 75.0)])
 
 

@@ -28,8 +28,10 @@ SOURCE, BIN, WORK = Path(sys.argv[1]).resolve(), Path(sys.argv[2]).resolve(), Pa
 PYTHON = "/usr/bin/python3"
 SWEEP = SOURCE / "tools" / "sweep.py"
 WSNTRACK = BIN / "wsntrack"
-sys.path.insert(0, str(SOURCE / "tools"))
-import sweep  # noqa: E402
+sys.path.insert(0, str(SOURCE / "python"))
+from wsntrack.sweep.metrics import METRIC_SOURCES  # noqa: E402
+from wsntrack.sweep.spec import load_spec  # noqa: E402
+from wsntrack.sweep.summary import t_quantile  # noqa: E402
 
 # t(0.975, df) from a printed table (e.g. NIST/SEMATECH e-Handbook, 1.3.6.7.2), independent of the
 # tool's own computation.
@@ -378,18 +380,18 @@ exec "{WSNTRACK}" "$@"
 class Pieces(unittest.TestCase):
     def test_t_quantile(self):
         for df, want in T_975.items():
-            self.assertAlmostEqual(sweep.t_quantile(0.975, df), want, delta=1e-8)
+            self.assertAlmostEqual(t_quantile(0.975, df), want, delta=1e-8)
 
     def test_scenario_beside_the_spec(self):
         spec = write(WORK / "beside" / "spec.yaml", "scenario: mine.yaml\ngrid: {network.pte: [0]}\n")
         shutil.copy(SOURCE / "scenarios" / "oh_single_supernode.yaml", WORK / "beside" / "mine.yaml")
-        self.assertEqual(sweep.load_spec(spec).scenario, (WORK / "beside" / "mine.yaml").resolve())
+        self.assertEqual(load_spec(spec).scenario, (WORK / "beside" / "mine.yaml").resolve())
 
     def test_shipped_spec_and_readme(self):
         """The shipped example loads, and README.md's copy of it (without notes) says the same."""
         import yaml
         shipped = SOURCE / "sweeps" / "oh_fig7_pte.yaml"
-        spec = sweep.load_spec(shipped)
+        spec = load_spec(shipped)
         self.assertEqual(spec.grid[0][:2], ("network.pte", ["0", "0.1", "0.2", "0.3", "0.4", "0.5", "0.6"]))
         self.assertEqual((spec.engines, spec.seeds), (["mcmcda", "gnn"], list(range(1, 11))))
         readme = (SOURCE / "README.md").read_text(encoding="utf-8")
@@ -406,8 +408,8 @@ class Pieces(unittest.TestCase):
         self.assertGreaterEqual(len(specs), 9)
         for path in specs:
             with self.subTest(spec=path.name):
-                spec = sweep.load_spec(path)
-                self.assertTrue(set(spec.metrics) <= set(sweep.METRIC_SOURCES), spec.metrics)
+                spec = load_spec(path)
+                self.assertTrue(set(spec.metrics) <= set(METRIC_SOURCES), spec.metrics)
                 self.assertTrue(spec.grid)
 
     def test_flag_form_unchanged(self):

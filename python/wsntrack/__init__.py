@@ -1,0 +1,16 @@
+"""wsntrack's analysis tools as one package: the run-directory reader and everything built on it.
+
+  wsntrack.rundir       the one reader of a run directory (scenario.yaml, the CSV files, the JSON
+                        files), with FILE:LINE messages; standard library only (PyYAML for
+                        scenario.yaml)
+  wsntrack.loader       a run directory as numpy record arrays (tools/wsntrack_run.py)
+  wsntrack.stonesoup    the loaded run as Stone Soup types, when stonesoup is importable
+  wsntrack.plots        the plots and the replay animation of a run (tools/plot_run.py)
+  wsntrack.sweep        grids of `wsntrack run` and their tables, intervals and plots (tools/sweep.py)
+  wsntrack.onera_table  Table II of Pannetier et al. beside our runs (tools/onera_table.py)
+
+The scripts in tools/ are thin entry points: each puts the `python` directory beside its own
+directory (in the source tree, the build tree and an installed tree alike) on sys.path and calls
+into this package. Importing the package imports nothing else, so that each tool loads only what
+it needs (the sweep's flag form and the ONERA table run on the standard library alone).
+"""
