@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace wsn::common {
 
@@ -27,6 +28,10 @@ struct ObservationStatistics {
   // From the network model (Oh §V, eq. 7 over the topology's hop histogram).
   Derived delivery_probability;  ///< a report reaches its supernode's window (delay < ws)
   Derived on_time_probability;   ///< a report reaches its supernode at the tick it was made (no delay)
+  /// [j]: a report reaches its supernode with a delay <= j ticks, j = 0 .. ws - 1 ([0] is
+  /// on_time_probability, [ws - 1] delivery_probability): how much of the last ticks an engine
+  /// deciding at the newest tick has received.
+  std::vector<double> arrival_by_lag;
   // From the target model (targets, dynamics, region).
   Derived birth_density;            ///< new targets per area per tick
   Derived termination_probability;  ///< a live target ends (dies or leaves the region) at a tick
@@ -48,6 +53,23 @@ struct ObservationStatistics {
   /// A live target's report is there at the newest tick: what a run of misses at the live edge
   /// (a track's deletion, a gap) is judged by, since delayed reports arrive only later.
   double onTimeDetectionProbability() const { return sensing_probability.value * on_time_probability.value; }
+  /// [j]: a live target's report of the tick j ticks back is there at the newest tick, sensed and
+  /// arrived (what a miss count at the live edge is judged by; common::rareLiveEdgeMissRun).
+  std::vector<double> detectionByLag() const {
+    std::vector<double> pd = arrival_by_lag;
+    if (pd.empty()) pd.push_back(delivery_probability.value);
+    for (double& p : pd) p *= sensing_probability.value;
+    return pd;
+  }
+  /// A live target's report of a tick in the window is there when the engine decides at the newest
+  /// tick: detectionByLag() averaged over the window's ticks (what a posterior over the whole
+  /// window, with one pd for all its ticks, expects to see of a target).
+  double windowDetectionProbability() const {
+    const auto pd = detectionByLag();
+    double sum = 0.0;
+    for (double p : pd) sum += p;
+    return sum / static_cast<double>(pd.size());
+  }
   /// lambda_f of Oh eq. (3): false reports that are delivered into the window.
   double falseAlarmDensity() const { return false_report_density.value * delivery_probability.value; }
 };

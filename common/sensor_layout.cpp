@@ -8,6 +8,11 @@
 
 namespace wsn::common {
 
+GridShape gridShape(const Rect& region, double spacing) {
+  return {static_cast<std::uint32_t>(std::floor(region.width() / spacing + 1e-9)),
+          static_cast<std::uint32_t>(std::floor(region.height() / spacing + 1e-9))};
+}
+
 SensorFieldConfig sensorFieldConfig(const Scenario& scenario) {
   return {scenario.region, scenario.sensors, scenario.localisation.sigma, scenario.sensor_model.sensing_range,
           scenario.run.seed};
@@ -33,11 +38,10 @@ SensorLayout::SensorLayout(const SensorFieldConfig& field) : region_(field.regio
       placed_.push_back(placedSensorOf(sensor));
     }
   } else if (config.kind == SensorLayoutConfig::Kind::kGrid) {
-    const auto columns = static_cast<std::uint32_t>(std::floor(region_.width() / config.spacing + 1e-9));
-    const auto rows = static_cast<std::uint32_t>(std::floor(region_.height() / config.spacing + 1e-9));
-    true_positions_.reserve(static_cast<std::size_t>(columns) * rows);
-    for (std::uint32_t r = 0; r < rows; ++r)
-      for (std::uint32_t c = 0; c < columns; ++c)
+    const GridShape grid = gridShape(region_, config.spacing);
+    true_positions_.reserve(grid.sensors());
+    for (std::uint32_t r = 0; r < grid.rows; ++r)
+      for (std::uint32_t c = 0; c < grid.columns; ++c)
         true_positions_.push_back({region_.x_min + (c + 0.5) * config.spacing, region_.y_min + (r + 0.5) * config.spacing});
   } else {
     true_positions_.reserve(config.count);

@@ -22,6 +22,14 @@ struct SensorFieldConfig {
   std::uint64_t seed = 1;           ///< run.seed (random placement, localisation error)
 };
 
+/// The cells of a grid layout over `region` at `spacing`: a sensor at each cell centre.
+struct GridShape {
+  std::uint32_t columns = 0;
+  std::uint32_t rows = 0;
+  std::uint64_t sensors() const { return static_cast<std::uint64_t>(columns) * rows; }
+};
+GridShape gridShape(const Rect& region, double spacing);
+
 /// The sensor-field config of `scenario`: split off at the role edge.
 SensorFieldConfig sensorFieldConfig(const Scenario& scenario);
 

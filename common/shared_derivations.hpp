@@ -3,7 +3,10 @@
 // scenario the same way in every engine and association.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <string>
 
 #include "common/observation_statistics.hpp"
 #include "common/param_spec.hpp"
@@ -16,6 +19,31 @@ inline ParamDerivation reportErrorDerivation() {
   return {
       "the sensor model's report error (localisation and fusion)",
       [](const StatisticsSource& stats, const std::map<std::string, EngineParam>&) { return stats().position_sigma; }};
+}
+
+/// How many consecutive misses end a track (or bound a gap in it), as every engine judges them: at
+/// the newest tick, where the reports of the last few ticks may still be on their way, a run of k
+/// misses is rarer than 1 % once prod_{j<k} (1 - pd_j) <= 0.01, pd_j the chance that a live
+/// target's report of the tick j ticks back has arrived (common::rareLiveEdgeMissRun). A report
+/// that is only late is therefore not taken for a miss, and one that is on time is not waited for
+/// longer than its lag needs. At least `at_least`, at most `at_most` (0: the window size).
+inline ParamDerivation liveEdgeMissDerivation(std::int32_t at_least, std::int32_t at_most) {
+  return {"consecutive misses at the newest ticks rarer than 1 %, a report counted once it has arrived (sensed, "
+          "and delivered with a delay up to its lag)" +
+              (at_least > 1 ? ", at least " + std::to_string(at_least) : std::string()) +
+              (at_most == 0 ? ", at most window_size" : std::string()),
+          [at_least, at_most](const StatisticsSource& stats, const std::map<std::string, EngineParam>&) {
+            const ObservationStatistics& s = stats();
+            const auto pd = s.detectionByLag();
+            const std::int32_t cap = at_most == 0 ? s.window_size : at_most;
+            const std::int32_t k = std::max(at_least, rareLiveEdgeMissRun(pd, 0.01, cap));
+            return Derived{static_cast<double>(k),
+                           (at_least > 1 ? "max(" + std::to_string(at_least) + ", " : std::string()) +
+                               "smallest k with prod_{j<k} (1 - pd_j) <= 0.01" + (at_least > 1 ? ")" : "") +
+                               ", pd_j arrived by lag j: " + shortNumber(pd.front()) + " on time .. " +
+                               shortNumber(pd.back()) + " in the window" +
+                               (at_most == 0 ? ", at most window_size " + std::to_string(cap) : std::string())};
+          }};
 }
 
 /// What merge_radius means, in every engine that has it.

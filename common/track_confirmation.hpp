@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 namespace wsn::common {
 
@@ -61,6 +62,23 @@ inline std::int32_t rareMissRun(double pd, double tolerance, std::int32_t max_k)
   if (pd <= 0.0) return max_k;
   const double k = std::ceil(std::log(tolerance) / std::log(1.0 - pd) - 1e-9);
   return static_cast<std::int32_t>(std::clamp(k, 1.0, static_cast<double>(max_k)));
+}
+
+/// The smallest k >= 1 such that a live target shows no report at any of the newest k ticks, as an
+/// engine sees them when it decides at the newest tick, with probability <= tolerance:
+/// prod_{j < k} (1 - pd_by_lag[j]), where pd_by_lag[j] is the probability that the report of the
+/// tick j ticks back has arrived by then (sensed, and delivered with a delay <= j); past the last
+/// lag, the last value. A report that is only late is then not taken for a miss. With every lag at
+/// one pd this is rareMissRun(pd). Capped at max_k.
+inline std::int32_t rareLiveEdgeMissRun(const std::vector<double>& pd_by_lag, double tolerance, std::int32_t max_k) {
+  if (pd_by_lag.empty()) return max_k;
+  double run = 1.0;
+  for (std::int32_t k = 1; k <= max_k; ++k) {
+    const std::size_t lag = std::min(static_cast<std::size_t>(k - 1), pd_by_lag.size() - 1);
+    run *= 1.0 - std::clamp(pd_by_lag[lag], 0.0, 1.0);
+    if (run <= tolerance * (1.0 + 1e-12)) return k;
+  }
+  return max_k;
 }
 
 /// Area of the chi-square gate g of a 2-D Gaussian innovation with per-axis variance s2:

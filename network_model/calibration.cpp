@@ -17,6 +17,7 @@ ExpectedRatios expectedRatios(const Topology& topology, double pte, double pde, 
   double received = 0.0;
   double delayed = 0.0;
   double delayed_in_window = 0.0;
+  ratios.arrived_by_lag.assign(static_cast<std::size_t>(std::max(window_size, 1)), 0.0);
   for (std::size_t k = 1; k < histogram.size(); ++k) {
     if (histogram[k] == 0) continue;
     const auto weight = static_cast<double>(histogram[k]) / sensors;
@@ -27,7 +28,10 @@ ExpectedRatios expectedRatios(const Topology& topology, double pte, double pde, 
     received += weight * pts;
     delayed += weight * pts * (1.0 - on_time);
     delayed_in_window += weight * pts * (delayProbabilityBelow(pde, hops, window_size) - on_time);
+    for (std::size_t lag = 0; lag < ratios.arrived_by_lag.size(); ++lag)
+      ratios.arrived_by_lag[lag] += weight * pts * delayProbabilityBelow(pde, hops, static_cast<std::int64_t>(lag) + 1);
   }
+  for (double& arrived : ratios.arrived_by_lag) arrived = std::clamp(arrived, 0.0, 1.0);
   // The weights sum to 1 only up to rounding; keep the ratio inside [0, 1].
   ratios.lost_to_total = std::clamp(1.0 - received, 0.0, 1.0);
   ratios.delayed_to_total = delayed;

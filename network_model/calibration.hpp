@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "network_model/topology.hpp"
 
@@ -22,6 +23,9 @@ struct ExpectedRatios {
   double delayed_to_received = 0.0;  ///< E[pts (1 - (1-pde)^k)] / E[pts]
   /// E[pts P(1 <= d < ws)]: delayed but still inside the window (Fig. 6 right, dotted).
   double delayed_in_window_to_total = 0.0;
+  /// E[pts P(d <= j)] for j = 0 .. ws - 1: a report made at tick t is at its supernode by tick
+  /// t + j. What an engine deciding at the newest tick sees of the last ticks' reports.
+  std::vector<double> arrived_by_lag;
 };
 
 /// Oh et al. §V, eq. (7) averaged over the topology's hop histogram.

@@ -36,7 +36,7 @@ struct NetworkReport {
 NetworkReport networkReport(const Topology& topology, const Router& router);
 
 /// network.json: the report, its loss and delay ratios as Oh §VII-E counts them, and the paper's
-/// §VII-E counts beside them for comparison.
+/// §VII-E counts as a reference named after the scenario they belong to (the paper's own example).
 std::string networkJson(const NetworkReport& report);
 
 }  // namespace wsn::network_model

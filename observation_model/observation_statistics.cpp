@@ -279,18 +279,21 @@ SensorMeasurement measureSensorModel(const common::Scenario& scenario, const com
 
 /// The shares of reports that reach their supernode's window, and at once: Oh eq. (7) over the
 /// hop histogram.
-std::pair<Derived, Derived> deliveryProbabilities(const common::Scenario& scenario,
-                                                  const common::SensorLayout& layout) {
+/// The network's part of the statistics: delivery into the window, on time, and by each lag.
+void deriveDeliveryStatistics(const common::Scenario& scenario, const common::SensorLayout& layout,
+                              common::ObservationStatistics& stats) {
   const network_model::Topology topology(network_model::topologyConfig(scenario), layout.truePositions());
   const auto ratios =
       network_model::expectedRatios(topology, scenario.network.pte, scenario.network.pde, scenario.tracker.window_size);
   const double in_window =
       std::clamp(1.0 - ratios.lost_to_total - ratios.delayed_to_total + ratios.delayed_in_window_to_total, 0.0, 1.0);
   const double on_time = std::clamp(1.0 - ratios.lost_to_total - ratios.delayed_to_total, 0.0, 1.0);
-  return {{in_window, "Oh eq. 7 over the topology: lost " + shortNumber(ratios.lost_to_total) + ", delayed past the window " +
-                          shortNumber(ratios.delayed_to_total - ratios.delayed_in_window_to_total)},
-          {on_time, "Oh eq. 7 over the topology: lost " + shortNumber(ratios.lost_to_total) + ", delayed " +
-                        shortNumber(ratios.delayed_to_total)}};
+  stats.delivery_probability = {in_window, "Oh eq. 7 over the topology: lost " + shortNumber(ratios.lost_to_total) +
+                                               ", delayed past the window " +
+                                               shortNumber(ratios.delayed_to_total - ratios.delayed_in_window_to_total)};
+  stats.on_time_probability = {on_time, "Oh eq. 7 over the topology: lost " + shortNumber(ratios.lost_to_total) +
+                                            ", delayed " + shortNumber(ratios.delayed_to_total)};
+  stats.arrival_by_lag = ratios.arrived_by_lag;
 }
 
 }  // namespace
@@ -417,7 +420,7 @@ common::ObservationStatistics observationStatistics(const common::Scenario& scen
                                 "false reports per area and tick on " + std::to_string(m.empty_ticks) +
                                     " ticks without targets of sensor_model '" + scenario.sensor_model.kind +
                                     "' (at least 3: the rule of three when none is seen)"};
-  std::tie(stats.delivery_probability, stats.on_time_probability) = deliveryProbabilities(scenario, layout);
+  deriveDeliveryStatistics(scenario, layout, stats);
   return stats;
 }
 

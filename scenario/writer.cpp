@@ -10,6 +10,7 @@
 
 #include "common/config/yaml_writer.hpp"
 #include "common/scenario_schema.hpp"
+#include "common/sensor_layout.hpp"
 #include "node/sensor_model_registry.hpp"
 
 namespace wsn::scenario {
@@ -133,7 +134,15 @@ std::string resolvedScenarioYaml(const Scenario& s) {
       << "# and the loader computed from others.\n";
   writeFields(out, "", schema::topLevel(), s);
   writeSection(out, "region", schema::region(), s.region);
-  writeSection(out, "sensors", schema::sensors(), s.sensors);
+  if (s.sensors.kind == SensorLayoutConfig::Kind::kGrid) {
+    // count is a random or list layout's key: a grid's size follows from the region and spacing,
+    // and its default (10^4) written out would misstate it. The true size goes in a comment.
+    writeSection(out, "sensors", schema::sensors(), s.sensors, {}, {"count"});
+    const auto grid = common::gridShape(s.region, s.sensors.spacing);
+    out << "  # grid of " << grid.columns << " x " << grid.rows << " = " << grid.sensors() << " sensors\n";
+  } else {
+    writeSection(out, "sensors", schema::sensors(), s.sensors);
+  }
   if (s.sensors.kind == SensorLayoutConfig::Kind::kList)
     writeList(out, "  ", "list", schema::placedSensor(), s.sensors.list);
   writeSection(out, "sensor_model", schema::sensorModel(), s.sensor_model, s.derived);

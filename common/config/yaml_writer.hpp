@@ -2,6 +2,7 @@
 // every key of every section this way, in table order, so it always reads back to the same values.
 #pragma once
 
+#include <algorithm>
 #include <map>
 #include <ostream>
 #include <string>
@@ -15,13 +16,15 @@ namespace wsn::common::config {
 /// plain word as null).
 std::string keyText(const std::string& name);
 
-/// `indent key: value` for every value key of `table` (nested keys are written by the caller).
-/// A derived value's key gets "# derived: how" after its value.
+/// `indent key: value` for every value key of `table` (nested keys are written by the caller) but
+/// those in `omitted`, which do not apply to this config. A derived value's key gets
+/// "# derived: how" after its value.
 template <typename C>
 void writeFields(std::ostream& out, const std::string& indent, const FieldTable<C>& table, const C& config,
-                 const std::map<std::string, std::string>& derived = {}) {
+                 const std::map<std::string, std::string>& derived = {}, const std::vector<std::string>& omitted = {}) {
   for (const auto& field : table.fields) {
     if (field.kind == FieldKind::kNested) continue;
+    if (std::find(omitted.begin(), omitted.end(), field.key) != omitted.end()) continue;
     out << indent << field.key << ": " << field.yamlValue(config);
     if (const auto it = derived.find(table.section + "." + field.key); it != derived.end())
       out << "  # derived: " << it->second;
@@ -31,9 +34,9 @@ void writeFields(std::ostream& out, const std::string& indent, const FieldTable<
 
 template <typename C>
 void writeSection(std::ostream& out, const std::string& name, const FieldTable<C>& table, const C& config,
-                  const std::map<std::string, std::string>& derived = {}) {
+                  const std::map<std::string, std::string>& derived = {}, const std::vector<std::string>& omitted = {}) {
   out << name << ":\n";
-  writeFields(out, "  ", table, config, derived);
+  writeFields(out, "  ", table, config, derived, omitted);
 }
 
 /// "{a: 1, b: 2}": a list item on one line; a key whose value means "not given" is left out.

@@ -22,13 +22,20 @@ constexpr double kRareMissRun = 0.01;
 std::map<std::string, common::ParamDerivation> paramDerivations() {
   std::map<std::string, common::ParamDerivation> d;
   d["detection_probability"] = {
-      "the sensor model's sensing probability x the network's delivery into the window",
+      "the sensor model's sensing probability x the share of the window's reports that have arrived when the "
+      "engine decides (delays included)",
       [](const common::StatisticsSource& stats, const Resolved&) {
         const Statistics& s = stats();
-        return Derived{s.detectionProbability(), shortNumber(s.sensing_probability.value) + " sensed (" +
-                                                     s.sensing_probability.how + ") x " +
-                                                     shortNumber(s.delivery_probability.value) + " delivered (" +
-                                                     s.delivery_probability.how + ")"};
+        // The posterior weighs every tick of the window with one pd, but at the newest tick the last
+        // ticks' delayed reports are still on their way: with the in-window pd (0.9999 at pte = 0,
+        // pde = 0.3) every late report was an unlikely miss and tracks broke at the live edge, so
+        // that eps_K was worse without loss than with 10 % of it.
+        const auto by_lag = s.detectionByLag();
+        return Derived{s.windowDetectionProbability(),
+                       shortNumber(s.sensing_probability.value) + " sensed (" + s.sensing_probability.how +
+                           ") x arrival averaged over the window's lags (" + shortNumber(by_lag.front()) +
+                           " on time .. " + shortNumber(by_lag.back()) + " in the window; " +
+                           s.delivery_probability.how + ")"};
       }};
   d["termination_probability"] = common::terminationDerivation();
   d["birth_density"] = common::birthDensityDerivation();

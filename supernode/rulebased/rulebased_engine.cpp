@@ -40,8 +40,10 @@ std::map<std::string, common::ParamDerivation> derivations() {
         const common::ObservationStatistics& s = stats();  // measured only when needed
         const double lambda_f = s.falseAlarmDensity();
         // Sightings must come on consecutive ticks, and a tick is decided decision_lag ticks late:
-        // without a lag, only the reports that were not delayed count.
-        const double pd = r.at("decision_lag").value > 0.0 ? s.detectionProbability() : s.onTimeDetectionProbability();
+        // what counts is the reports that have arrived by then (delay <= decision_lag).
+        const auto pd_by_lag = s.detectionByLag();
+        const auto lag = static_cast<std::size_t>(std::max(0.0, r.at("decision_lag").value));
+        const double pd = pd_by_lag[std::min(lag, pd_by_lag.size() - 1)];
         const double births = common::birthsPerTick(s.birth_density.value, s.region_area, s.run_ticks);
         // A candidate continues in a cluster within claim_gate Ds of it (single-report clusters):
         // each sighting after the first is a disc of that radius.

@@ -37,15 +37,10 @@ std::map<std::string, common::ParamDerivation> paramDerivations() {
                        "max(" + shortNumber(s.falseAlarmDensity()) + ", 1 / (100 x area " + shortNumber(s.region_area) +
                            "))"};
       }};
-  d["max_misses"] = {"consecutive misses rarer than 1 % at the scenario's pd (sensed and delivered in the window), "
-                     "at least 2",
-                     [](const common::StatisticsSource& stats, const Resolved&) {
-                       // At least 2: one target's report hides another's where they cross (one report for
-                       // two targets), and the miss branch must outlive that tick to bridge it.
-                       const double pd = stats().detectionProbability();
-                       return Derived{static_cast<double>(std::max(2, common::rareMissRun(pd, 0.01, 1000))),
-                                      "max(2, smallest k with (1 - pd)^k <= 0.01 at pd " + shortNumber(pd) + ")"};
-                     }};
+  // At least 2: one target's report hides another's where they cross (one report for two
+  // targets), and the miss branch must outlive that tick to bridge it. Judged at the newest tick,
+  // where late reports have not arrived yet (common::liveEdgeMissDerivation).
+  d["max_misses"] = common::liveEdgeMissDerivation(2, 1000);
   d["confirm_reports"] = {
       "reports that balance chains of clutter against the wait of every new target (as MCMCDA's "
       "confirm_observations)",

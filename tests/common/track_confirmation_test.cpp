@@ -45,6 +45,22 @@ TEST_CASE("a run of misses is rare once its probability is below the tolerance")
   CHECK(rareMissRun(0.0, 0.01, 50) == 50);
 }
 
+TEST_CASE("a run of misses at the live edge counts a late report as not yet arrived, not as missed") {
+  // One pd at every lag is rareMissRun: 0.3^4 = 0.0081.
+  CHECK(rareLiveEdgeMissRun({0.7}, 0.01, 50) == rareMissRun(0.7, 0.01, 50));
+  CHECK(rareLiveEdgeMissRun({0.5, 0.5, 0.5}, 0.01, 50) == 7);
+  // Arrived by lag 0, 1, 2: 0.3, 0.6, 0.9. Runs: 0.7, 0.7 x 0.4 = 0.28, 0.28 x 0.1 = 0.028,
+  // then 0.028 x 0.1 = 0.0028 <= 0.01 at k = 4. Judged by the in-window pd alone (0.9) it would
+  // be k = 2 (0.1^2 = 0.01), which deletes a track whose newest two reports are only late.
+  CHECK(rareLiveEdgeMissRun({0.3, 0.6, 0.9}, 0.01, 50) == 4);
+  CHECK(rareMissRun(0.9, 0.01, 50) == 2);
+  // Judged on time at every lag (0.3) it would be 13: 0.7^12 = 0.0138, 0.7^13 = 0.0097.
+  CHECK(rareMissRun(0.3, 0.01, 50) == 13);
+  CHECK(rareLiveEdgeMissRun({0.3, 0.6, 0.9}, 0.01, 3) == 3);  // capped
+  CHECK(rareLiveEdgeMissRun({}, 0.01, 9) == 9);
+  CHECK(rareLiveEdgeMissRun({1.0}, 0.01, 50) == 1);
+}
+
 TEST_CASE("the chi-square gate of an isotropic innovation is an ellipse of area pi g s2") {
   CHECK(gateArea(9.21, 0.5) == Approx(M_PI * 4.605));
 }

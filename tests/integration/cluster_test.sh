@@ -194,12 +194,12 @@ EOF
       --set-grid network.pte=0,0.4 --out "$PWD/sw" --wsntrack "$wsntrack" >table.md 2>sweep.err \
       || { cat sweep.err >&2; fail "the sweep failed"; }
     grep -q "^## Sweep of .*: seeds 1-2 (2 per cell)" table.md || { cat table.md >&2; fail "no heading with the seeds"; }
-    grep -q "^| pte | gnn eps_K | gnn eps_X | gnn OSPA |$" table.md || { cat table.md >&2; fail "table header"; }
+    grep -q "^| pte | gnn eps_K | gnn eps_X gated | gnn OSPA |$" table.md || { cat table.md >&2; fail "table header"; }
     [ "$(grep -cE '^\| (0|0\.4) \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \|$' table.md)" -eq 2 ] \
       || { cat table.md >&2; fail "expected 2 table rows of means over both seeds"; }
     cmp -s table.md sw/table.md || fail "stdout and sw/table.md differ"
     [ "$(wc -l <sw/results.csv)" -eq 5 ] || { cat sw/results.csv >&2; fail "expected a header and 4 rows in results.csv"; }
-    head -1 sw/results.csv | grep -q "^engine,network.pte,seed,status,eps_k,eps_x,ospa," || fail "results.csv header"
+    head -1 sw/results.csv | grep -q "^engine,network.pte,seed,status,eps_k,eps_x_gated,ospa," || fail "results.csv header"
     [ "$(grep -c '^gnn,0\(\.4\)\?,[12],ok,[0-9]' sw/results.csv)" -eq 4 ] || { cat sw/results.csv >&2; fail "a run not ok"; }
     [ "$(grep -c '^\[[1-4]/4\] gnn pte=' sweep.err)" -eq 4 ] || { cat sweep.err >&2; fail "no progress lines"; }
     grep -q "^  ticks: 10$" sw/runs/gnn_pte-0.4_seed-2/scenario.yaml && grep -q "^  pte: 0.4$" sw/runs/gnn_pte-0.4_seed-2/scenario.yaml \

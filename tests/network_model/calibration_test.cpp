@@ -24,6 +24,24 @@ TEST_CASE("expected ratios average pts and eq. (7) over sensors by hand", "[netw
   CHECK(nm::expectedRatios(topology, 0.3, 0.3, 1).delayed_in_window_to_total == Approx(0.0).margin(1e-12));
 }
 
+TEST_CASE("expected arrivals by lag are pts times the eq. 7 delay distribution up to the lag", "[network][calibration]") {
+  // Sensors at 1 and 2 hops, pte = pde = 0.3 (pts 0.7 and 0.7399 as above), ws = 3.
+  // P(d <= j): 1 hop 0.7, 0.91, 0.973; 2 hops 0.49, 0.784, 0.9163 (eq. 7: P(d) = C(k+d-1, d) 0.3^d 0.7^k).
+  // Lag 0: (0.7 0.7 + 0.7399 0.49) / 2 = 0.4262755; lag 1: (0.7 0.91 + 0.7399 0.784) / 2 = 0.6085408;
+  // lag 2: (0.7 0.973 + 0.7399 0.9163) / 2 = 0.679535185.
+  const std::vector<Vec2> sensors{{1, 0}, {2, 0}};
+  const nm::Topology topology(nm::TopologyConfig{std::vector<Vec2>{{0, 0}}, 1.0}, sensors);
+  const auto ratios = nm::expectedRatios(topology, 0.3, 0.3, 3);
+  REQUIRE(ratios.arrived_by_lag.size() == 3);
+  CHECK(ratios.arrived_by_lag[0] == Approx(0.4262755).margin(1e-9));
+  CHECK(ratios.arrived_by_lag[1] == Approx(0.6085408).margin(1e-9));
+  CHECK(ratios.arrived_by_lag[2] == Approx(0.679535185).margin(1e-9));
+  // The first lag is the on-time share, the last the in-window delivery.
+  CHECK(ratios.arrived_by_lag[0] == Approx(1.0 - ratios.lost_to_total - ratios.delayed_to_total).margin(1e-12));
+  CHECK(ratios.arrived_by_lag[2] ==
+        Approx(1.0 - ratios.lost_to_total - ratios.delayed_to_total + ratios.delayed_in_window_to_total).margin(1e-12));
+}
+
 TEST_CASE("unreachable sensors count as lost in the expected ratios", "[network][calibration]") {
   // Sensor 1 at x = 5 has no path (range 1): lost/total = (0.3 + 1) / 2 = 0.65 at pte = 0.3.
   const std::vector<Vec2> sensors{{1, 0}, {5, 0}};

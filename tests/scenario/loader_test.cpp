@@ -107,6 +107,19 @@ TEST_CASE("a value left out and derived is noted in the resolved file, a given o
   CHECK(signalModel(parse("")).beta == 9.75);
 }
 
+TEST_CASE("the resolved file of a grid states its true sensor count and no count key", "[scenario]") {
+  // 200 x 80 at spacing 2: 100 columns x 40 rows. The random layout's default count (10^4) must not
+  // be written for a grid, where it would misstate the field.
+  const Scenario grid = parse("region: {x_min: 0, y_min: 0, x_max: 200, y_max: 80}\nsensors: {layout: grid, spacing: 2}\n");
+  const std::string yaml = resolvedScenarioYaml(grid);
+  CHECK_THAT(yaml, Catch::Contains("sensors:\n  layout: grid\n  spacing: 2\n  # grid of 100 x 40 = 4000 sensors\n"));
+  requireRoundTrip(grid);
+  // A random layout keeps its count.
+  const Scenario random = parse("sensors: {layout: random, count: 250}\n");
+  CHECK_THAT(resolvedScenarioYaml(random), Catch::Contains("sensors:\n  layout: random\n  spacing: 1\n  count: 250\n"));
+  CHECK_THAT(resolvedScenarioYaml(random), !Catch::Contains("# grid of"));
+}
+
 TEST_CASE("an empty file or {} gives the paper's defaults", "[scenario]") {
   for (const std::string text : {"", "{}", "# only a comment\n", "---\n{}\n"}) {
     INFO("text: '" << text << "'");

@@ -419,7 +419,7 @@ class Pieces(unittest.TestCase):
                                  "--in-process", "--out", str(out), "--wsntrack", str(WSNTRACK)],
                                 capture_output=True, text=True, timeout=120)
         self.assertEqual(result.returncode, 0, result.stderr)
-        self.assertIn("| pte | gnn eps_K | gnn eps_X | gnn OSPA |", result.stdout)
+        self.assertIn("| pte | gnn eps_K | gnn eps_X gated | gnn OSPA |", result.stdout)
         self.assertEqual(len(rows(out / "results.csv")), 2)
         self.assertFalse((out / "summary.csv").exists())
 

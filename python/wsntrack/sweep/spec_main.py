@@ -28,7 +28,7 @@ A spec is a YAML mapping:
   engines: [mcmcda, gnn]                         # default: the scenario's own engine
   seeds: 1-10                                    # or 3, or [1, 4, 9]; default 1
   set: {network.pde: 0}                          # fixed values for every run (wsntrack run --set)
-  metrics: [eps_k, eps_x, ospa]                  # default eps_k, eps_x, ospa
+  metrics: [eps_k, eps_x_gated, ospa]            # default eps_k, eps_x_gated, ospa
   in_process: true                               # wsntrack run --in-process (default false)
   title: "Oh et al. Fig. 7"                      # plots and table.md
   notes: "..."                                   # table.md and sweep.json
