@@ -51,6 +51,8 @@ markdown is rendered, right before the block (only blank lines or other directiv
   <!-- doc-test: exit N -->            every command of the block must exit N
   <!-- doc-test: skip REASON -->       the block is not run; the test reports REASON as skipped
   <!-- doc-test: timeout S -->         per-command limit (default 300 s)
+  <!-- doc-test: slow REASON -->       the test takes over a minute even shortened: label `slow`,
+                                       with the reason where the label is given
   <!-- doc-test: ticks N -->           run length of the block's runs and sweeps instead of --ticks
                                        (for output that names a later tick)
   <!-- doc-test: sequence -->          the block's commands are one test (the first one's id), run
@@ -128,6 +130,7 @@ class Command:
     expected_exit: int = 0
     prelude: list = field(default_factory=list)  # the block's assignments and cd lines before it
     skip_reason: str = ""
+    slow_reason: str = ""  # doc-test: slow: the test takes over a minute, and why
     timeout_s: float = DEFAULT_TIMEOUT_S
     ticks: int = 0  # the block's own run length (doc-test: ticks), 0: the runner's
 
@@ -243,6 +246,10 @@ def parse_directives(lines):
             if not rest:
                 raise DocError(f"{number}: 'doc-test: skip' needs a reason")
             result["skip"] = rest
+        elif key == "slow":
+            if not rest:
+                raise DocError(f"{number}: 'doc-test: slow' needs a reason")
+            result["slow"] = rest
         elif key == "exit":
             if not rest.isdigit():
                 raise DocError(f"{number}: 'doc-test: exit' needs a status, got '{rest}'")
@@ -269,7 +276,7 @@ def parse_directives(lines):
                     raise DocError(f"{number}: unknown option '{option}' of 'doc-test: background'")
         else:
             raise DocError(f"{number}: unknown directive 'doc-test: {text}' "
-                           "(expected skip, exit, ticks, timeout, sequence or background)")
+                           "(expected skip, slow, exit, ticks, timeout, sequence or background)")
     if result.get("sequence") and result.get("background"):
         raise DocError(f"{lines[0][0]}: 'doc-test: sequence' and 'doc-test: background' exclude each other")
     return result
@@ -333,6 +340,7 @@ def extract_blocks(doc, text):
 def new_command(doc, number, text, kind, expected, prelude, directives):
     command = Command(doc, number, text, kind, expected, list(prelude),
                       timeout_s=directives.get("timeout", DEFAULT_TIMEOUT_S), ticks=directives.get("ticks", 0))
+    command.slow_reason = directives.get("slow", "")
     if "skip" in directives:
         command.skip_reason = directives["skip"]
     elif kind == "setup":
@@ -573,6 +581,8 @@ def labels_of(unit, units):
                 (c.kind == "tool" and "sweep.py" in c.text) or "watch_tracks" in c.text:
             labels.append("cluster")
             break
+    if any(c.slow_reason for c in test_commands(unit, units)):
+        labels.append("slow")
     return labels
 
 
