@@ -1,5 +1,6 @@
 #include "aggregator/role.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <memory>
@@ -9,12 +10,14 @@
 #include <stdexcept>
 
 #include "aggregator/association.hpp"
+#include "aggregator/fault_report.hpp"
 #include "aggregator/run_files.hpp"
 #include "aggregator/run_scorer.hpp"
 #include "common/dds/codec.hpp"
 #include "common/output.hpp"
 #include "common/provenance.hpp"
 #include "common/truth.hpp"
+#include "supernode/rehome.hpp"
 
 namespace wsn::aggregator {
 namespace {
@@ -23,6 +26,7 @@ struct SupernodeBatch {
   std::vector<common::TrackEstimate> tracks;
   std::uint32_t observations_in_window = 0;
   std::uint32_t observations_dropped_stale = 0;
+  std::uint32_t handoffs_lost_partition = 0;
   std::int32_t settled_first = 1;  ///< the ticks it settles: settled_first .. + settled.size() - 1
   std::vector<std::vector<common::TrackEstimate>> settled;
 };
@@ -39,22 +43,34 @@ struct TickInputs {
 /// stream and written to tracks_settled.csv.
 class SettledStream {
  public:
-  SettledStream(const common::Scenario& scenario, const std::string& run_dir, std::uint32_t supernodes)
+  SettledStream(const common::Scenario& scenario, const std::string& run_dir, const common::FaultPlan& plan)
       : associator_(makeAssociator(associationContext(scenario))),
         scorer_(kSettledStream, scenario.metrics, scenario.supernodes),
         csv_(run_dir + "/tracks_settled.csv", globalTracksCsvHeader()),
-        supernodes_(supernodes) {}
+        supernodes_(static_cast<std::uint32_t>(scenario.supernodes.size())),
+        window_size_(scenario.tracker.window_size),
+        ticks_(scenario.run.ticks),
+        plan_(plan) {}
 
   /// The ticks that settled by tick t (every supernode settles the same ticks, one window size
-  /// behind; a tick settles once), in order.
+  /// behind; a tick settles once), in order. Under faults a tick is settled by the supernodes live
+  /// from it until it left their windows (FaultPlan::settles), and by none at all when no such
+  /// supernode exists: it is scored with no tracks once the ticks around it settle.
   void add(std::int32_t t, std::map<std::int32_t, std::vector<SupernodeTracks>>& settled, const common::Truth& truth) {
-    for (auto& [tick, settled_tracks] : settled) {
-      if (tick != settled_through_ + 1 || tick > t || settled_tracks.size() != supernodes_)
-        throw std::runtime_error("settled tracks of tick " + std::to_string(tick) + " came from " +
-                                 std::to_string(settled_tracks.size()) + " of " + std::to_string(supernodes_) +
-                                 " supernodes at tick " + std::to_string(t) + " (settled through " +
-                                 std::to_string(settled_through_) + ")");
-      auto settled_global = associator_->associate(tick, settled_tracks);
+    const std::int32_t leaving = t == ticks_ ? ticks_ : t - window_size_ + 1;
+    std::int32_t through = leaving;
+    if (!settled.empty()) through = std::max(through, settled.rbegin()->first);
+    for (std::int32_t tick = settled_through_ + 1; tick <= through; ++tick) {
+      const auto it = settled.find(tick);
+      const std::size_t got = it == settled.end() ? 0 : it->second.size();
+      const std::size_t expected = expectedAt(tick);
+      if (got == 0 && expected == 0 && tick > leaving) break;  // not due yet
+      if (got != expected || tick > t)
+        throw std::runtime_error("settled tracks of tick " + std::to_string(tick) + " came from " + std::to_string(got) +
+                                 " of " + std::to_string(expected) + " supernodes at tick " + std::to_string(t) +
+                                 " (settled through " + std::to_string(settled_through_) + ")");
+      std::vector<SupernodeTracks> none;
+      auto settled_global = associator_->associate(tick, it == settled.end() ? none : it->second);
       scorer_.add(tick, truth.at(tick), settled_global);
       for (const auto& track : settled_global) csv_.row(globalTrackCsvRow(tick, track));
       settled_through_ = tick;
@@ -74,7 +90,19 @@ class SettledStream {
   std::unique_ptr<TrackAssociator> associator_;
   RunScorer scorer_;
   common::CsvFile csv_;
+  /// How many supernodes settle `tick`.
+  std::size_t expectedAt(std::int32_t tick) const {
+    if (plan_.empty()) return supernodes_;
+    std::size_t n = 0;
+    for (std::uint32_t j = 0; j < supernodes_; ++j)
+      n += plan_.settles(static_cast<std::int32_t>(j), tick, window_size_, ticks_) ? 1 : 0;
+    return n;
+  }
+
   std::uint32_t supernodes_;
+  std::int32_t window_size_;
+  std::int32_t ticks_;
+  common::FaultPlan plan_;
   std::int32_t settled_through_ = 0;
 };
 
@@ -118,6 +146,65 @@ void publishTickMetrics(dds::Writer<wsn_msg_TickMetrics>& writer, std::uint64_t 
   writer.write(sample);
 }
 
+/// The aggregator's part in the scenario's faults: when a supernode dies at tick t + 1, its tracks
+/// of tick t go to the supernodes adopting its group (the rehome topic), and what every fault did
+/// is recorded for metrics.json.
+class FaultsAtAggregator {
+ public:
+  FaultsAtAggregator(const common::FaultPlan& plan, const common::Scenario& scenario, std::uint64_t run_id,
+                     dds::Writer<wsn_msg_HandoffBatch> writer)
+      : plan_(plan),
+        report_(plan, scenario.tracker.window_size, scenario.run.ticks),
+        context_{scenario.supernodes, {}, scenario.dynamics.delta, scenario.tracker.window_size},
+        ticks_(scenario.run.ticks),
+        run_id_(run_id),
+        writer_(std::move(writer)) {}
+
+  const dds::Writer<wsn_msg_HandoffBatch>& writer() const { return writer_; }
+
+  /// Keeps each supernode's running total of handoffs a partition cut.
+  void noteHandoffsLost(const std::map<std::uint32_t, SupernodeBatch>& batches) {
+    for (const auto& [supernode, batch] : batches) handoffs_lost_[supernode] = batch.handoffs_lost_partition;
+  }
+
+  void afterTick(std::int32_t t, const TickScores& scores, const std::vector<SupernodeTracks>& live) {
+    if (plan_.empty()) return;
+    std::uint64_t handoffs_lost = 0;
+    for (const auto& [supernode, lost] : handoffs_lost_) handoffs_lost += lost;
+    report_.addTick(t, {scores.find("truth_targets").value_or(0), scores.find("tracks").value_or(0),
+                        scores.find("ospa").value_or(0)},
+                    live, handoffs_lost);
+    if (t >= ticks_) return;
+    context_.live = plan_.liveSupernodes(t + 1);
+    for (const std::int32_t dead : plan_.dyingAt(t + 1)) {
+      std::vector<common::TrackEstimate> last;
+      for (const auto& supernode : live)
+        if (supernode.supernode == static_cast<std::uint32_t>(dead)) last = supernode.tracks;
+      const auto orphans = supernode::orphanHandoffs(last, t, context_);
+      report_.addOrphans(static_cast<std::uint32_t>(dead), t + 1, orphans);
+      auto encoded = dds::encode(orphans);
+      wsn_msg_HandoffBatch sample{};
+      sample.run_id = run_id_;
+      sample.from_supernode = static_cast<std::uint32_t>(dead);
+      sample.tick = t + 1;
+      sample.handoffs = dds::sequenceView<dds_sequence_wsn_msg_TrackHandoff>(encoded.items);
+      writer_.write(sample);
+    }
+  }
+
+  /// The "faults" block of metrics.json; null for a run without faults.
+  Json json() const { return plan_.empty() ? Json(nullptr) : report_.json(); }
+
+ private:
+  const common::FaultPlan& plan_;
+  FaultReport report_;
+  supernode::OrphanContext context_;
+  std::int32_t ticks_;
+  std::uint64_t run_id_;
+  dds::Writer<wsn_msg_HandoffBatch> writer_;
+  std::map<std::uint32_t, std::uint64_t> handoffs_lost_;
+};
+
 }  // namespace
 
 void runAggregatorRole(const dds::RoleContext& context) {
@@ -130,32 +217,37 @@ void runAggregatorRole(const dds::RoleContext& context) {
     // Read now, not after the run: a malformed run.json must not cost the run's metrics.json.
     const std::string provenance = common::readRunProvenance(context.run_dir + "/run.json");
     RunScorer scorer(kLiveStream, scenario.metrics, scenario.supernodes);
+    const auto plan = context.faultPlan();
 
     Reader<wsn_msg_TrackBatch> track_reader(participant, topics.track_batch, Qos::reliableKeepAll());
     Writer<wsn_msg_GlobalTrackBatch> global_writer(participant, topics.global_track_batch, Qos::reliableKeepAll());
     // For live views only: not in waitForDiscovery, since nobody need be listening.
     Writer<wsn_msg_TickMetrics> tick_metrics_writer(participant, topics.tick_metrics, Qos::reliableKeepAll());
+    FaultsAtAggregator faults(plan, scenario, context.run_id,
+                              Writer<wsn_msg_HandoffBatch>(participant, topics.rehome_batch, Qos::reliableKeepAll()));
     RoleLoop loop(participant, context);
+    LiveRolesDone roles_done(participant, topics, context);
     TickInbox<SupernodeBatch> inbox;
     const auto supernodes = static_cast<std::uint32_t>(context.shape.supernodes);
     loop.watch(track_reader, [&] {
       track_reader.take([&](const wsn_msg_TrackBatch& batch) {
         if (batch.run_id != context.run_id || batch.supernode >= supernodes) return;
+        if (!plan.supernodeLive(static_cast<std::int32_t>(batch.supernode), batch.tick)) return;
         inbox.put(batch.tick, batch.supernode,
                   {decode(batch.tracks), batch.observations_in_window, batch.observations_dropped_stale,
-                   batch.settled_first,
+                   batch.handoffs_lost_partition, batch.settled_first,
                    decodeSettled(batch.settled, batch.settled_first, batch.settled_last, scenario.tracker.window_size)});
       });
     });
     // Every role reads the global batches: the tiles for back-pressure, all for the end of run.
     const int global_readers = context.shape.processes() - 1;
-    waitForDiscovery(participant, {{&global_writer, global_readers}}, {{&track_reader, context.shape.supernodes}},
-                     context);
+    waitForDiscovery(participant, {{&global_writer, global_readers}, {&faults.writer(), context.shape.supernodes}},
+                     {{&track_reader, context.shape.supernodes}}, context);
     status.ready();
 
     common::CsvFile supernode_csv(context.run_dir + "/tracks_supernode.csv", supernodeTracksCsvHeader());
     common::CsvFile global_csv(context.run_dir + "/tracks.csv", globalTracksCsvHeader());
-    SettledStream settled(scenario, context.run_dir, supernodes);
+    SettledStream settled(scenario, context.run_dir, plan);
     common::CsvFile per_tick_csv(context.run_dir + "/metrics_per_tick.csv", scorer.csvHeader());
     // Each supernode reports its running total of stale drops; the run's total is the sum of
     // the last value of each.
@@ -163,10 +255,14 @@ void runAggregatorRole(const dds::RoleContext& context) {
     std::optional<Clock::time_point> first_tick_at;
     const std::int32_t ticks = scenario.run.ticks;
     for (std::int32_t t = 1; t <= ticks; ++t) {
-      loop.waitUntil([&] { return inbox.count(t) >= supernodes; },
-                     [&] { return "tracks of tick " + std::to_string(t) + " from every supernode"; });
+      const auto live = plan.liveSupernodes(t);
+      const auto expected = static_cast<std::size_t>(std::count(live.begin(), live.end(), true));
+      loop.waitUntil([&] { return inbox.count(t) >= expected; },
+                     [&] { return "tracks of tick " + std::to_string(t) + " from every live supernode"; });
       if (!first_tick_at) first_tick_at = Clock::now();
-      TickInputs inputs = splitBatches(inbox.take(t), t, supernode_csv, dropped_stale_by_supernode);
+      auto batches = inbox.take(t);
+      faults.noteHandoffsLost(batches);
+      TickInputs inputs = splitBatches(std::move(batches), t, supernode_csv, dropped_stale_by_supernode);
       settled.add(t, inputs.settled, truth);
       auto global = associator->associate(t, inputs.live);
       const TickScores scores = scorer.add(t, truth.at(t), global);
@@ -174,6 +270,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
       for (const auto& track : global) global_csv.row(globalTrackCsvRow(t, track));
       publishGlobalTracks(global_writer, context.run_id, t, global);
       publishTickMetrics(tick_metrics_writer, context.run_id, t, scores);
+      faults.afterTick(t, scores, inputs.live);
       status.running(t);
     }
     std::uint64_t dropped_stale_total = 0;
@@ -190,11 +287,11 @@ void runAggregatorRole(const dds::RoleContext& context) {
     per_tick_csv.close();
 
     // Everything but the "timing" line is a pure function of (scenario, seed).
-    const RunInfo info{scenario.name, scenario.run.seed, ticks, scenario.tracker.engine, truth.targetCount(),
-                       dropped_stale_total, scenario.aggregator.association, provenance};
+    RunInfo info{scenario.name, scenario.run.seed, ticks, scenario.tracker.engine, truth.targetCount(),
+                 dropped_stale_total, scenario.aggregator.association, provenance, faults.json()};
     common::writeTextFile(context.run_dir + "/metrics.json", metricsJson(info, run_scores, wall_s, ticks_per_s));
     status.done(ticks);
-    global_writer.waitForAcknowledgements(std::chrono::seconds(10));
+    roles_done.wait();
   });
 }
 

@@ -136,6 +136,7 @@ std::string metricsJson(const RunInfo& info, const std::vector<RunScores>& strea
   out["observations_dropped_stale"] = info.observations_dropped_stale;
   if (live != nullptr) addSummaries(out, *live);
   if (!others.empty()) out["streams"] = std::move(others);
+  if (!info.faults.is_null()) out["faults"] = info.faults;
 
   // Provenance and timing are appended by hand, one line each, for the tests that drop them.
   std::string text = dump(out, 2);

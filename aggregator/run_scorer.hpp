@@ -98,6 +98,7 @@ struct RunInfo {
   std::uint64_t observations_dropped_stale = 0;
   std::string association = "gated";  ///< the aggregator's track association (aggregator.association)
   std::string provenance_json;        ///< common::provenanceJson of the run (one line); omitted when empty
+  Json faults{};                      ///< what the scenario's faults did (FaultReport); null: none, omitted
 };
 
 /// The whole metrics.json text. The "live" stream's headline and metric blocks are at the top

@@ -13,6 +13,7 @@
 #include <tuple>
 #include <vector>
 
+#include "common/faults.hpp"
 #include "common/geometry.hpp"
 #include "common/sensor_coverage.hpp"
 #include "common/terrain.hpp"
@@ -284,6 +285,8 @@ struct Scenario {
   MetricsConfig metrics;
   RunConfig run;
   TerrainConfig terrain;  ///< roads and masks; empty unless the file has `terrain:`
+  /// What goes wrong in the cluster during the run, in file order; empty unless the file has `faults:`.
+  std::vector<FaultSpec> faults;
   /// The keys whose values the loader derived because the file left them out ("sensor_model.beta"),
   /// with how; the resolved scenario.yaml notes them. Not part of equality: a resolved file gives
   /// every value explicitly, so loading it derives nothing, yet it is the same scenario.
@@ -293,7 +296,7 @@ struct Scenario {
   friend bool operator==(const Scenario& a, const Scenario& b) {
     const auto values = [](const Scenario& s) {
       return std::tie(s.name, s.region, s.sensors, s.sensor_model, s.localisation, s.targets, s.dynamics, s.supernodes,
-                      s.network, s.tracker, s.aggregator, s.metrics, s.run, s.terrain);
+                      s.network, s.tracker, s.aggregator, s.metrics, s.run, s.terrain, s.faults);
     };
     return values(a) == values(b);
   }

@@ -266,6 +266,35 @@ const FieldTable<Mask>& mask() {
   return table;
 }
 
+const FieldTable<FaultSpec>& fault() {
+  using C = FaultSpec;
+  static const FieldTable<C> table{
+      "faults[]",
+      {
+          withNotes(integer<C>("tick", &C::tick, 1, 1e6, "ticks", "the first tick the fault holds"),
+                    "[1, run.ticks]", "required"),
+          withNotes(choice<C>("action", &C::action, {"kill", "pause", "partition", "burst_loss"},
+                              "`kill`: the process dies for good; `pause`: it stops for `ticks` ticks and comes back "
+                              "(a supernode afresh); `partition`: the handoffs between two supernodes are lost; "
+                              "`burst_loss`: every hop fails with probability `pte`"),
+                    "`kill`, `pause`, `partition`, `burst_loss`", "required"),
+          withNotes(choice<C>("role", &C::role, {"node", "supernode"},
+                              "kill, pause: a node tile (its sensors fall silent) or a supernode (its tracking group "
+                              "is re-homed to the nearest live supernodes, which adopt its last tracks)"),
+                    "`node`, `supernode`", "required by kill and pause"),
+          withNotes(integer<C>("index", &C::index, 0, 1e6, "", "kill, pause: which tile or supernode"),
+                    "below run.node_processes or the number of supernodes", "required by kill and pause"),
+          withNotes(integer<C>("ticks", &C::ticks, 1, 1e6, "ticks", "pause, partition, burst_loss: how long it holds"),
+                    "[1, 10^6]", "required by pause, partition and burst_loss"),
+          withNotes(real<C>("pte", &C::pte, kProbability, "", "burst_loss: the per-hop transmission failure rate "
+                                                           "meanwhile, in place of network.pte"),
+                    "[0, 1]", "required by burst_loss"),
+          nested<C>("between", "`[[supernode, A], [supernode, B]]`", "required by partition",
+                    "two different supernodes", "partition: the two supernodes whose handoffs are lost"),
+      }};
+  return table;
+}
+
 const FieldTable<NetworkConfig>& network() {
   using C = NetworkConfig;
   static const FieldTable<C> table{
@@ -368,7 +397,7 @@ const FieldTable<RunConfig>& run() {
 const std::vector<std::string>& sectionNames() {
   static const std::vector<std::string> names = {"name",     "region",   "sensors",    "sensor_model", "localisation",
                                                  "targets",  "dynamics", "supernodes", "terrain", "network",      "tracker",
-                                                 "aggregator", "metrics", "run"};
+                                                 "aggregator", "metrics", "run", "faults"};
   return names;
 }
 
@@ -393,6 +422,7 @@ std::vector<std::pair<std::string, std::string>> markdownTables() {
       {"aggregator", markdownTable(aggregator())},
       {"metrics", markdownTable(metrics())},
       {"run", markdownTable(run())},
+      {"faults[]", markdownTable(fault())},
   };
 }
 

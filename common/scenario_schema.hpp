@@ -27,6 +27,7 @@ const FieldTable<Vec2>& supernode();
 const FieldTable<TerrainConfig>& terrain();  ///< roads, masks (lists)
 const FieldTable<RoadLine>& road();          ///< terrain.roads[]
 const FieldTable<Mask>& mask();              ///< terrain.masks[]
+const FieldTable<FaultSpec>& fault();         ///< faults[]
 const FieldTable<NetworkConfig>& network();
 const FieldTable<TrackerConfig>& tracker();        ///< engine, window_size (params: the engine's table)
 const FieldTable<AggregatorConfig>& aggregator();  ///< association (params: the association's table)

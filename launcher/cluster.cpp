@@ -23,6 +23,7 @@
 #include "common/dds/cyclone_config.hpp"
 #include "common/dds/entity.hpp"
 #include "common/dds/role_runtime.hpp"
+#include "launcher/fault_signals.hpp"
 #include "launcher/run_description.hpp"
 #include "network_model/role.hpp"
 #include "node/role.hpp"
@@ -132,13 +133,22 @@ class StatusObserver {
     waitset_.attach(condition_.handle(), 0);
   }
 
+  /// A role that reached a kill or pause of the scenario's faults, for the launcher to enact.
+  struct Faulted {
+    std::string role;
+    std::uint32_t index = 0;
+    std::int32_t tick = 0;
+  };
+
   /// Waits up to `timeout` for status samples; returns the aggregator's latest tick and
-  /// collects failure messages.
-  void poll(std::chrono::milliseconds timeout, std::int32_t& aggregator_tick, std::vector<std::string>& failures) {
+  /// collects failure messages and the roles that announced a fault.
+  void poll(std::chrono::milliseconds timeout, std::int32_t& aggregator_tick, std::vector<std::string>& failures,
+            std::vector<Faulted>& faulted) {
     waitset_.wait(timeout);
     reader_.take([&](const wsn_msg_ProcessStatus& s) {
       if (s.run_id != run_id_) return;
       if (s.state == wsn_msg_FAILED) failures.push_back(std::string(s.role) + " " + std::to_string(s.index) + ": " + s.message);
+      if (s.state == wsn_msg_FAULTED) faulted.push_back({s.role, s.index, s.tick});
       if (std::strcmp(s.role, "aggregator") == 0 && (s.state == wsn_msg_RUNNING || s.state == wsn_msg_DONE))
         aggregator_tick = std::max(aggregator_tick, s.tick);
     });
@@ -211,7 +221,11 @@ ClusterResult runProcesses(const ClusterOptions& options) {
     result.outcomes[i].name = slots[i].name();
     result.outcomes[i].log_path = options.run_dir + "/logs/" + slots[i].role + "-" + std::to_string(slots[i].index) + ".log";
   }
+  FaultSignals fault_signals(common::FaultPlan(options.scenario.faults, options.scenario.run.node_processes,
+                                                static_cast<std::int32_t>(options.scenario.supernodes.size())),
+                             options.scenario.run.ticks);
   auto stopAll = [&](int signal_number) {
+    fault_signals.continueAll();
     for (const auto& [pid, slot] : running) ::kill(pid, signal_number);
   };
   auto reap = [&](bool block) {
@@ -225,6 +239,11 @@ ClusterResult runProcesses(const ClusterOptions& options) {
       outcome.peak_rss_kb = usage.ru_maxrss;  // Linux reports kilobytes
       outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
       running.erase(it);
+      if (const auto fault = fault_signals.killedByFault(pid); fault && WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) {
+        outcome.exit_code = 0;  // the death the scenario asked for
+        outcome.message = "killed by SIGKILL as the scenario's faults asked (" + *fault + ")";
+        continue;
+      }
       // After an interrupt the roles stop because they were told to (a terminal's Ctrl-C reaches
       // every process of the group): their exit codes say nothing about a fault.
       if (outcome.exit_code != 0 && result.failure.empty() && g_interrupt_signal.load() == 0)
@@ -242,8 +261,14 @@ ClusterResult runProcesses(const ClusterOptions& options) {
     ProgressDisplay progress(options.scenario.run.ticks, options.show_progress);
     std::int32_t tick = 0;
     std::vector<std::string> failures;
+    std::vector<StatusObserver::Faulted> faulted;
     while (!running.empty() && result.failure.empty()) {
-      observer.poll(std::chrono::milliseconds(200), tick, failures);
+      observer.poll(std::chrono::milliseconds(200), tick, failures, faulted);
+      for (const auto& f : faulted)
+        for (const auto& [pid, slot] : running)
+          if (slots[slot].role == f.role && slots[slot].index == f.index) fault_signals.announced(pid, f.role, f.index, f.tick);
+      faulted.clear();
+      fault_signals.progressed(tick);
       progress.update(tick);
       reap(false);
       if (!failures.empty() && result.failure.empty()) result.failure = failures.front();
@@ -299,6 +324,9 @@ ClusterResult runThreads(const ClusterOptions& options) {
       threads.emplace_back([&, i] {
         try {
           roleRunners().at(slots[i].role)(contexts[i]);
+        } catch (const dds::ScheduledDeath& death) {
+          std::lock_guard lock(mutex);
+          result.outcomes[i].message = std::string("ended as the scenario's faults asked (") + death.what() + ")";
         } catch (const std::exception& error) {
           {
             std::lock_guard lock(mutex);
@@ -313,8 +341,9 @@ ClusterResult runThreads(const ClusterOptions& options) {
     ProgressDisplay progress(options.scenario.run.ticks, options.show_progress);
     std::int32_t tick = 0;
     std::vector<std::string> failures;
+    std::vector<StatusObserver::Faulted> faulted;  // role threads enact their faults themselves
     while (finished.load() < slots.size()) {
-      observer.poll(std::chrono::milliseconds(200), tick, failures);
+      observer.poll(std::chrono::milliseconds(200), tick, failures, faulted);
       progress.update(tick);
       if (g_interrupt_signal.load() != 0 && result.interrupted_by == 0) {
         {

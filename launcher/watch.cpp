@@ -57,6 +57,7 @@ ProcessState processState(wsn_msg_ProcessState state) {
     case wsn_msg_RUNNING: return ProcessState::kRunning;
     case wsn_msg_DONE: return ProcessState::kDone;
     case wsn_msg_FAILED: return ProcessState::kFailed;
+    case wsn_msg_FAULTED: return ProcessState::kFaulted;
   }
   return ProcessState::kStarting;
 }

@@ -162,15 +162,18 @@ std::chrono::milliseconds WatchState::nextWait(Clock::time_point now) const {
 std::string WatchState::seen() const { return std::to_string(drawn_tick_) + "/" + std::to_string(run_.ticks); }
 
 std::string WatchState::processSummary() const {
-  int ready = 0, running = 0, done = 0;
+  int ready = 0, running = 0, done = 0, faulted = 0;
   for (const auto& [key, state] : processes_) {
     if (state == ProcessState::kReady) ++ready;
     if (state == ProcessState::kRunning) ++running;
     if (state == ProcessState::kDone) ++done;
+    if (state == ProcessState::kFaulted) ++faulted;
   }
   std::ostringstream out;
   out << processes_.size() << "/" << run_.processes << " processes up";
-  if (ready + running + done > 0) out << " (" << ready << " ready, " << running << " running, " << done << " done)";
+  if (ready + running + done > 0) out << " (" << ready << " ready, " << running << " running, " << done << " done";
+  if (ready + running + done > 0 && faulted > 0) out << ", " << faulted << " faulted";
+  if (ready + running + done > 0) out << ")";
   return out.str();
 }
 

@@ -17,7 +17,8 @@
 namespace wsn::launcher {
 
 /// A role instance's state on the status topic (the IDL's ProcessState, without DDS).
-enum class ProcessState { kStarting, kReady, kRunning, kDone, kFailed };
+/// kFaulted: killed or paused by the scenario's faults, as the run meant.
+enum class ProcessState { kStarting, kReady, kRunning, kDone, kFailed, kFaulted };
 
 /// One status sample of the run.
 struct ProcessReport {

@@ -3,6 +3,7 @@
 #include "common/dds/codec.hpp"
 #include "common/output.hpp"
 #include "common/sensor_layout.hpp"
+#include "network_model/live_topologies.hpp"
 #include "network_model/role_config.hpp"
 #include "network_model/router.hpp"
 #include "network_model/run_files.hpp"
@@ -14,9 +15,10 @@ void runNetworkRole(const dds::RoleContext& context) {
   using namespace wsn::dds;
   runRole(context, [&](const Participant& participant, const RunTopics& topics, StatusPublisher& status) {
     const auto& scenario = context.scenario;
+    const auto plan = context.faultPlan();
     const common::SensorLayout layout(sensorFieldConfig(scenario));
-    const Topology topology(topologyConfig(scenario), layout.truePositions());
-    Router router(routerConfig(scenario), topology);
+    LiveTopologies topologies(topologyConfig(scenario), layout.truePositions());
+    Router router(routerConfig(scenario), topologies.full());
 
     Reader<wsn_msg_ReportBatch> report_reader(participant, topics.report_batch, Qos::reliableKeepAll());
     Writer<wsn_msg_DeliveryBatch> delivery_writer(participant, topics.delivery_batch, Qos::reliableKeepAll());
@@ -26,7 +28,9 @@ void runNetworkRole(const dds::RoleContext& context) {
     TickInbox<std::vector<common::Report>> inbox;
     loop.watch(report_reader, [&] {
       report_reader.take([&](const wsn_msg_ReportBatch& batch) {
-        if (batch.run_id != context.run_id || batch.tile >= static_cast<std::uint32_t>(context.shape.tiles)) return;
+        if (batch.run_id != context.run_id || batch.tile >= static_cast<std::uint32_t>(context.shape.tiles) ||
+            !plan.tileLive(static_cast<std::int32_t>(batch.tile), batch.tick))
+          return;
         inbox.put(batch.tick, batch.tile, decode(batch.reports, batch.tick));
       });
     });
@@ -35,17 +39,29 @@ void runNetworkRole(const dds::RoleContext& context) {
     status.ready();
 
     common::CsvFile observations(context.run_dir + "/observations.csv", kObservationsHeader);
-    const auto tiles = static_cast<std::size_t>(context.shape.tiles);
+    NetworkReport faults_seen;
     const std::int32_t ticks = scenario.run.ticks;
     for (std::int32_t t = 1; t <= ticks; ++t) {
-      loop.waitUntil([&] { return inbox.count(t) >= tiles; },
-                     [&] { return "reports of tick " + std::to_string(t) + " from every tile"; });
+      // A dead or paused tile sends nothing: wait for the live ones only.
+      const auto live_tiles = static_cast<std::size_t>(plan.liveTileCount(t));
+      faults_seen.silent_tile_ticks += static_cast<std::uint64_t>(context.shape.tiles) - live_tiles;
+      loop.waitUntil([&] { return inbox.count(t) >= live_tiles; },
+                     [&] { return "reports of tick " + std::to_string(t) + " from every live tile"; });
       std::vector<common::Report> reports;
       for (auto& [tile, batch] : inbox.take(t)) reports.insert(reports.end(), batch.begin(), batch.end());
+
+      // Oh §V over the survivors: the groups and hop counts of the supernodes live at t.
+      const auto live = plan.liveSupernodes(t);
+      const Topology& before = router.topology();
+      const Topology& now = topologies.at(live);
+      for (const std::int32_t dead : plan.dyingAt(t))
+        faults_seen.rehomes.push_back(rehomeOf(before, now, static_cast<std::uint32_t>(dead), t));
+      router.useTopology(now);
       for (const auto& fate : router.submit(t, reports)) observations.row(observationRow(fate));
       router.forgetFatesBefore(t + 1);
 
       for (std::uint32_t j = 0; j < static_cast<std::uint32_t>(context.shape.supernodes); ++j) {
+        if (!live[j]) continue;  // its deliveries were counted lost when they were routed
         auto due = encode(router.deliveriesDue(t, j));
         wsn_msg_DeliveryBatch sample{};
         sample.run_id = context.run_id;
@@ -56,7 +72,11 @@ void runNetworkRole(const dds::RoleContext& context) {
       }
     }
     observations.close();
-    common::writeTextFile(context.run_dir + "/network.json", networkJson(networkReport(topology, router)));
+    auto report = networkReport(topologies.full(), router);
+    report.with_faults = !plan.empty();
+    report.silent_tile_ticks = faults_seen.silent_tile_ticks;
+    report.rehomes = std::move(faults_seen.rehomes);
+    common::writeTextFile(context.run_dir + "/network.json", networkJson(report));
     progress.waitForCompleted(ticks);
     status.done(ticks);
   });

@@ -16,6 +16,10 @@ RouterConfig routerConfig(const common::Scenario& scenario) {
   config.run_ticks = scenario.run.ticks;
   config.window_size = scenario.tracker.window_size;
   config.seed = scenario.run.seed;
+  // A run without faults keeps the empty plan, whatever its shape: nothing in it differs.
+  if (!scenario.faults.empty())
+    config.faults = common::FaultPlan(scenario.faults, scenario.run.node_processes,
+                                      static_cast<std::int32_t>(scenario.supernodes.size()));
   return config;
 }
 

@@ -36,6 +36,7 @@ NetworkCounts& NetworkCounts::operator+=(const NetworkCounts& other) {
   delayed += other.delayed;
   beyond_window += other.beyond_window;
   after_end += other.after_end;
+  lost_dead_supernode += other.lost_dead_supernode;
   rejected += other.rejected;
   return *this;
 }
@@ -46,9 +47,22 @@ Router::Router(const RouterConfig& config, const Topology& topology)
       last_tick_(std::numeric_limits<std::int32_t>::min()),
       pending_(topology.supernodeCount()),
       per_supernode_(topology.supernodeCount()) {
-  success_by_hops_.resize(static_cast<std::size_t>(topology.maxHops()) + 1);
-  for (std::size_t k = 0; k < success_by_hops_.size(); ++k)
-    success_by_hops_[k] = successProbability(config_.pte, static_cast<int>(k));
+  prepareLinks(config_.pte);
+}
+
+void Router::prepareLinks(double pte) {
+  const auto size = static_cast<std::size_t>(topology_->maxHops()) + 1;
+  if (pte == links_pte_ && success_by_hops_.size() == size) return;
+  success_by_hops_.resize(size);
+  for (std::size_t k = 0; k < size; ++k) success_by_hops_[k] = successProbability(pte, static_cast<int>(k));
+  links_pte_ = pte;
+}
+
+void Router::useTopology(const Topology& topology) {
+  if (topology.sensorCount() != topology_->sensorCount() || topology.supernodeCount() != topology_->supernodeCount())
+    throw std::logic_error("network router: a topology of other sensors or supernodes");
+  topology_ = &topology;
+  links_pte_ = -1.0;  // the hop range may differ
 }
 
 std::span<const ReportFate> Router::submit(std::int32_t tick, std::span<const common::Report> reports) {
@@ -56,6 +70,7 @@ std::span<const ReportFate> Router::submit(std::int32_t tick, std::span<const co
     throw std::logic_error("network router: tick " + std::to_string(tick) + " submitted after tick " +
                            std::to_string(last_tick_));
   last_tick_ = tick;
+  prepareLinks(config_.faults.burstPte(tick).value_or(config_.pte));
 
   std::vector<common::Report> ordered;
   ordered.reserve(reports.size());
@@ -102,6 +117,11 @@ std::span<const ReportFate> Router::submit(std::int32_t tick, std::span<const co
       fate.delay = static_cast<std::int32_t>(std::min<std::int64_t>(d, std::numeric_limits<std::int32_t>::max()));
       if (d > static_cast<std::int64_t>(config_.run_ticks) - tick) {
         ++group.after_end;
+      } else if (!config_.faults.supernodeLive(static_cast<std::int32_t>(fate.supernode), static_cast<std::int32_t>(tick + d))) {
+        fate.lost = true;
+        fate.to_dead_supernode = true;
+        fate.delay = -1;
+        ++group.lost_dead_supernode;
       } else {
         fate.tick_delivered = static_cast<std::int32_t>(tick + d);
         ++group.delivered;

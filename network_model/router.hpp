@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "common/faults.hpp"
 #include "common/messages.hpp"
 #include "network_model/topology.hpp"
 
@@ -20,6 +21,9 @@ struct RouterConfig {
   std::int32_t run_ticks = 100;   ///< T: a report due after tick T is counted after_end, never delivered
   std::int32_t window_size = 10;  ///< ws, in ticks: delays d >= ws are counted beyond_window
   std::uint64_t seed = 1;         ///< keys the loss and delay streams
+  /// The scenario's faults: burst losses replace pte for their ticks, and a report due at a
+  /// supernode that is dead by then is lost with it.
+  common::FaultPlan faults{};
   friend bool operator==(const RouterConfig&, const RouterConfig&) = default;
 };
 
@@ -31,11 +35,12 @@ struct ReportFate {
   bool lost = false;            ///< transmission failure, or no path at all
   std::int32_t delay = -1;      ///< extra ticks d (saturated at INT32_MAX); -1 when lost
   std::int32_t tick_delivered = -1;  ///< tick + delay; -1 if lost or after the run's end
+  bool to_dead_supernode = false;    ///< lost because g(i) is dead at the tick it was due (faults)
   friend bool operator==(const ReportFate&, const ReportFate&) = default;
 };
 
-/// Report counters. Every accepted report is in exactly one of lost, unreachable, delivered
-/// and after_end; delayed counts delivered reports with d > 0 and beyond_window those
+/// Report counters. Every accepted report is in exactly one of lost, unreachable, delivered,
+/// after_end and lost_dead_supernode; delayed counts delivered reports with d > 0 and beyond_window those
 /// delivered with d >= window_size (a supernode's window cannot place them).
 struct NetworkCounts {
   std::uint64_t sent = 0;           ///< accepted reports
@@ -45,6 +50,7 @@ struct NetworkCounts {
   std::uint64_t delayed = 0;        ///< delivered with d > 0
   std::uint64_t beyond_window = 0;  ///< delivered with d >= window_size
   std::uint64_t after_end = 0;      ///< not lost, but tick + d > run.ticks
+  std::uint64_t lost_dead_supernode = 0;  ///< due at a supernode that a fault killed or paused by then
   std::uint64_t rejected = 0;       ///< malformed (wrong tick, unknown sensor, non-finite position,
                                     ///< measurement not common::wellFormed); total only
   NetworkCounts& operator+=(const NetworkCounts& other);
@@ -62,6 +68,11 @@ class Router {
 
   /// The configuration it routes with (network.json records pte and pde from it).
   const RouterConfig& config() const { return config_; }
+
+  /// Routes the next ticks over `topology` (a fault changed the live supernodes): the same
+  /// sensors and supernode indices, other groups and hop counts. It must outlive the router.
+  void useTopology(const Topology& topology);
+  const Topology& topology() const { return *topology_; }
 
   /// Routes all reports generated at `tick` (any order, possibly concatenated from several
   /// tiles; they are put in canonical order first) and returns their fates in that order.
@@ -91,7 +102,10 @@ class Router {
  private:
   const Topology* topology_;
   RouterConfig config_;
-  std::vector<double> success_by_hops_;  // pts(pte, k), precomputed for k = 0 .. maxHops
+  /// pts(pte, k) for k = 0 .. maxHops of the current topology, at the pte of the tick routed.
+  void prepareLinks(double pte);
+  std::vector<double> success_by_hops_;
+  double links_pte_ = -1.0;  // the pte success_by_hops_ holds
   std::int32_t last_tick_;
   std::map<std::int32_t, std::vector<ReportFate>> fates_;
   std::vector<std::map<std::int32_t, std::vector<common::Observation>>> pending_;  // [supernode][tick]

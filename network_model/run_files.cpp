@@ -11,7 +11,7 @@ namespace {
 // Insertion order is the file's order: settings, counts, ratios, then the breakdowns.
 using Json = nlohmann::ordered_json;
 
-void putCounts(Json& json, const NetworkCounts& c) {
+void putCounts(Json& json, const NetworkCounts& c, bool with_faults) {
   json["sent"] = c.sent;
   json["lost"] = c.lost;
   json["unreachable"] = c.unreachable;
@@ -19,6 +19,21 @@ void putCounts(Json& json, const NetworkCounts& c) {
   json["delayed"] = c.delayed;
   json["beyond_window"] = c.beyond_window;
   json["after_end"] = c.after_end;
+  if (with_faults) json["lost_dead_supernode"] = c.lost_dead_supernode;
+}
+
+Json rehomeJson(const Rehome& r) {
+  Json json;
+  json["supernode"] = r.supernode;
+  json["tick"] = r.tick;
+  json["sensors"] = r.sensors;
+  json["reachable_before"] = r.reachable_before;
+  json["reachable_after"] = r.reachable_after;
+  json["mean_hops_before"] = r.mean_hops_before;
+  json["mean_hops_after"] = r.mean_hops_after;
+  json["adopters"] = Json::array();
+  for (const auto& [supernode, sensors] : r.adopters) json["adopters"].push_back({{"supernode", supernode}, {"sensors", sensors}});
+  return json;
 }
 
 double ratio(std::uint64_t part, std::uint64_t whole) {
@@ -29,7 +44,11 @@ double ratio(std::uint64_t part, std::uint64_t whole) {
 
 std::string observationRow(const ReportFate& fate) {
   const auto& r = fate.report;
-  const char* what = fate.hops < 0 ? "unreachable" : fate.lost ? "lost" : fate.tick_delivered < 0 ? "after_end" : "delivered";
+  const char* what = fate.hops < 0               ? "unreachable"
+                     : fate.to_dead_supernode   ? kDeadSupernodeFate
+                     : fate.lost                ? "lost"
+                     : fate.tick_delivered < 0  ? "after_end"
+                                                : "delivered";
   return std::to_string(r.tick) + "," + (fate.tick_delivered < 0 ? std::string() : std::to_string(fate.tick_delivered)) +
          "," + std::to_string(r.sensor) + "," + std::to_string(fate.supernode) + "," + std::to_string(fate.hops) + "," +
          (fate.delay < 0 ? std::string() : std::to_string(fate.delay)) + "," + common::fixed6(r.x) + "," +
@@ -59,16 +78,21 @@ std::string networkJson(const NetworkReport& report) {
   json["pde"] = report.pde;
   json["mean_hops"] = report.mean_hops;
   json["max_hops"] = report.max_hops;
-  putCounts(json, c);
+  putCounts(json, c, report.with_faults);
   json["rejected"] = c.rejected;
-  json["lost_to_total"] = ratio(c.lost + c.unreachable, c.sent);
+  json["lost_to_total"] = ratio(c.lost + c.unreachable + c.lost_dead_supernode, c.sent);
   json["delayed_to_received"] = ratio(c.delayed + c.after_end, received);
   json["supernodes"] = Json::array();
   for (std::size_t j = 0; j < report.per_supernode.size(); ++j) {
     Json group;
     group["supernode"] = j;
-    putCounts(group, report.per_supernode[j]);
+    putCounts(group, report.per_supernode[j], report.with_faults);
     json["supernodes"].push_back(std::move(group));
+  }
+  if (report.with_faults) {
+    json["silent_tile_ticks"] = report.silent_tile_ticks;
+    json["rehomes"] = Json::array();
+    for (const auto& r : report.rehomes) json["rehomes"].push_back(rehomeJson(r));
   }
   // The paper's counts belong to one run of its own example, not to whatever this run simulated:
   // they travel as a reference that names the scenario they can be compared with.

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "network_model/live_topologies.hpp"
 #include "network_model/router.hpp"
 #include "network_model/topology.hpp"
 
@@ -29,11 +30,18 @@ struct NetworkReport {
   std::int32_t max_hops = 0;
   NetworkCounts total;
   std::vector<NetworkCounts> per_supernode;  ///< index = supernode id
+  /// Written only for a run with faults, so that a run without them keeps its file as it was.
+  bool with_faults = false;
+  std::uint64_t silent_tile_ticks = 0;  ///< tile-ticks that sent nothing: a tile dead or paused
+  std::vector<Rehome> rehomes;          ///< every supernode death, in tick order
 };
 
 /// The report of a run once the router has seen its last tick. The settings are read back from
 /// the topology and the router, so the file records what was simulated.
 NetworkReport networkReport(const Topology& topology, const Router& router);
+
+/// The observations.csv fate of a report lost to a dead supernode.
+inline constexpr const char* kDeadSupernodeFate = "dead_supernode";
 
 /// network.json: the report, its loss and delay ratios as Oh §VII-E counts them, and the paper's
 /// §VII-E counts as a reference named after the scenario they belong to (the paper's own example).

@@ -188,6 +188,8 @@ class BreadthFirst {
 
 Topology::Topology(const TopologyConfig& config, std::span<const Vec2> sensors)
     : supernodes_(config.supernodes), range_(config.communication_range) {
+  for (std::uint32_t j = 0; j < supernodes_.size(); ++j)
+    if (config.live_supernodes.empty() || (j < config.live_supernodes.size() && config.live_supernodes[j])) live_.push_back(j);
   build(sensors);
 }
 
@@ -203,17 +205,19 @@ double Topology::meanHops() const {
 
 void Topology::build(std::span<const Vec2> sensors) {
   if (supernodes_.empty()) throw std::invalid_argument("network topology: the scenario has no supernodes");
+  if (live_.empty()) throw std::invalid_argument("network topology: no supernode is live");
   if (sensors.size() + supernodes_.size() > std::numeric_limits<std::uint32_t>::max())
     throw std::invalid_argument("network topology: too many sensors");
   const auto sensor_count = static_cast<std::uint32_t>(sensors.size());
   const auto supernode_count = static_cast<std::uint32_t>(supernodes_.size());
 
-  // Oh et al. §V: g(i) = argmin_j |s_i - ss_j|; the strict comparison keeps the lowest index.
-  supernode_of_.assign(sensor_count, 0);
+  // Oh et al. §V: g(i) = argmin_j |s_i - ss_j| over the live supernodes; the strict comparison
+  // keeps the lowest index.
+  supernode_of_.assign(sensor_count, live_.front());
   group_size_.assign(supernode_count, 0);
   for (std::uint32_t i = 0; i < sensor_count; ++i) {
-    double best = common::squaredDistance(sensors[i], supernodes_[0]);
-    for (std::uint32_t j = 1; j < supernode_count; ++j) {
+    double best = common::squaredDistance(sensors[i], supernodes_[live_.front()]);
+    for (const std::uint32_t j : live_) {
       const double d2 = common::squaredDistance(sensors[i], supernodes_[j]);
       if (d2 < best) {
         best = d2;
@@ -226,9 +230,13 @@ void Topology::build(std::span<const Vec2> sensors) {
   hops_.assign(sensor_count, -1);
   // A negative or NaN range gives G no edges at all.
   if (range_ >= 0.0 && sensor_count > 0) {
-    // Nodes of G: sensors are 0 .. n-1, supernode j is n + j.
+    // Nodes of G: sensors are 0 .. n-1, the k-th live supernode is n + k.
     std::vector<Vec2> nodes(sensors.begin(), sensors.end());
-    nodes.insert(nodes.end(), supernodes_.begin(), supernodes_.end());
+    std::vector<std::uint32_t> node_of_supernode(supernode_count, 0);
+    for (const std::uint32_t j : live_) {
+      node_of_supernode[j] = static_cast<std::uint32_t>(nodes.size());
+      nodes.push_back(supernodes_[j]);
+    }
     const CellIndex index(nodes, range_);
     BreadthFirst search(index, nodes, range_);
 
@@ -249,10 +257,10 @@ void Topology::build(std::span<const Vec2> sensors) {
 
     std::vector<std::size_t> reachable_members(supernode_count, 0);
     for (std::uint32_t i = 0; i < sensor_count; ++i)
-      if (component[i] == component[sensor_count + supernode_of_[i]]) ++reachable_members[supernode_of_[i]];
+      if (component[i] == component[node_of_supernode[supernode_of_[i]]]) ++reachable_members[supernode_of_[i]];
 
-    for (std::uint32_t j = 0; j < supernode_count; ++j) {
-      const std::uint32_t source = sensor_count + j;
+    for (const std::uint32_t j : live_) {
+      const std::uint32_t source = node_of_supernode[j];
       std::size_t remaining = reachable_members[j];
       if (remaining == 0) continue;
       search.startRound();

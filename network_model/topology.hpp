@@ -17,6 +17,9 @@ namespace wsn::network_model {
 struct TopologyConfig {
   std::vector<common::Vec2> supernodes;
   double communication_range = 11.6;  ///< the scenario's calibrated default (docs/NETWORK.md)
+  /// Which supernodes are live (a fault killed or paused the others); empty: all of them. A dead
+  /// supernode is no node of G: it neither owns a group nor relays.
+  std::vector<bool> live_supernodes{};
   friend bool operator==(const TopologyConfig&, const TopologyConfig&) = default;
 };
 
@@ -25,10 +28,12 @@ struct TopologyConfig {
 /// sensor i belongs to its nearest supernode g(i) (ties go to the lower supernode index) and
 /// reports over a shortest path in G to g(i), which may pass through any node, including
 /// sensors of other groups and other supernodes. A sensor with no such path is unreachable.
+/// Supernodes that TopologyConfig::live_supernodes marks dead are left out of G and of g(i);
+/// indices stay those of the scenario, and a dead supernode's group is empty.
 class Topology {
  public:
   /// Builds G over the given true sensor positions (sensor i at sensors[i]; a run passes
-  /// SensorLayout::truePositions()). Throws std::invalid_argument without supernodes.
+  /// SensorLayout::truePositions()). Throws std::invalid_argument without a live supernode.
   Topology(const TopologyConfig& config, std::span<const common::Vec2> sensors);
 
   /// Number of sensors (ids 0 .. sensorCount() - 1).
@@ -64,6 +69,7 @@ class Topology {
   void build(std::span<const common::Vec2> sensors);
 
   std::vector<common::Vec2> supernodes_;
+  std::vector<std::uint32_t> live_;  ///< indices of the live supernodes, ascending
   double range_ = 0.0;
   std::vector<std::uint32_t> supernode_of_;
   std::vector<std::int32_t> hops_;

@@ -25,11 +25,13 @@ void runNodeRole(const dds::RoleContext& context) {
     RoleLoop loop(participant, context);
     PipelineProgress progress(participant, topics, context, loop);
 
+    const auto plan = context.faultPlan();
     TickInbox<std::vector<common::SensorReading>> boundary_inbox;
     loop.watch(boundary_reader, [&] {
       boundary_reader.take([&](const wsn_msg_SensorBoundary& batch) {
         if (batch.run_id != context.run_id || batch.tile == context.index ||
-            batch.tile >= static_cast<std::uint32_t>(context.shape.tiles))
+            batch.tile >= static_cast<std::uint32_t>(context.shape.tiles) ||
+            !plan.tileLive(static_cast<std::int32_t>(batch.tile), batch.tick))
           return;
         boundary_inbox.put(batch.tick, batch.tile, decode(batch.readings));
       });
@@ -44,8 +46,13 @@ void runNodeRole(const dds::RoleContext& context) {
 
     const std::int32_t ticks = scenario.run.ticks;
     const std::int32_t in_flight = scenario.run.max_ticks_in_flight;
-    const auto others = static_cast<std::size_t>(tiles_count - 1);
+    const auto self = static_cast<std::int32_t>(context.index);
     for (std::int32_t t = 1; t <= ticks; ++t) {
+      if (const auto fault = plan.processFaultAt(common::FaultRole::kNode, self, t)) {
+        enactProcessFault(*fault, context, status, progress, loop);
+        t = fault->lastTick();  // a pause: its sensors stayed silent through these ticks
+        continue;
+      }
       progress.paceTick();  // --tick-interval: the sources set the pace, back-pressure the rest
       progress.waitForCompleted(t - in_flight);
       auto boundary_readings = sensors->sense(t);
@@ -59,8 +66,10 @@ void runNodeRole(const dds::RoleContext& context) {
         boundary_sample.readings = sequenceView<dds_sequence_wsn_msg_SensorReading>(boundary);
         boundary_writer.write(boundary_sample);
 
+        // Only the tiles live at t send: a dead or paused tile's sensors are silent.
+        const auto others = static_cast<std::size_t>(plan.liveTileCount(t) - 1);
         loop.waitUntil([&] { return boundary_inbox.count(t) >= others; },
-                       [&] { return "boundary readings of tick " + std::to_string(t) + " from the other tiles"; });
+                       [&] { return "boundary readings of tick " + std::to_string(t) + " from the other live tiles"; });
         for (auto& [tile, readings] : boundary_inbox.take(t))
           foreign.insert(foreign.end(), readings.begin(), readings.end());
       }

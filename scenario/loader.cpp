@@ -22,6 +22,7 @@
 #include "common/terrain.hpp"
 #include "node/sensor_model_registry.hpp"
 #include "scenario/document.hpp"
+#include "scenario/faults_section.hpp"
 #include "scenario/rules.hpp"
 
 namespace wsn::scenario {
@@ -432,6 +433,7 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
     node_processes_line = lineOr(sec, "node_processes", node_processes_line);
   }
   nodeProcessesFitCells(r, s, node_processes_line);
+  readFaults(r, top, s);
   return s;
 }
 

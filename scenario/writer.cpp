@@ -12,6 +12,7 @@
 #include "common/scenario_schema.hpp"
 #include "common/sensor_layout.hpp"
 #include "node/sensor_model_registry.hpp"
+#include "scenario/faults_section.hpp"
 
 namespace wsn::scenario {
 namespace {
@@ -162,6 +163,7 @@ std::string resolvedScenarioYaml(const Scenario& s) {
   writeParams(out, "aggregator.params", s.aggregator.params, s.derived);
   writeSection(out, "metrics", schema::metrics(), s.metrics);
   writeSection(out, "run", schema::run(), s.run);
+  out << faultsYaml(s.faults);
   return out.str();
 }
 

@@ -1,11 +1,43 @@
 #include "supernode/role.hpp"
 
 #include <algorithm>
+#include <memory>
+#include <set>
 
 #include "common/dds/codec.hpp"
 #include "supernode/supernode_tracker.hpp"
 
 namespace wsn::supernode {
+namespace {
+
+/// What a supernode takes in at tick t besides its deliveries: the handoffs of tick t - 1
+/// addressed to it (a partition cuts those of its partner, counted), and the last tracks of each
+/// supernode that dies at t, addressed to it, but for the ones that supernode itself handed on
+/// at its last tick.
+std::vector<common::TrackHandoff> incomingAt(std::int32_t t, std::uint32_t self, const common::FaultPlan& plan,
+                                             std::map<std::uint32_t, std::vector<common::TrackHandoff>> handoffs,
+                                             std::map<std::uint32_t, std::vector<common::TrackHandoff>> orphans,
+                                             std::uint64_t& lost_to_partition) {
+  std::vector<common::TrackHandoff> incoming;
+  for (const auto& [from, batch] : handoffs)
+    for (const auto& handoff : batch) {
+      if (handoff.to_supernode != self) continue;
+      if (plan.partitioned(static_cast<std::int32_t>(from), static_cast<std::int32_t>(self), t - 1))
+        ++lost_to_partition;
+      else
+        incoming.push_back(handoff);
+    }
+  for (const auto& [dead, batch] : orphans) {
+    std::set<common::TrackId> handed_on;
+    if (const auto it = handoffs.find(dead); it != handoffs.end())
+      for (const auto& handoff : it->second) handed_on.insert(handoff.track);
+    for (const auto& orphan : batch)
+      if (orphan.to_supernode == self && handed_on.count(orphan.track) == 0) incoming.push_back(orphan);
+  }
+  return incoming;
+}
+
+}  // namespace
 
 void runSupernodeRole(const dds::RoleContext& context) {
   using namespace wsn::dds;
@@ -13,10 +45,12 @@ void runSupernodeRole(const dds::RoleContext& context) {
     const auto& scenario = context.scenario;
     const std::uint32_t self = context.index;
     const auto supernodes = static_cast<std::uint32_t>(context.shape.supernodes);
-    SupernodeTracker tracker(supernodeConfig(scenario, self));
+    const auto plan = context.faultPlan();
+    auto tracker = std::make_unique<SupernodeTracker>(supernodeConfig(scenario, self));
 
     Reader<wsn_msg_DeliveryBatch> delivery_reader(participant, topics.delivery_batch, Qos::reliableKeepAll());
     Reader<wsn_msg_HandoffBatch> handoff_reader(participant, topics.handoff_batch, Qos::reliableKeepAll());
+    Reader<wsn_msg_HandoffBatch> rehome_reader(participant, topics.rehome_batch, Qos::reliableKeepAll());
     Writer<wsn_msg_HandoffBatch> handoff_writer(participant, topics.handoff_batch, Qos::reliableKeepAll());
     Writer<wsn_msg_TrackBatch> track_writer(participant, topics.track_batch, Qos::reliableKeepAll());
     RoleLoop loop(participant, context);
@@ -24,6 +58,7 @@ void runSupernodeRole(const dds::RoleContext& context) {
 
     TickInbox<std::vector<common::Observation>> deliveries;
     TickInbox<std::vector<common::TrackHandoff>> handoffs;
+    TickInbox<std::vector<common::TrackHandoff>> orphans;
     loop.watch(delivery_reader, [&] {
       delivery_reader.take([&](const wsn_msg_DeliveryBatch& batch) {
         if (batch.run_id != context.run_id || batch.supernode != self) return;
@@ -32,30 +67,57 @@ void runSupernodeRole(const dds::RoleContext& context) {
     });
     loop.watch(handoff_reader, [&] {
       handoff_reader.take([&](const wsn_msg_HandoffBatch& batch) {
-        if (batch.run_id != context.run_id || batch.from_supernode == self || batch.from_supernode >= supernodes) return;
+        if (batch.run_id != context.run_id || batch.from_supernode == self || batch.from_supernode >= supernodes ||
+            !plan.supernodeLive(static_cast<std::int32_t>(batch.from_supernode), batch.tick))
+          return;
         handoffs.put(batch.tick, batch.from_supernode, decode(batch.handoffs));
+      });
+    });
+    loop.watch(rehome_reader, [&] {
+      rehome_reader.take([&](const wsn_msg_HandoffBatch& batch) {
+        if (batch.run_id != context.run_id || batch.from_supernode >= supernodes ||
+            !plan.supernodeDies(static_cast<std::int32_t>(batch.from_supernode), batch.tick))
+          return;
+        orphans.put(batch.tick, batch.from_supernode, decode(batch.handoffs));
       });
     });
     const int s = context.shape.supernodes;
     waitForDiscovery(participant, {{&handoff_writer, s}, {&track_writer, 1}},
-                     {{&delivery_reader, 1}, {&handoff_reader, s}, {&progress.reader(), 1}}, context);
+                     {{&delivery_reader, 1}, {&handoff_reader, s}, {&rehome_reader, 1}, {&progress.reader(), 1}},
+                     context);
     status.ready();
 
     const std::int32_t ticks = scenario.run.ticks;
-    const std::size_t others = supernodes - 1;
+    std::uint64_t handoffs_lost_partition = 0;
     for (std::int32_t t = 1; t <= ticks; ++t) {
-      loop.waitUntil([&] { return deliveries.count(t) == 1 && (t == 1 || handoffs.count(t - 1) >= others); },
-                     [&] { return "deliveries of tick " + std::to_string(t) + " and the other supernodes' handoffs of tick " +
-                                  std::to_string(t - 1); });
+      if (const auto fault = plan.processFaultAt(common::FaultRole::kSupernode, static_cast<std::int32_t>(self), t)) {
+        enactProcessFault(*fault, context, status, progress, loop);
+        // Back from a pause: the supernodes that adopted the group meanwhile hand its tracks back.
+        t = fault->lastTick();
+        handoffs.skipThrough(t - 1);
+        if (t < ticks) tracker = std::make_unique<SupernodeTracker>(supernodeConfig(scenario, self), t + 1);
+        continue;
+      }
+      // The handoffs of t - 1 come from every supernode live then, the orphans from the aggregator.
+      std::size_t others = 0;
+      for (std::uint32_t j = 0; j < supernodes; ++j)
+        others += j != self && t > 1 && plan.supernodeLive(static_cast<std::int32_t>(j), t - 1) ? 1 : 0;
+      const std::size_t dying = plan.dyingAt(t).size();
+      loop.waitUntil(
+          [&] {
+            return deliveries.count(t) == 1 && (t == 1 || handoffs.count(t - 1) >= others) && orphans.count(t) >= dying;
+          },
+          [&] {
+            return "deliveries of tick " + std::to_string(t) + ", the live supernodes' handoffs of tick " +
+                   std::to_string(t - 1) + (dying > 0 ? " and the aggregator's re-homed tracks" : "");
+          });
       auto delivered = std::move(deliveries.take(t)[0]);
-      std::vector<common::TrackHandoff> incoming;
-      for (auto& [from, batch] : handoffs.take(t - 1))
-        for (auto& handoff : batch)
-          if (handoff.to_supernode == self) incoming.push_back(handoff);
+      const auto incoming = incomingAt(t, self, plan, handoffs.take(t - 1), orphans.take(t), handoffs_lost_partition);
 
-      auto output = tracker.step(t, delivered, incoming);
+      tracker->setLiveSupernodes(plan.liveSupernodes(std::min(t + 1, ticks)));
+      auto output = tracker->step(t, delivered, incoming);
       if (t == ticks) {  // the last tick settles what is left in the window
-        auto rest = tracker.settleRemaining();
+        auto rest = tracker->settleRemaining();
         for (auto& tick_tracks : rest.by_tick) output.settled.by_tick.push_back(std::move(tick_tracks));
       }
 
@@ -67,6 +129,7 @@ void runSupernodeRole(const dds::RoleContext& context) {
       track_sample.tick = t;
       track_sample.observations_in_window = output.observations_in_window;
       track_sample.observations_dropped_stale = static_cast<std::uint32_t>(output.observations_dropped_stale);
+      track_sample.handoffs_lost_partition = static_cast<std::uint32_t>(handoffs_lost_partition);
       track_sample.tracks = sequenceView<dds_sequence_wsn_msg_TrackEstimate>(tracks.items);
       track_sample.settled_first = output.settled.first;
       track_sample.settled_last = output.settled.last();

@@ -17,12 +17,9 @@ bool handoffLess(const common::TrackHandoff& a, const common::TrackHandoff& b) {
 }  // namespace
 
 std::uint32_t nearestSupernode(const std::vector<common::Vec2>& supernodes, common::Vec2 position) {
-  std::uint32_t best = 0;
-  for (std::uint32_t j = 1; j < supernodes.size(); ++j)
-    if (common::squaredDistance(supernodes[j], position) < common::squaredDistance(supernodes[best], position))
-      best = j;
-  return best;
+  return nearestLiveSupernode(supernodes, {}, position);
 }
+
 
 SupernodeConfig supernodeConfig(const common::Scenario& resolved, std::uint32_t index) {
   return {engineContext(resolved, index), resolved.supernodes};
@@ -37,6 +34,10 @@ SupernodeTracker::SupernodeTracker(SupernodeConfig config)
   engine_ = makeEngine(config.engine);
   engine_spec_ = engineRegistry().find(config.engine.engine);  // makeEngine found it
   accepted_kinds_ = acceptedKindMask(*engine_spec_);
+}
+
+SupernodeTracker::SupernodeTracker(SupernodeConfig config, std::int32_t first_tick) : SupernodeTracker(std::move(config)) {
+  settled_through_ = first_tick - 1;
 }
 
 SupernodeTracker::TickOutput SupernodeTracker::step(std::int32_t tick, std::span<const common::Observation> delivered,
@@ -69,7 +70,7 @@ SupernodeTracker::TickOutput SupernodeTracker::step(std::int32_t tick, std::span
   // Oh §VI: a track whose predicted next state lies in another supernode's tracking group is
   // passed to that supernode.
   for (const auto& prediction : engine_->predictions()) {  // sorted by id
-    const std::uint32_t owner = nearestSupernode(supernodes_, prediction.next_position);
+    const std::uint32_t owner = nearestLiveSupernode(supernodes_, live_, prediction.next_position);
     if (owner != index_) {
       keepSettledOf(prediction.track, tick);
       out.handoffs.push_back(engine_->release(prediction.track, owner));

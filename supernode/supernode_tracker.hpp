@@ -13,12 +13,14 @@
 #include "common/messages.hpp"
 #include "supernode/engine.hpp"
 #include "supernode/observation_window.hpp"
+#include "supernode/rehome.hpp"
 
 namespace wsn::supernode {
 
 /// Oh §V, g(): index of the supernode nearest to `position` (ties go to the lower index);
 /// 0 when there are no supernodes.
 std::uint32_t nearestSupernode(const std::vector<common::Vec2>& supernodes, common::Vec2 position);
+
 
 /// What one supernode's tracker runs with, split off the scenario at the role edge.
 struct SupernodeConfig {
@@ -58,6 +60,13 @@ class SupernodeTracker {
   /// config.supernodes (index 0 is the single tracking group when there are none), and what
   /// makeEngine throws for an unknown engine or unresolved parameters.
   explicit SupernodeTracker(SupernodeConfig config);
+  /// A tracker that starts afresh at `first_tick` (a supernode back after a pause): it settles
+  /// ticks from first_tick on, and its first step must be at first_tick.
+  SupernodeTracker(SupernodeConfig config, std::int32_t first_tick);
+
+  /// Which supernodes own a tracking group at the next tick (faults); a track predicted into
+  /// the group of a dead one goes to the nearest live one. All of them until set.
+  void setLiveSupernodes(std::vector<bool> live) { live_ = std::move(live); }
 
   /// Processes tick `tick`: slides the window, files the delivered observations into their slots,
   /// adopts the incoming handoffs, steps the engine and releases the tracks predicted to enter
@@ -77,6 +86,7 @@ class SupernodeTracker {
 
  private:
   std::vector<common::Vec2> supernodes_;
+  std::vector<bool> live_;  ///< empty: every supernode
   std::uint32_t index_;
   ObservationWindow window_;
   std::unique_ptr<Engine> engine_;

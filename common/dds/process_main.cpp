@@ -137,6 +137,7 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
   context.stall_timeout = std::chrono::milliseconds(static_cast<long>(stall_timeout_s * 1000));
   context.tick_interval = std::chrono::microseconds(std::llround(tick_interval_s * 1e6));
   context.domain = static_cast<dds_domainid_t>(domain);
+  context.signalled_faults = true;
 
   try {
     // Before the domain: Cyclone's threads must inherit the blocked signals.

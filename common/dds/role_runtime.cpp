@@ -35,6 +35,7 @@ RunTopics::RunTopics(const Participant& participant)
       delivery_batch(participant, topic_names::kDeliveryBatch),
       handoff_batch(participant, topic_names::kHandoffBatch),
       track_batch(participant, topic_names::kTrackBatch),
+      rehome_batch(participant, topic_names::kRehomeBatch),
       global_track_batch(participant, topic_names::kGlobalTrackBatch),
       tick_metrics(participant, topic_names::kTickMetrics),
       process_status(participant, topic_names::kProcessStatus) {}
@@ -61,6 +62,7 @@ void StatusPublisher::ready() { publish(wsn_msg_READY, 0, ""); }
 void StatusPublisher::running(std::int32_t tick) { publish(wsn_msg_RUNNING, tick, ""); }
 void StatusPublisher::done(std::int32_t tick) { publish(wsn_msg_DONE, tick, ""); }
 void StatusPublisher::failed(const std::string& message) { publish(wsn_msg_FAILED, 0, message); }
+void StatusPublisher::faulted(std::int32_t tick, const std::string& what) { publish(wsn_msg_FAULTED, tick, what); }
 
 StopCondition::StopCondition(const Participant& participant, std::stop_token stop)
     : guard_(participant), callback_(std::move(stop), Trigger{guard_.handle()}) {}
@@ -175,6 +177,34 @@ void waitForClusterReady(const Participant& participant, const RunTopics& topics
   }
 }
 
+LiveRolesDone::LiveRolesDone(const Participant& participant, const RunTopics& topics, const RoleContext& context)
+    : context_(context),
+      reader_(participant, topics.process_status, Qos::lastValueTransientLocal()),
+      condition_(reader_),
+      waitset_(participant),
+      stop_(participant, context.stop) {
+  waitset_.attach(condition_.handle(), 0);
+  waitset_.attach(stop_.handle(), kStopToken);
+}
+
+void LiveRolesDone::wait() {
+  const auto& context = context_;
+  const auto plan = context.faultPlan();
+  const std::int32_t last = context.scenario.run.ticks;
+  std::set<std::pair<std::string, std::uint32_t>> waiting{{"network", 0}};
+  for (std::int32_t i = 0; i < context.shape.tiles; ++i)
+    if (plan.tileLive(i, last)) waiting.emplace("node", static_cast<std::uint32_t>(i));
+  for (std::int32_t j = 0; j < context.shape.supernodes; ++j)
+    if (plan.supernodeLive(j, last)) waiting.emplace("supernode", static_cast<std::uint32_t>(j));
+  const auto deadline = Clock::now() + context.stall_timeout;
+  while (!waiting.empty() && Clock::now() < deadline && !context.stop.stop_requested()) {
+    waitset_.wait(until(deadline));
+    reader_.take([&](const wsn_msg_ProcessStatus& s) {
+      if (s.run_id == context.run_id && s.state == wsn_msg_DONE) waiting.erase({s.role, s.index});
+    });
+  }
+}
+
 }  // namespace wsn::dds
 
 namespace wsn::dds {
@@ -208,9 +238,23 @@ void PipelineProgress::paceTick() {
   paced_at_ = paced_at_ && now <= *paced_at_ + interval ? *paced_at_ + interval : Clock::now();
 }
 
+void enactProcessFault(const common::FaultSpec& fault, const RoleContext& context, StatusPublisher& status,
+                       PipelineProgress& progress, RoleLoop& loop) {
+  progress.waitForCompleted(std::min(fault.tick, context.scenario.run.ticks));
+  status.faulted(fault.tick, fault.describe());
+  if (fault.action == common::FaultAction::kPause) {
+    progress.waitForCompleted(std::min(fault.lastTick(), context.scenario.run.ticks));
+    return;
+  }
+  if (!context.signalled_faults) throw ScheduledDeath(fault.describe());
+  loop.waitUntil([] { return false; }, [&] { return "the launcher's SIGKILL (" + fault.describe() + ")"; });
+}
+
 void runWithStatus(StatusPublisher& status, const std::function<void()>& body) {
   try {
     body();
+  } catch (const ScheduledDeath&) {
+    throw;  // announced as FAULTED already: not a failure
   } catch (const std::exception& error) {
     try {
       status.failed(error.what());

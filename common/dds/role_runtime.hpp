@@ -27,6 +27,10 @@ inline constexpr const char* kReportBatch = "wsn_report_batch";
 inline constexpr const char* kDeliveryBatch = "wsn_delivery_batch";
 inline constexpr const char* kHandoffBatch = "wsn_handoff_batch";
 inline constexpr const char* kTrackBatch = "wsn_track_batch";
+/// HandoffBatch samples the aggregator writes when the scenario's faults kill or pause a
+/// supernode: its last tracks, addressed to the supernodes adopting its group (from_supernode:
+/// the dead one; tick: the tick the adopters take over).
+inline constexpr const char* kRehomeBatch = "wsn_rehome_batch";
 inline constexpr const char* kGlobalTrackBatch = "wsn_global_track_batch";
 inline constexpr const char* kTickMetrics = "wsn_tick_metrics";
 inline constexpr const char* kProcessStatus = "wsn_process_status";
@@ -93,10 +97,24 @@ struct RoleContext {
   /// Requested from outside (the signal thread of a role process, the in-process launcher) to
   /// make the role stop: every wait of the role wakes at once through a guard condition.
   std::stop_token stop;
+  /// True for a role process that `wsntrack run` started: the launcher enacts the scenario's
+  /// kills and pauses of it with real signals (SIGKILL; SIGSTOP, then SIGCONT) once the role
+  /// announces them. False for a role thread (--in-process), which ends or waits by itself.
+  bool signalled_faults = false;
+
+  /// The scenario's faults as every role applies them (common/faults.hpp).
+  common::FaultPlan faultPlan() const { return {scenario.faults, shape.tiles, shape.supernodes}; }
 };
 
 /// Thrown when a role stops before finishing: stopped from outside or stalled.
 class RoleAborted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Thrown by a role thread where the scenario's faults kill it (in-process runs): the launcher
+/// counts it as the fault it is, not as a failure.
+class ScheduledDeath : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
@@ -109,6 +127,7 @@ struct RunTopics {
   Topic<wsn_msg_DeliveryBatch> delivery_batch;
   Topic<wsn_msg_HandoffBatch> handoff_batch;
   Topic<wsn_msg_TrackBatch> track_batch;
+  Topic<wsn_msg_HandoffBatch> rehome_batch;
   Topic<wsn_msg_GlobalTrackBatch> global_track_batch;
   Topic<wsn_msg_TickMetrics> tick_metrics;
   Topic<wsn_msg_ProcessStatus> process_status;
@@ -123,6 +142,8 @@ class StatusPublisher {
   void running(std::int32_t tick);
   void done(std::int32_t tick);
   void failed(const std::string& message);
+  /// The role reached a kill or pause of the scenario's faults at `tick` (`what` says which).
+  void faulted(std::int32_t tick, const std::string& what);
 
  private:
   void publish(int state, std::int32_t tick, const std::string& message);
@@ -160,6 +181,12 @@ class TickInbox {
     return node.empty() ? std::map<std::uint32_t, BatchT>{} : std::move(node.mapped());
   }
   std::uint64_t rejected() const { return rejected_; }
+  /// Forgets every tick up to `tick` unread (a role that was paused skips them); later batches of
+  /// those ticks are rejected like consumed ones.
+  void skipThrough(std::int32_t tick) {
+    pending_.erase(pending_.begin(), pending_.upper_bound(tick));
+    consumed_through_ = std::max(consumed_through_, tick);
+  }
 
  private:
   std::map<std::int32_t, std::map<std::uint32_t, BatchT>> pending_;
@@ -254,6 +281,37 @@ class PipelineProgress {
   std::set<std::int32_t> arrived_;
   std::int32_t completed_through_ = 0;
   std::optional<std::chrono::steady_clock::time_point> paced_at_;
+};
+
+/// Where the scenario's faults kill or pause this role at `fault.tick`: once the pipeline finished
+/// that tick (so every consumer took what the role wrote before it: a consumer of a supernode
+/// needs its handoffs of fault.tick - 1 to finish fault.tick), the role announces the fault on its
+/// status, then
+/// - kill: a process waits for the launcher's SIGKILL (and fails, naming the fault, if none
+///   comes within the stall timeout); a thread throws ScheduledDeath;
+/// - pause: it waits until the pipeline has finished the paused ticks (the launcher holds a
+///   process stopped meanwhile) and returns; the caller resumes at fault.lastTick() + 1.
+/// Consumers never wait for a faulted role's outputs of those ticks, so no output depends on
+/// when the signals land.
+void enactProcessFault(const common::FaultSpec& fault, const RoleContext& context, StatusPublisher& status,
+                       PipelineProgress& progress, RoleLoop& loop);
+
+/// The aggregator's last wait before its writers go: until every role the scenario's faults left
+/// live at the last tick reported DONE (each does once it holds the last global tracks), or the
+/// stall timeout passed. Counted in roles rather than in DDS acknowledgements, which a killed
+/// process's reader would hold back until its lease expired. Made before the run, so that it
+/// holds the DONE of a role that left before the wait began.
+class LiveRolesDone {
+ public:
+  LiveRolesDone(const Participant& participant, const RunTopics& topics, const RoleContext& context);
+  void wait();
+
+ private:
+  const RoleContext& context_;
+  Reader<wsn_msg_ProcessStatus> reader_;
+  ReadCondition condition_;
+  WaitSet waitset_;
+  StopCondition stop_;
 };
 
 /// Runs `body`, publishing READY-to-FAILED status around it: any exception is reported on the

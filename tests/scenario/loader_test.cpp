@@ -232,8 +232,8 @@ TEST_CASE("an unknown key names the key's line, its section and the known keys",
   CHECK(errorOf("network:\n  pte: 0.3\n  ptee: 0.1\n") ==
         "s.yaml:3: unknown key 'ptee' in 'network'; expected one of: communication_range, pde, pte");
   CHECK(errorOf("name: x\nnetwrok: {}\n") ==
-        "s.yaml:2: unknown key 'netwrok' at the top level; expected one of: aggregator, dynamics, localisation, metrics, name, "
-        "network, region, run, sensor_model, sensors, supernodes, targets, terrain, tracker");
+        "s.yaml:2: unknown key 'netwrok' at the top level; expected one of: aggregator, dynamics, faults, localisation, metrics, "
+        "name, network, region, run, sensor_model, sensors, supernodes, targets, terrain, tracker");
   CHECK(errorOf("targets:\n  scripted:\n    - {x: 1, y: 1, vx: 0, vy: 0, z: 3}\n") ==
         "s.yaml:3: unknown key 'z' in 'targets.scripted[0]'; expected one of: appear_tick, class, disappear_tick, sensing_range, "
         "speed, speeds, stops, vx, vy, waypoints, x, y");
@@ -261,8 +261,8 @@ TEST_CASE("a wrong type names the dotted key, what was expected and what was fou
   CHECK(errorOf("network:\n  pte: {a: 1}\n") == "s.yaml:2: 'network.pte' must be a number, got a mapping");
   CHECK(errorOf("network: 5\n") == "s.yaml:1: 'network' must be a mapping of communication_range, pde, pte, got '5'");
   CHECK(errorOf("- 1\n- 2\n") ==
-        "s.yaml:1: a scenario must be a mapping of sections (aggregator, dynamics, localisation, metrics, name, network, region, "
-        "run, sensor_model, sensors, supernodes, targets, terrain, tracker), got a list");
+        "s.yaml:1: a scenario must be a mapping of sections (aggregator, dynamics, faults, localisation, metrics, name, network, "
+        "region, run, sensor_model, sensors, supernodes, targets, terrain, tracker), got a list");
   CHECK(errorOf("sensors:\n  layout: hex\n") == "s.yaml:2: 'sensors.layout' must be one of: grid, random, list; got 'hex'");
   CHECK(errorOf("targets:\n  speed_class: 3\n") ==
         "s.yaml:2: 'targets.speed_class' must be one of: slow, medium, fast; got '3'");

@@ -135,8 +135,8 @@ TEST_CASE("an unknown key is the loader's message, naming the --set and no line"
         "override: --set network.nope=1: unknown key 'nope' in 'network'; expected one of: communication_range, pde, "
         "pte");
   CHECK(errorOf({"nope.x=1"}) ==
-        "override: --set nope.x=1: unknown key 'nope' at the top level; expected one of: aggregator, dynamics, localisation, "
-        "metrics, name, network, region, run, sensor_model, sensors, supernodes, targets, terrain, tracker");
+        "override: --set nope.x=1: unknown key 'nope' at the top level; expected one of: aggregator, dynamics, faults, "
+        "localisation, metrics, name, network, region, run, sensor_model, sensors, supernodes, targets, terrain, tracker");
   CHECK(errorOf({"run.ticks=0"}) == "override: --set run.ticks=0: 'run.ticks' must be in [1, 1000000], got 0");
 }
 

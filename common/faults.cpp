@@ -1,0 +1,117 @@
+#include "common/faults.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "common/config/field_table.hpp"
+
+namespace wsn::common {
+
+std::int32_t FaultSpec::lastTick() const {
+  if (action == FaultAction::kKill) return std::numeric_limits<std::int32_t>::max();
+  return tick + std::max(ticks, 1) - 1;
+}
+
+const char* faultActionName(FaultAction action) {
+  switch (action) {
+    case FaultAction::kKill: return "kill";
+    case FaultAction::kPause: return "pause";
+    case FaultAction::kPartition: return "partition";
+    case FaultAction::kBurstLoss: return "burst_loss";
+  }
+  return "?";
+}
+
+const char* faultRoleName(FaultRole role) { return role == FaultRole::kNode ? "node" : "supernode"; }
+
+std::string FaultSpec::describe() const {
+  const std::string at = " at tick " + std::to_string(tick);
+  const std::string span = " for " + std::to_string(ticks) + " ticks";
+  switch (action) {
+    case FaultAction::kKill: return std::string("kill of ") + faultRoleName(role) + " " + std::to_string(index) + at;
+    case FaultAction::kPause:
+      return std::string("pause of ") + faultRoleName(role) + " " + std::to_string(index) + at + span;
+    case FaultAction::kPartition:
+      return "partition between supernodes " + std::to_string(between.size() > 0 ? between[0] : -1) + " and " +
+             std::to_string(between.size() > 1 ? between[1] : -1) + at + span;
+    case FaultAction::kBurstLoss: return "burst loss (pte " + config::compactNumber(pte) + ")" + at + span;
+  }
+  return "fault" + at;
+}
+
+FaultPlan::FaultPlan(std::vector<FaultSpec> faults, std::int32_t tiles, std::int32_t supernodes)
+    : faults_(std::move(faults)), tiles_(tiles), supernodes_(supernodes) {}
+
+bool FaultPlan::live(FaultRole role, std::int32_t index, std::int32_t tick) const {
+  for (const auto& f : faults_) {
+    if ((f.action != FaultAction::kKill && f.action != FaultAction::kPause) || f.role != role || f.index != index) continue;
+    if (tick >= f.tick && tick <= f.lastTick()) return false;
+  }
+  return true;
+}
+
+bool FaultPlan::tileLive(std::int32_t tile, std::int32_t tick) const { return live(FaultRole::kNode, tile, tick); }
+
+bool FaultPlan::supernodeLive(std::int32_t supernode, std::int32_t tick) const {
+  return live(FaultRole::kSupernode, supernode, tick);
+}
+
+std::vector<bool> FaultPlan::liveSupernodes(std::int32_t tick) const {
+  std::vector<bool> mask(static_cast<std::size_t>(supernodes_));
+  for (std::int32_t j = 0; j < supernodes_; ++j) mask[static_cast<std::size_t>(j)] = supernodeLive(j, tick);
+  return mask;
+}
+
+bool FaultPlan::supernodeReturns(std::int32_t supernode, std::int32_t tick) const {
+  return tick > 1 && supernodeLive(supernode, tick) && !supernodeLive(supernode, tick - 1);
+}
+
+bool FaultPlan::supernodeDies(std::int32_t supernode, std::int32_t tick) const {
+  return tick > 1 && !supernodeLive(supernode, tick) && supernodeLive(supernode, tick - 1);
+}
+
+std::vector<std::int32_t> FaultPlan::dyingAt(std::int32_t tick) const {
+  std::vector<std::int32_t> out;
+  for (std::int32_t j = 0; j < supernodes_; ++j)
+    if (supernodeDies(j, tick)) out.push_back(j);
+  return out;
+}
+
+bool FaultPlan::partitioned(std::int32_t a, std::int32_t b, std::int32_t tick) const {
+  for (const auto& f : faults_) {
+    if (f.action != FaultAction::kPartition || f.between.size() != 2 || tick < f.tick || tick > f.lastTick()) continue;
+    if ((f.between[0] == a && f.between[1] == b) || (f.between[0] == b && f.between[1] == a)) return true;
+  }
+  return false;
+}
+
+std::optional<double> FaultPlan::burstPte(std::int32_t tick) const {
+  std::optional<double> pte;
+  for (const auto& f : faults_)
+    if (f.action == FaultAction::kBurstLoss && tick >= f.tick && tick <= f.lastTick()) pte = std::max(pte.value_or(0.0), f.pte);
+  return pte;
+}
+
+bool FaultPlan::settles(std::int32_t supernode, std::int32_t tick, std::int32_t window_size,
+                        std::int32_t run_ticks) const {
+  const std::int32_t until = std::min(tick + std::max(window_size, 1) - 1, run_ticks);
+  for (std::int32_t u = tick; u <= until; ++u)
+    if (!supernodeLive(supernode, u)) return false;
+  return true;
+}
+
+std::int32_t FaultPlan::liveTileCount(std::int32_t tick) const {
+  std::int32_t n = 0;
+  for (std::int32_t i = 0; i < tiles_; ++i) n += tileLive(i, tick) ? 1 : 0;
+  return n;
+}
+
+std::optional<FaultSpec> FaultPlan::processFaultAt(FaultRole role, std::int32_t index, std::int32_t tick) const {
+  for (const auto& f : faults_)
+    if ((f.action == FaultAction::kKill || f.action == FaultAction::kPause) && f.role == role && f.index == index &&
+        f.tick == tick)
+      return f;
+  return std::nullopt;
+}
+
+}  // namespace wsn::common

@@ -1,0 +1,164 @@
+#include "scenario/faults_section.hpp"
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "common/faults.hpp"
+#include "common/scenario_schema.hpp"
+
+namespace wsn::scenario {
+namespace {
+
+namespace config = common::config;
+using common::FaultAction;
+using common::FaultRole;
+using common::FaultSpec;
+using config::Entry;
+using config::Reader;
+using config::Section;
+
+/// The keys each action needs besides `tick` and `action`, and why; every other key is refused.
+struct ActionKeys {
+  std::vector<std::string> needed;
+  std::string why;
+};
+
+const ActionKeys& keysOf(FaultAction action) {
+  static const std::map<FaultAction, ActionKeys> keys = {
+      {FaultAction::kKill, {{"role", "index"}, "which process dies"}},
+      {FaultAction::kPause, {{"role", "index", "ticks"}, "which process stops, and for how long"}},
+      {FaultAction::kPartition, {{"between", "ticks"}, "which two supernodes lose their handoffs, and for how long"}},
+      {FaultAction::kBurstLoss, {{"pte", "ticks"}, "the loss rate, and for how long"}},
+  };
+  return keys.at(action);
+}
+
+/// The keys of one item: those its action needs, and no other.
+void keysFitAction(const Reader& r, const Section& item, const FaultSpec& f) {
+  const auto& keys = keysOf(f.action);
+  const std::string action = common::faultActionName(f.action);
+  for (const auto& key : keys.needed)
+    if (item.find(key) == nullptr)
+      r.fail(item.line, "'" + item.path + "' (" + action + ") needs '" + key + "' (" + keys.why + ")");
+  for (const auto& [key, entry] : item.entries) {
+    if (key == "tick" || key == "action") continue;
+    bool needed = false;
+    for (const auto& k : keys.needed) needed = needed || k == key;
+    if (!needed)
+      r.fail(Reader::lineOf(entry), "'" + item.pathOf(key) + "' is not a key of a " + action + " fault; it takes " +
+                                        config::join(keys.needed));
+  }
+}
+
+/// partition.between: [[supernode, A], [supernode, B]], two different supernodes of the scenario.
+std::vector<std::int32_t> readBetween(const Reader& r, const Entry& entry, const std::string& path,
+                                      std::int32_t supernodes) {
+  const int line = Reader::lineOf(entry);
+  const std::string shape = "[[supernode, A], [supernode, B]]";
+  if (!entry.value.IsSequence() || entry.value.size() != 2)
+    r.fail(line, "'" + path + "' must be " + shape + ", got " + config::describe(entry.value));
+  std::vector<std::int32_t> out;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const YAML::Node& pair = entry.value[k];
+    const std::string at = path + "[" + std::to_string(k) + "]";
+    const int pair_line = Reader::lineOf(pair) > 0 ? Reader::lineOf(pair) : line;
+    if (!pair.IsSequence() || pair.size() != 2 || !pair[0].IsScalar() || pair[0].Scalar() != "supernode")
+      r.fail(pair_line, "'" + at + "' must be [supernode, INDEX] (a partition cuts the handoffs between two "
+                                   "supernodes), got " + config::describe(pair));
+    const Entry index{pair[0], pair[1]};
+    out.push_back(static_cast<std::int32_t>(
+        r.integerValue(index, at + "[1]", config::IntRange{0, std::max<std::int64_t>(0, supernodes - 1)})));
+  }
+  if (out[0] == out[1]) r.fail(line, "'" + path + "' names supernode " + std::to_string(out[0]) + " twice; expected two different supernodes");
+  return out;
+}
+
+/// One process cannot be hit by two faults at once, nor by anything after a kill.
+void processFaultsApart(const Reader& r, const std::vector<FaultSpec>& faults, const std::vector<int>& lines) {
+  for (std::size_t a = 0; a < faults.size(); ++a)
+    for (std::size_t b = 0; b < a; ++b) {
+      const auto& f = faults[a];
+      const auto& g = faults[b];
+      const bool process = [](const FaultSpec& x) { return x.action == FaultAction::kKill || x.action == FaultAction::kPause; }(f);
+      const bool other = g.action == FaultAction::kKill || g.action == FaultAction::kPause;
+      if (!process || !other || f.role != g.role || f.index != g.index) continue;
+      if (f.tick <= g.lastTick() && g.tick <= f.lastTick())
+        r.fail(lines[a], "faults[" + std::to_string(a) + "] (" + f.describe() + ") overlaps faults[" + std::to_string(b) +
+                             "] (" + g.describe() + "); a process can be hit by one kill or pause at a time");
+    }
+}
+
+/// Some supernode owns the tracking groups at every tick: the live set changes only where a fault
+/// begins or ends, so those ticks are the ones to check.
+void someSupernodeLive(const Reader& r, const common::Scenario& s, const std::vector<int>& lines) {
+  const common::FaultPlan plan(s.faults, s.run.node_processes, static_cast<std::int32_t>(s.supernodes.size()));
+  for (std::size_t k = 0; k < s.faults.size(); ++k) {
+    const std::int32_t tick = s.faults[k].tick;
+    if (tick > s.run.ticks) continue;
+    bool any = false;
+    for (bool live : plan.liveSupernodes(tick)) any = any || live;
+    if (!any)
+      r.fail(lines[k], "faults[" + std::to_string(k) + "] (" + s.faults[k].describe() +
+                           ") leaves no live supernode at tick " + std::to_string(tick) +
+                           "; at least one must be live at every tick to take the tracking groups");
+  }
+}
+
+}  // namespace
+
+void readFaults(const Reader& r, const Section& top, common::Scenario& s) {
+  const Entry* e = top.find("faults");
+  if (e == nullptr || e->value.IsNull()) return;
+  if (!e->value.IsSequence())
+    r.fail(Reader::lineOf(*e), "'faults' must be a list of {tick, action, ...}, got " + config::describe(e->value));
+  const auto supernodes = static_cast<std::int32_t>(s.supernodes.size());
+  std::vector<int> lines;
+  config::forEachItem(r, *e, "faults", "{tick, action, ...}", [&](const YAML::Node& node, int line, auto& path) {
+    const Section item = r.item(node, line, path, common::schema::fault());
+    r.require(item, {"tick", "action"}, "when, and what happens");
+    FaultSpec f;
+    r.fields(item, common::schema::fault(), f);
+    keysFitAction(r, item, f);
+    if (f.tick > s.run.ticks)
+      r.fail(Reader::lineOf(*item.find("tick")), "'" + item.pathOf("tick") + "' is " + std::to_string(f.tick) +
+                                                     ", after the run's last tick " + std::to_string(s.run.ticks) +
+                                                     " (run.ticks)");
+    if (f.action == FaultAction::kKill || f.action == FaultAction::kPause) {
+      const std::int32_t count = f.role == FaultRole::kNode ? s.run.node_processes : supernodes;
+      if (f.index >= count)
+        r.fail(Reader::lineOf(*item.find("index")),
+               "'" + item.pathOf("index") + "' is " + std::to_string(f.index) + "; the run has " + std::to_string(count) +
+                   (f.role == FaultRole::kNode ? " node tiles (run.node_processes)" : " supernodes") + ", 0 to " +
+                   std::to_string(count - 1));
+    }
+    if (f.action == FaultAction::kPartition) f.between = readBetween(r, *item.find("between"), item.pathOf("between"), supernodes);
+    s.faults.push_back(std::move(f));
+    lines.push_back(line);
+  });
+  processFaultsApart(r, s.faults, lines);
+  someSupernodeLive(r, s, lines);
+}
+
+}  // namespace wsn::scenario
+
+namespace wsn::scenario {
+
+std::string faultsYaml(const std::vector<common::FaultSpec>& faults) {
+  if (faults.empty()) return "";
+  std::string out = "faults:\n";
+  const auto& table = common::schema::fault();
+  for (const auto& f : faults) {
+    std::string item = "tick: " + table.find("tick")->yamlValue(f) + ", action: " + table.find("action")->yamlValue(f);
+    for (const auto& key : keysOf(f.action).needed) {
+      const std::string value = key == "between" ? "[[supernode, " + std::to_string(f.between.at(0)) + "], [supernode, " +
+                                                       std::to_string(f.between.at(1)) + "]]"
+                                                 : table.find(key)->yamlValue(f);
+      item += ", " + key + ": " + value;
+    }
+    out += "  - {" + item + "}\n";
+  }
+  return out;
+}
+
+}  // namespace wsn::scenario
