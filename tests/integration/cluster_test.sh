@@ -227,6 +227,53 @@ EOF
       sleep 0.1
     done
     no_leftovers ;;
+  faults)
+    # scenarios/oh_quadrants_faults.yaml: a partition, a tile pause, a supernode kill, a burst of
+    # loss and a supernode pause. The run completes, every fault did what it says, and the outputs
+    # are the same multi-process (real SIGKILL, SIGSTOP/SIGCONT), in-process and on a second run.
+    scenario="$src/scenarios/oh_quadrants_faults.yaml"
+    run_ok "$PWD/mp" --no-plot
+    run_ok "$PWD/ip" --no-plot --in-process
+    run_ok "$PWD/mp_again" --no-plot
+    same_outputs "$PWD/mp" "$PWD/ip"
+    same_outputs "$PWD/mp" "$PWD/mp_again"
+    for f in tracks_settled.csv metrics_per_tick.csv; do cmp -s "mp/$f" "ip/$f" || fail "$f differs between layouts"; done
+    python3 - "$PWD/mp" <<'PY' || fail "the faults did not do what the scenario says"
+import csv, json, sys
+run = sys.argv[1]
+metrics = json.load(open(f"{run}/metrics.json"))
+network = json.load(open(f"{run}/network.json"))
+faults = {f["action"] + ":" + f.get("role", "") + str(f.get("index", "")): f for f in metrics["faults"]}
+assert len(metrics["faults"]) == 5, metrics["faults"]
+kill = faults["kill:supernode2"]
+assert kill["tick"] == 40 and kill["tracks_left"] > 0, kill
+assert kill["rehome_ticks"] is not None and 0 <= kill["rehome_ticks"] <= 3, kill
+assert kill["tracks_carried_on"] + kill["tracks_lost"] == kill["tracks_left"], kill
+assert faults["partition:"]["handoffs_lost"] > 0, faults["partition:"]
+for window in ("before", "during", "after"):
+    assert kill[window]["eps_k"] is not None and kill[window]["ospa_mean"] is not None, kill
+# The network routed around the dead supernode: its group went to the live neighbours.
+rehomes = {(r["supernode"], r["tick"]): r for r in network["rehomes"]}
+assert set(rehomes) == {(2, 40), (1, 60)}, rehomes
+assert {a["supernode"] for a in rehomes[(2, 40)]["adopters"]} <= {0, 1, 3}, rehomes
+assert network["silent_tile_ticks"] == 5, network["silent_tile_ticks"]
+# Supernode 2 reports nothing from its death on, supernode 1 nothing while paused, again after.
+rows = list(csv.DictReader(open(f"{run}/tracks_supernode.csv")))
+ticks_of = lambda j: {int(r["tick"]) for r in rows if r["supernode"] == str(j)}
+assert max(ticks_of(2)) < 40, max(ticks_of(2))
+assert not ticks_of(1) & set(range(60, 70)), sorted(ticks_of(1) & set(range(60, 70)))
+assert ticks_of(1) & set(range(70, 101)), "supernode 1 never came back"
+# The burst: most reports made in ticks 50-54 are lost, far more than elsewhere.
+obs = list(csv.DictReader(open(f"{run}/observations.csv")))
+lost = lambda rs: sum(r["fate"] != "delivered" for r in rs) / max(1, len(rs))
+burst = [r for r in obs if 50 <= int(r["tick_generated"]) <= 54]
+calm = [r for r in obs if 80 <= int(r["tick_generated"]) <= 100]
+assert lost(burst) > 0.8 and lost(calm) < 0.6, (lost(burst), lost(calm))
+PY
+    # The launcher enacted the kill with a real SIGKILL and the pauses with SIGSTOP: the killed
+    # supernode never said DONE, and the run still completed (exit 0, metrics.json written).
+    ! grep -q "DONE" mp/logs/supernode-2.log 2>/dev/null || fail "supernode 2 ran to the end"
+    no_leftovers ;;
   killed_process)
     # A node process killed mid-run: the launcher reports the failure and stops every other process.
     timeout 120 "$wsntrack" run "$scenario" --quiet --out "$PWD/k" --ticks 100000 >k.stdout 2>k.stderr & launcher=$!
