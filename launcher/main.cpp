@@ -277,7 +277,7 @@ int commandRun(const std::vector<std::string>& command_line) {
   // Role threads stuck in their own set-up cannot be joined: the run ends with the process.
   cluster.abandon = [&](const launcher::ClusterResult& stuck) {
     auto result = stuck;
-    result.failure += " (role threads still in set-up did not stop within 3 s: the process ends without them)";
+    result.failure += " (role threads did not stop within 3 s, still in set-up or stuck: the process ends without them)";
     std::_Exit(failRun(cluster.run_dir, result));
   };
   guard.handOver();
