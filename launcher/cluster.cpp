@@ -15,6 +15,7 @@
 #include <functional>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <stop_token>
 #include <thread>
@@ -25,6 +26,7 @@
 #include "common/dds/role_runtime.hpp"
 #include "launcher/fault_signals.hpp"
 #include "launcher/run_description.hpp"
+#include "launcher/run_summary.hpp"
 #include "network_model/role.hpp"
 #include "node/role.hpp"
 #include "supernode/role.hpp"
@@ -34,6 +36,9 @@ namespace wsn::launcher {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+/// How long a stopped process (SIGTERM) or role thread (stop request) may take to end by itself.
+constexpr auto kStopGrace = std::chrono::seconds(3);
 
 // The signal that asked the run to stop (SIGINT, SIGTERM), 0 while none has.
 std::atomic<int> g_interrupt_signal{0};
@@ -238,16 +243,17 @@ ClusterResult runProcesses(const ClusterOptions& options) {
       auto& outcome = result.outcomes[it->second];
       outcome.peak_rss_kb = usage.ru_maxrss;  // Linux reports kilobytes
       outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      outcome.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
       running.erase(it);
-      if (const auto fault = fault_signals.killedByFault(pid); fault && WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) {
+      const auto fault = fault_signals.killedByFault(pid);
+      if (fault && outcome.signal == SIGKILL) {
         outcome.exit_code = 0;  // the death the scenario asked for
         outcome.message = "killed by SIGKILL as the scenario's faults asked (" + *fault + ")";
-        continue;
       }
       // After an interrupt the roles stop because they were told to (a terminal's Ctrl-C reaches
       // every process of the group): their exit codes say nothing about a fault.
-      if (outcome.exit_code != 0 && result.failure.empty() && g_interrupt_signal.load() == 0)
-        result.failure = outcome.name + " exited with code " + std::to_string(outcome.exit_code) + "; log " +
+      else if (outcome.exit_code != 0 && result.failure.empty() && g_interrupt_signal.load() == 0)
+        result.failure = outcome.name + " " + exitDescription(outcome) + "; log " +
                          outcome.log_path + ":\n" + tailOf(outcome.log_path, 8);
       if (block) break;
     }
@@ -273,7 +279,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
       reap(false);
       if (!failures.empty() && result.failure.empty()) result.failure = failures.front();
       if (g_interrupt_signal.load() != 0) markInterrupted(result);
-      if (Clock::now() - started > options.timeout)
+      if (Clock::now() - options.started > options.timeout)
         result.failure = "timed out after " + std::to_string(options.timeout.count()) + " s";
     }
     progress.finish();
@@ -284,7 +290,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
   // Stop whatever is left: politely first, then for good. Every pid we started is reaped.
   if (!running.empty()) {
     stopAll(SIGTERM);
-    const auto deadline = Clock::now() + std::chrono::seconds(3);
+    const auto deadline = Clock::now() + kStopGrace;
     while (!running.empty() && Clock::now() < deadline) {
       reap(false);
       if (!running.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -342,8 +348,20 @@ ClusterResult runThreads(const ClusterOptions& options) {
     std::int32_t tick = 0;
     std::vector<std::string> failures;
     std::vector<StatusObserver::Faulted> faulted;  // role threads enact their faults themselves
+    std::optional<Clock::time_point> stop_seen;
     while (finished.load() < slots.size()) {
       observer.poll(std::chrono::milliseconds(200), tick, failures, faulted);
+      // A role thread still in set-up (a topology or truth of 10^7 items being built) cannot see
+      // the stop request, and a thread cannot be killed: after the same grace a process gets
+      // between SIGTERM and SIGKILL, the run is given up with the process (see abandon).
+      if (stop.stop_requested() && !stop_seen) stop_seen = Clock::now();
+      if (stop_seen && Clock::now() - *stop_seen > kStopGrace && options.abandon) {
+        std::lock_guard lock(mutex);
+        result.ok = false;
+        result.wall_s = std::chrono::duration<double>(Clock::now() - started).count();
+        options.abandon(result);
+        std::_Exit(runExitStatus(result));  // abandon must not return; if it does, still never join
+      }
       progress.update(tick);
       if (g_interrupt_signal.load() != 0 && result.interrupted_by == 0) {
         {
@@ -352,7 +370,7 @@ ClusterResult runThreads(const ClusterOptions& options) {
         }
         stop.request_stop();
       }
-      if (Clock::now() - started > options.timeout) fail("timed out after " + std::to_string(options.timeout.count()) + " s");
+      if (Clock::now() - options.started > options.timeout) fail("timed out after " + std::to_string(options.timeout.count()) + " s");
     }
     progress.finish();
     for (auto& thread : threads) thread.join();
@@ -380,9 +398,14 @@ int participantCount(const common::Scenario& scenario, bool in_process) {
   return static_cast<int>(clusterSlots(scenario).size()) + 1;
 }
 
-ClusterResult runCluster(const ClusterOptions& options) {
+void installInterruptHandlers() {
   std::signal(SIGINT, onInterrupt);
   std::signal(SIGTERM, onInterrupt);
+}
+
+int interruptSignal() { return g_interrupt_signal.load(); }
+
+RunDescription describeRun(const ClusterOptions& options) {
   RunDescription description;
   description.identity = options.identity;
   description.participants = participantCount(options.scenario, options.in_process);
@@ -395,13 +418,12 @@ ClusterResult runCluster(const ClusterOptions& options) {
   description.in_process = options.in_process;
   description.launcher_pid = ::getpid();
   description.provenance_json = options.provenance_json;
-  try {
-    writeRunDescription(options.run_dir, description);
-  } catch (const std::exception& error) {
-    ClusterResult result;
-    result.failure = std::string("launcher: ") + error.what();
-    return result;
-  }
+  description.status = kRunRunning;
+  return description;
+}
+
+ClusterResult runCluster(const ClusterOptions& options) {
+  installInterruptHandlers();
   return options.in_process ? runThreads(options) : runProcesses(options);
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <chrono>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -13,17 +14,25 @@
 
 namespace wsn::launcher {
 
+struct ClusterResult;
+
 struct ClusterOptions {
   std::string run_dir;
   RunIdentity identity;
   common::Scenario scenario;  ///< resolved, overrides applied
   bool in_process = false;
   std::string bin_dir;  ///< where the wsntrack-<role> executables are
-  std::chrono::seconds timeout{1800};
+  std::chrono::seconds timeout{1800};  ///< counted from `started`
+  /// When the launcher started: --timeout bounds the whole command, set-up included.
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
   double stall_timeout_s = 60.0;
   double tick_interval_s = 0.0;  ///< --tick-interval: real-time pacing of the sources (0: none)
   bool show_progress = true;
   std::string provenance_json;  ///< common::provenanceJson, written into run.json (and so metrics.json)
+  /// In-process mode: called (from the supervising thread) when role threads have not ended within
+  /// the stop grace after a failure, timeout or signal, with the result so far. Threads cannot be
+  /// killed, so it must report, mark the run failed and end the process (_exit): it must not return.
+  std::function<void(const ClusterResult&)> abandon;
 };
 
 /// How one process (or role thread) ended.
@@ -33,6 +42,7 @@ struct RoleOutcome {
   std::string message;   ///< why it failed, when known
   std::string log_path;  ///< multi-process mode: its stdout/stderr
   long peak_rss_kb = 0;  ///< multi-process mode: the process's peak resident set (wait4)
+  int signal = 0;        ///< multi-process mode: the signal that killed the process, 0 when it exited
 };
 
 struct ClusterResult {
@@ -51,6 +61,16 @@ struct ClusterResult {
 /// a run stopped by SIGINT (130) or SIGTERM (143), as a shell reports a command killed by it, and 1
 /// for any other failure.
 int runExitStatus(const ClusterResult& result);
+
+/// Makes SIGINT and SIGTERM a request to stop the run (interruptSignal() then says which) instead of
+/// the end of the process; called by runCluster, and by the launcher earlier to cover its set-up.
+void installInterruptHandlers();
+
+/// The signal (SIGINT, SIGTERM) that asked the run to stop, 0 while none has.
+int interruptSignal();
+
+/// run.json's content for the cluster of `options`, with status running.
+RunDescription describeRun(const ClusterOptions& options);
 
 /// Runs the cluster to completion (or failure, timeout, SIGINT) and stops everything it started.
 ClusterResult runCluster(const ClusterOptions& options);

@@ -3,6 +3,8 @@
 
 #include <boost/program_options.hpp>
 #include <cerrno>
+#include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -15,9 +17,11 @@
 #include "launcher/components.hpp"
 #include "launcher/install_layout.hpp"
 #include "launcher/plot_job.hpp"
+#include "launcher/resource_estimate.hpp"
 #include "launcher/run_arguments.hpp"
 #include "launcher/run_directory.hpp"
 #include "launcher/run_summary.hpp"
+#include "launcher/setup_guard.hpp"
 #include "launcher/watch.hpp"
 #include "observation_model/observation_statistics.hpp"
 #include "scenario/overrides.hpp"
@@ -67,6 +71,20 @@ common::Scenario loadResolved(const std::string& path, const std::vector<scenari
   return scenario::loadScenario(path, overrides, resolveComponentParams);
 }
 
+/// Prints a "warning:" line for a scenario far beyond this machine, before resolving it: resolving
+/// (measuring the observation statistics) is itself what takes long on a huge one. A scenario that
+/// does not load is left to loadResolved to report.
+void warnAboutResources(const std::string& file, const std::vector<scenario::ScenarioOverride>& overrides) {
+  common::Scenario scenario;
+  try {
+    scenario = scenario::loadScenario(file, overrides, [](common::Scenario&) {});
+  } catch (const std::exception&) {
+    return;
+  }
+  for (const auto& warning : launcher::resourceWarnings(launcher::estimateResources(scenario), launcher::totalRamBytes()))
+    std::cerr << file << ": " << warning << std::endl;
+}
+
 int commandValidate(const std::vector<std::string>& args) {
   po::options_description options("Options");
   options.add_options()("help,h", "show this help")(
@@ -105,6 +123,7 @@ int commandValidate(const std::vector<std::string>& args) {
   int failures = 0;
   for (const auto& file : vm["files"].as<std::vector<std::string>>()) {
     try {
+      warnAboutResources(file, overrides);
       const auto scenario = loadResolved(file, overrides);
       std::cout << file
                 << (overrides.empty() ? ""
@@ -159,6 +178,28 @@ int commandReplay(const std::vector<std::string>& args) {
   return 1;
 }
 
+/// The files a run that succeeded has written: a run is complete only with every one of them.
+constexpr const char* kRunOutputs[] = {"scenario.yaml",        "truth.csv",          "observations.csv",
+                                       "network.json",         "tracks_supernode.csv", "tracks.csv",
+                                       "tracks_settled.csv",   "metrics_per_tick.csv", "metrics.json"};
+
+/// Marks run.json; a run.json that cannot be rewritten (deleted under the run) is a warning, not a
+/// second failure.
+void markRunOrWarn(const std::string& run_dir, const std::string& status, const std::string& reason) {
+  try {
+    launcher::markRun(run_dir, status, reason);
+  } catch (const std::exception& error) {
+    std::cerr << "wsntrack run: warning: " << error.what() << "\n";
+  }
+}
+
+/// Ends a run that failed: run.json marked failed with the failure, then the report. The exit status.
+int failRun(const std::string& run_dir, const launcher::ClusterResult& result) {
+  markRunOrWarn(run_dir, launcher::kRunFailed, result.failure);
+  std::cerr << launcher::runFailure(result);
+  return launcher::runExitStatus(result);
+}
+
 /// Draws the plots of a run that succeeded; a failure to draw them is a warning, not a failure of
 /// the run: they are a view of it.
 std::optional<launcher::PlotOutcome> finishPlots(std::optional<launcher::PlotJob>& job) {
@@ -170,11 +211,22 @@ std::optional<launcher::PlotOutcome> finishPlots(std::optional<launcher::PlotJob
 }
 
 int commandRun(const std::vector<std::string>& command_line) {
+  const auto started = std::chrono::steady_clock::now();
   const auto args = launcher::parseRunArguments({command_line.begin() + 2, command_line.end()});
   if (args.help || args.scenario_path.empty()) {
     std::cout << launcher::runHelp();
     return args.help ? 0 : 2;
   }
+  if (const auto problem = launcher::checkRunOptions(args)) {
+    std::cerr << "wsntrack run: " << *problem << "\n";
+    return 2;
+  }
+  launcher::ClusterOptions cluster;
+  cluster.started = started;
+  cluster.timeout = std::chrono::seconds(static_cast<long>(args.timeout_s));
+  // From here until the cluster runs, --timeout and SIGINT/SIGTERM end set-up wherever it is.
+  launcher::SetupGuard guard(started, cluster.timeout);
+  guard.phase("resolving the scenario");
   common::Scenario scenario;
   try {
     scenario = launcher::loadRunScenario(args, resolveComponentParams);
@@ -185,16 +237,10 @@ int commandRun(const std::vector<std::string>& command_line) {
     std::cerr << error.what() << "\n";
     return 2;
   }
-  if (const auto problem = launcher::checkRunOptions(args)) {
-    std::cerr << "wsntrack run: " << *problem << "\n";
-    return 2;
-  }
 
-  launcher::ClusterOptions cluster;
   cluster.scenario = scenario;
   cluster.in_process = args.in_process;
   cluster.show_progress = !args.quiet;
-  cluster.timeout = std::chrono::seconds(static_cast<long>(args.timeout_s));
   cluster.stall_timeout_s = args.stall_timeout_s;
   cluster.tick_interval_s = args.tick_interval_s;
   try {
@@ -207,9 +253,19 @@ int commandRun(const std::vector<std::string>& command_line) {
   const launcher::InstallLayout install = launcher::locateInstall(executableDirectory());
   cluster.bin_dir = install.requireRoleDir();
   cluster.run_dir = args.out_dir.empty() ? launcher::defaultRunDirectory(scenario) : args.out_dir;
+  guard.phase("preparing the run directory");
   try {
-    cluster.identity = launcher::prepareRunDirectory(cluster.run_dir, scenario, cluster.in_process, args.overwrite);
+    cluster.identity = launcher::claimRunDirectory(cluster.run_dir, scenario, cluster.in_process, args.overwrite);
+    {
+      const std::lock_guard lock(guard.runJsonMutex());
+      launcher::writeRunDescription(cluster.run_dir, launcher::describeRun(cluster));
+    }
+    guard.runDirectory(cluster.run_dir);
+    guard.phase("writing the run's inputs");
+    launcher::writeRunInputs(cluster.run_dir, scenario, cluster.identity,
+                             launcher::participantCount(scenario, cluster.in_process));
   } catch (const std::exception& error) {
+    if (guard.hasRunDirectory()) markRunOrWarn(cluster.run_dir, launcher::kRunFailed, error.what());
     std::cerr << "wsntrack run: " << error.what() << "\n";
     return 1;
   }
@@ -218,11 +274,26 @@ int commandRun(const std::vector<std::string>& command_line) {
   // Started before the cluster so that python and matplotlib load while it runs.
   std::optional<launcher::PlotJob> plot_job;
   if (args.plot) plot_job.emplace(install.plot_script, cluster.run_dir, args.plot_format);
-  const auto result = launcher::runCluster(cluster);
-  if (!result.ok) {
-    std::cerr << launcher::runFailure(result);
-    return launcher::runExitStatus(result);
+  // Role threads stuck in their own set-up cannot be joined: the run ends with the process.
+  cluster.abandon = [&](const launcher::ClusterResult& stuck) {
+    auto result = stuck;
+    result.failure += " (role threads did not stop within 3 s, still in set-up or stuck: the process ends without them)";
+    std::_Exit(failRun(cluster.run_dir, result));
+  };
+  guard.handOver();
+  auto result = launcher::runCluster(cluster);
+  if (result.ok) {
+    for (const char* name : kRunOutputs)
+      if (!std::filesystem::exists(cluster.run_dir + "/" + name)) {
+        result.ok = false;
+        result.failure = "every role exited 0, but " + cluster.run_dir + "/" + name + " is missing";
+        break;
+      }
   }
+  if (!result.ok) return failRun(cluster.run_dir, result);
+  // Complete before the plots: they are a view of the run, drawn from it, and plot_run.py only
+  // draws a complete run.
+  markRunOrWarn(cluster.run_dir, launcher::kRunComplete, "");
   const auto plots = finishPlots(plot_job);
   std::cout << launcher::runSummary(cluster.run_dir, launcher::readRunFigures(cluster.run_dir), result,
                                     cluster.in_process, plots);

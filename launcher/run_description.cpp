@@ -69,6 +69,8 @@ std::string runDescriptionJson(const RunDescription& run) {
   json["tick_interval_s"] = run.tick_interval_s;
   json["in_process"] = run.in_process;
   json["launcher_pid"] = run.launcher_pid;
+  if (!run.status.empty()) json["status"] = run.status;
+  if (!run.reason.empty()) json["reason"] = run.reason;
   if (!run.provenance_json.empty()) json["provenance"] = Json::parse(run.provenance_json);
   std::string text = "{\n";
   for (auto item = json.begin(); item != json.end(); ++item)
@@ -97,6 +99,11 @@ RunDescription parseRunDescription(const std::string& json, const std::string& p
   run.in_process = fields.boolean("in_process");
   run.launcher_pid = fields.integer("launcher_pid");
   run.provenance_json = fields.line("provenance");
+  // Optional: a run.json written before the status existed has none (status stays empty).
+  if (!fields.line("status").empty()) run.status = fields.text("status");
+  if (!fields.line("reason").empty()) run.reason = fields.text("reason");
+  if (!run.status.empty() && run.status != kRunRunning && run.status != kRunComplete && run.status != kRunFailed)
+    fields.invalid("status");
   if (run.identity.domain < 0 || run.identity.domain > dds::kMaxDomainId || run.viewer_slots < 1 || run.ticks < 1)
     throw std::runtime_error(path + ": values out of range");
   return run;
@@ -118,6 +125,15 @@ RunDescription readRunDescription(const std::string& run_dir) {
   std::stringstream buffer;
   buffer << in.rdbuf();
   return parseRunDescription(buffer.str(), path);
+}
+
+void markRun(const std::string& run_dir, const std::string& status, const std::string& reason) {
+  RunDescription run = readRunDescription(run_dir);
+  run.status = status;
+  run.reason = reason.substr(0, reason.find('\n'));
+  // A failure headline that introduces a log tail ends in ':'; on its own line it reads better without.
+  while (!run.reason.empty() && (run.reason.back() == ':' || run.reason.back() == ' ')) run.reason.pop_back();
+  writeRunDescription(run_dir, run);
 }
 
 }  // namespace wsn::launcher

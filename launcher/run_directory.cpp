@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -105,26 +106,80 @@ std::string defaultRunDirectory(const common::Scenario& scenario) {
          std::to_string(::getpid());
 }
 
+namespace {
+
+/// Why `path` cannot be taken: a run is live there, named by the pid its run.json gives.
+std::string liveRunError(const std::string& path) {
+  std::string pid = "pid unknown: its run.json is not written yet";
+  try {
+    pid = "pid " + std::to_string(readRunDescription(path).launcher_pid);
+  } catch (const std::exception&) {
+  }
+  return path + ": a run is still live there (wsntrack launcher " + pid + "); wait for it to end, stop it, or choose "
+         "another --out";
+}
+
+/// Takes the run directory's lock and returns its descriptor, or throws the live-run error. The
+/// descriptor of a run stays open (and the lock held) until the process ends; O_CLOEXEC keeps it
+/// out of the role processes, whose lifetime the launcher already bounds.
+int lockRunDirectory(const std::string& path) {
+  const std::string file = path + "/" + kRunLockFile;
+  const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::runtime_error(file + ": cannot create the run's lock (" + std::strerror(errno) + ")");
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    const int error = errno;
+    ::close(fd);
+    if (error == EWOULDBLOCK) throw std::runtime_error(liveRunError(path));
+    throw std::runtime_error(file + ": cannot lock (" + std::strerror(error) + ")");
+  }
+  return fd;
+}
+
+/// Whether the directory holds anything but its lock file.
+bool holdsMoreThanLock(const std::string& path) {
+  std::error_code error;
+  for (const auto& entry : std::filesystem::directory_iterator(path, error))
+    if (entry.path().filename() != kRunLockFile) return true;
+  return false;
+}
+
+}  // namespace
+
 void createRunDirectory(const std::string& path, bool overwrite) {
   namespace fs = std::filesystem;
   std::error_code error;
-  if (fs::exists(path, error)) {
-    if (!fs::is_directory(path, error)) throw std::runtime_error(path + ": exists and is not a directory");
-    if (!fs::is_empty(path, error)) {
-      if (!overwrite) throw std::runtime_error(path + ": run directory exists and is not empty (use --overwrite)");
-      // Only what a previous run left may be cleared: never a directory of the user's own.
-      if (!fs::exists(fs::path(path) / "cyclonedds.xml") || !fs::exists(fs::path(path) / "scenario.yaml"))
-        throw std::runtime_error(path + ": not a wsntrack run directory (no cyclonedds.xml and scenario.yaml); "
-                                        "--overwrite only replaces an earlier run");
-      for (const auto& entry : fs::directory_iterator(path, error)) {
-        fs::remove_all(entry.path(), error);
-        if (error) break;
-      }
-      if (error) throw std::runtime_error(path + ": cannot clear (" + error.message() + ")");
+  if (fs::exists(path, error) && !fs::is_directory(path, error))
+    throw std::runtime_error(path + ": exists and is not a directory");
+  int lock = -1;
+  // The lock is released on every refusal: a caller that goes on (a test) must not keep it.
+  const auto refuse = [&](const std::string& why) {
+    if (lock >= 0) ::close(lock);
+    throw std::runtime_error(path + ": " + why);
+  };
+  if (fs::exists(path, error) && holdsMoreThanLock(path)) {
+    // A live run is named as such whatever the options: it is the first thing the user must know.
+    if (fs::exists(fs::path(path) / kRunLockFile)) lock = lockRunDirectory(path);
+    if (!overwrite) refuse("run directory exists and is not empty (use --overwrite)");
+    // Only what a previous run left may be cleared: never a directory of the user's own.
+    if (!fs::exists(fs::path(path) / "cyclonedds.xml") || !fs::exists(fs::path(path) / "scenario.yaml"))
+      refuse("not a wsntrack run directory (no cyclonedds.xml and scenario.yaml); --overwrite only replaces an "
+             "earlier run");
+  }
+  fs::create_directories(path, error);
+  if (error) refuse("cannot create (" + error.message() + ")");
+  if (lock < 0) lock = lockRunDirectory(path);
+  // Checked again under the lock: another launcher may have filled the directory since.
+  if (holdsMoreThanLock(path)) {
+    if (!overwrite) refuse("run directory exists and is not empty (use --overwrite)");
+    for (const auto& entry : fs::directory_iterator(path, error)) {
+      if (entry.path().filename() == kRunLockFile) continue;  // the lock we hold stays
+      fs::remove_all(entry.path(), error);
+      if (error) break;
     }
+    if (error) refuse("cannot clear (" + error.message() + ")");
   }
   fs::create_directories(path + "/logs", error);
-  if (error) throw std::runtime_error(path + ": cannot create (" + error.message() + ")");
+  if (error) refuse("cannot create (" + error.message() + ")");
 }
 
 void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario, const RunIdentity& identity,
@@ -152,8 +207,8 @@ void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario
   }
 }
 
-RunIdentity prepareRunDirectory(const std::string& run_dir, const common::Scenario& scenario, bool in_process,
-                                bool overwrite) {
+RunIdentity claimRunDirectory(const std::string& run_dir, const common::Scenario& scenario, bool in_process,
+                              bool overwrite) {
   createRunDirectory(run_dir, overwrite);
   RunIdentity identity;
   identity.run_id = newRunId();
@@ -165,7 +220,6 @@ RunIdentity prepareRunDirectory(const std::string& run_dir, const common::Scenar
                              " DDS participants (node tiles + supernodes + 3), this one needs " +
                              std::to_string(participants));
   identity.domain = pickFreeDomain(identity.run_id, participants);
-  writeRunInputs(run_dir, scenario, identity, participants);
   return identity;
 }
 

@@ -34,7 +34,13 @@ int pickFreeDomain(std::uint64_t run_id, int participants);
 /// Default run directory: runs/<scenario name>-seed<seed>-<UTC timestamp>-<pid>.
 std::string defaultRunDirectory(const common::Scenario& scenario);
 
-/// Creates the directory (parents too); it must not exist or be empty unless `overwrite`.
+/// The lock file a launcher holds (flock, exclusive) in its run directory for the run's whole life.
+inline constexpr const char* kRunLockFile = ".wsntrack.lock";
+
+/// Creates the directory (parents too); it must not exist or be empty unless `overwrite`, and never
+/// hold a live run: the directory's lock (kRunLockFile) is taken before anything in it is deleted and
+/// held until this process ends, so a second launcher, --overwrite or not, is refused while the
+/// first runs ("RUN_DIR: a run is still live there (wsntrack pid N)").
 void createRunDirectory(const std::string& path, bool overwrite);
 
 /// Writes scenario.yaml (resolved), truth.csv and cyclonedds.xml for `participants` processes, and
@@ -43,10 +49,11 @@ void createRunDirectory(const std::string& path, bool overwrite);
 void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario, const RunIdentity& identity,
                     int participants);
 
-/// Everything a run needs on disk before its cluster starts: the directory (created, or cleared
-/// with `overwrite`), a fresh run id, a domain with free ports for its participants, and the
-/// inputs of writeRunInputs(). Throws std::runtime_error saying what failed.
-RunIdentity prepareRunDirectory(const std::string& run_dir, const common::Scenario& scenario, bool in_process,
-                                bool overwrite);
+/// What a run needs before its run.json can be written: the directory (created, or cleared with
+/// `overwrite`, and locked), a fresh run id and a domain with free ports for its participants. The
+/// inputs (writeRunInputs) follow once run.json says the run is running, so that a run stopped
+/// while they are written is marked. Throws std::runtime_error saying what failed.
+RunIdentity claimRunDirectory(const std::string& run_dir, const common::Scenario& scenario, bool in_process,
+                              bool overwrite);
 
 }  // namespace wsn::launcher

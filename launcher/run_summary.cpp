@@ -1,7 +1,9 @@
 #include "launcher/run_summary.hpp"
 
+#include <csignal>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -60,6 +62,7 @@ RunFigures parseRunFigures(const std::string& metrics_json, const std::string& n
   f.reports_sent = numberAt(network, "/sent");
   f.reports_lost = numberAt(network, "/lost");
   f.reports_delayed = numberAt(network, "/delayed");
+  f.reports_unreachable = numberAt(network, "/unreachable");
   return f;
 }
 
@@ -90,6 +93,7 @@ std::string runSummary(const std::string& run_dir, const RunFigures& f, const Cl
   row(out, "reports sent", show(f.reports_sent, 0));
   row(out, "reports lost", show(f.reports_lost, 0));
   row(out, "reports delayed", show(f.reports_delayed, 0));
+  row(out, "reports unreachable", show(f.reports_unreachable, 0));
   row(out, "dropped (older than ws)", show(f.dropped_stale, 0));
   row(out, "wall time (tick loop)", show(f.wall_s, 3) + " s");
   row(out, "ticks/s (tick loop)", show(f.ticks_per_s, 1));
@@ -108,6 +112,22 @@ std::string runSummary(const std::string& run_dir, const RunFigures& f, const Cl
   return out.str();
 }
 
+std::string signalName(int signal_number) {
+  // A table rather than strsignal (a sentence, localised) or sigabbrev_np (glibc 2.32+ only).
+  static const std::map<int, const char*> names = {
+      {SIGHUP, "SIGHUP"},   {SIGINT, "SIGINT"},   {SIGQUIT, "SIGQUIT"}, {SIGILL, "SIGILL"},   {SIGTRAP, "SIGTRAP"},
+      {SIGABRT, "SIGABRT"}, {SIGBUS, "SIGBUS"},   {SIGFPE, "SIGFPE"},   {SIGKILL, "SIGKILL"}, {SIGUSR1, "SIGUSR1"},
+      {SIGSEGV, "SIGSEGV"}, {SIGUSR2, "SIGUSR2"}, {SIGPIPE, "SIGPIPE"}, {SIGALRM, "SIGALRM"}, {SIGTERM, "SIGTERM"},
+      {SIGXCPU, "SIGXCPU"}, {SIGXFSZ, "SIGXFSZ"}, {SIGSYS, "SIGSYS"}};
+  const auto found = names.find(signal_number);
+  return found != names.end() ? found->second : "signal " + std::to_string(signal_number);
+}
+
+std::string exitDescription(const RoleOutcome& outcome) {
+  if (outcome.signal != 0) return "killed by " + signalName(outcome.signal);
+  return "exited with code " + std::to_string(outcome.exit_code);
+}
+
 std::string runFailure(const ClusterResult& result) {
   std::ostringstream out;
   if (result.interrupted_by != 0) {
@@ -118,8 +138,8 @@ std::string runFailure(const ClusterResult& result) {
   out << "wsntrack run: FAILED: " << result.failure << "\n";
   for (const auto& outcome : result.outcomes)
     if (outcome.exit_code != 0)
-      out << "  " << outcome.name << ": exit " << outcome.exit_code
-          << (outcome.message.empty() ? "" : " (" + outcome.message + ")") << "\n";
+      out << "  " << outcome.name << ": " << (outcome.signal != 0 ? exitDescription(outcome) + ", " : "") << "exit "
+          << outcome.exit_code << (outcome.message.empty() ? "" : " (" + outcome.message + ")") << "\n";
   return out.str();
 }
 

@@ -29,6 +29,7 @@ struct RunFigures {
   std::optional<double> reports_sent;  ///< network.json
   std::optional<double> reports_lost;
   std::optional<double> reports_delayed;
+  std::optional<double> reports_unreachable;  ///< no route to any supernode (network.json's unreachable)
 };
 
 /// The figures of the texts of metrics.json and network.json ("" for a missing file); a text that
@@ -45,6 +46,13 @@ std::string runStartLine(const common::Scenario& scenario, int domain, bool in_p
 /// memory of `result`, and the plots when they were asked for.
 std::string runSummary(const std::string& run_dir, const RunFigures& figures, const ClusterResult& result,
                        bool in_process, const std::optional<PlotOutcome>& plots);
+
+/// "SIGKILL" for 9, the usual short names of Linux's signals; "signal N" for any other.
+std::string signalName(int signal_number);
+
+/// How a role ended, for people: "killed by SIGKILL" for a death by signal, "exited with code N"
+/// otherwise (the exit code itself keeps the shell's 128 + signal for a signal death).
+std::string exitDescription(const RoleOutcome& outcome);
 
 /// The report of a run that failed: the first failure, then every process that exited non-zero.
 std::string runFailure(const ClusterResult& result);

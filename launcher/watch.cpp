@@ -23,6 +23,7 @@
 #include "common/dds/process_main.hpp"
 #include "common/dds/role_runtime.hpp"
 #include "launcher/run_description.hpp"
+#include "launcher/run_directory.hpp"
 #include "launcher/watch_state.hpp"
 #include "wsntrack.h"
 
@@ -129,8 +130,9 @@ class Watcher {
       return RunPresence::kNotRunning;
     }
     if (!fs::exists(dir + "/run.json", error)) {
-      // A launcher writes cyclonedds.xml, then run.json just before it starts the cluster.
-      if (fs::exists(dir + "/cyclonedds.xml", error) || fs::exists(dir + "/scenario.yaml", error)) {
+      // A launcher takes the directory's lock, then writes run.json and the run's inputs.
+      if (fs::exists(dir + "/cyclonedds.xml", error) || fs::exists(dir + "/scenario.yaml", error) ||
+          fs::exists(dir + "/" + kRunLockFile, error)) {
         why = "its run.json is not there yet (or it was written by an older wsntrack)";
         return RunPresence::kNotRunning;
       }

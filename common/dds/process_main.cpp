@@ -6,8 +6,11 @@
 #include <boost/program_options.hpp>
 #include <cerrno>
 #include <charconv>
+#include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -30,19 +33,19 @@ namespace {
 /// waitset cannot wait on a file descriptor.)
 class StopSignals {
  public:
-  explicit StopSignals(std::stop_source source) {
+  StopSignals(std::stop_source source, std::string role_name) : role_name_(std::move(role_name)) {
     sigemptyset(&signals_);
     sigaddset(&signals_, SIGINT);
     sigaddset(&signals_, SIGTERM);
     if (const int rc = pthread_sigmask(SIG_BLOCK, &signals_, nullptr); rc != 0)
       throw std::runtime_error(std::string("pthread_sigmask: ") + std::strerror(rc));
     thread_ = std::thread([this, source]() mutable {
-      while (true) {
-        int signal_number = 0;
-        if (sigwait(&signals_, &signal_number) != 0) continue;
-        if (closing_.load()) return;
-        source.request_stop();
+      int signal_number = 0;
+      while (sigwait(&signals_, &signal_number) != 0) {
       }
+      if (closing_.load()) return;
+      source.request_stop();
+      awaitEnd(signal_number);
     });
   }
   StopSignals(const StopSignals&) = delete;
@@ -55,7 +58,31 @@ class StopSignals {
     thread_.join();
   }
 
+  /// How long a role may take to end after a stop request before the process ends without it.
+  static constexpr int kStopGraceMs = 2000;
+
  private:
+  /// A role in its loop ends well within the grace; one still in set-up (a Topology or Truth of
+  /// 10^7 items being built) never looks at the request, so the process ends here, with the
+  /// status a death by the signal would give (the launcher's SIGKILL would follow a second later).
+  /// A second signal ends it at once.
+  void awaitEnd(int signal_number) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(kStopGraceMs);
+    int again = -1;
+    while (again < 0 && std::chrono::steady_clock::now() < deadline) {
+      const auto left = std::chrono::duration_cast<std::chrono::nanoseconds>(deadline - std::chrono::steady_clock::now());
+      const timespec wait{static_cast<time_t>(left.count() / 1000000000), static_cast<long>(left.count() % 1000000000)};
+      again = sigtimedwait(&signals_, nullptr, &wait);  // -1: EAGAIN at the deadline, or EINTR
+    }
+    if (closing_.load()) return;
+    std::fprintf(stderr, "%s: %s %s; ending the process\n", role_name_.c_str(),
+                 signal_number == SIGINT ? "SIGINT" : "SIGTERM",
+                 again > 0 ? "received twice" : "not honoured within 2 s (still in set-up?)");
+    std::fflush(stderr);
+    std::_Exit(128 + signal_number);
+  }
+
+  std::string role_name_;
   sigset_t signals_;
   std::atomic<bool> closing_{false};
   std::thread thread_;
@@ -141,7 +168,7 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
 
   try {
     // Before the domain: Cyclone's threads must inherit the blocked signals.
-    const StopSignals stop_signals(stop_source);
+    const StopSignals stop_signals(stop_source, "wsntrack-" + role + " " + std::to_string(context.index));
     context.scenario = load_scenario(context.run_dir + "/scenario.yaml");
     context.shape.supernodes = static_cast<std::int32_t>(context.scenario.supernodes.size());
     Domain domain_handle(context.domain, cycloneConfigFor(readConfigTemplate(context.run_dir), participant_index));

@@ -22,9 +22,26 @@ def load_matplotlib(dpi, warm_up=False):
     return matplotlib, None
 
 
+#: Set by plot_run.py --allow-incomplete to the reason a run is incomplete: every figure made while it is
+#: set carries "INCOMPLETE RUN" across it and the reason at its foot, so that no copy of a plot of a
+#: failed run can pass for a plot of a complete one.
+INCOMPLETE_STAMP = {"reason": None}
+
+
+def stamp_if_incomplete(fig):
+    """Writes the INCOMPLETE RUN stamp on `fig` when a run incomplete is being drawn; returns fig."""
+    reason = INCOMPLETE_STAMP["reason"]
+    if reason:
+        fig.text(0.5, 0.5, "INCOMPLETE RUN", ha="center", va="center", rotation=20, fontsize=40,
+                 fontweight="bold", color="#c00000", alpha=0.35, zorder=1000)
+        fig.text(0.5, 0.005, reason, ha="center", va="bottom", fontsize=8, color="#c00000",
+                 wrap=True, zorder=1000)
+    return fig
+
+
 def new_figure(mpl, width, height, left, right, bottom, top):
     """A figure of width x height inches whose axes leave the given margins (inches). Margins are
     set by hand: bbox_inches="tight" would draw every figure twice, doubling the plotting time."""
-    fig = mpl.figure.Figure(figsize=(width, height))
+    fig = stamp_if_incomplete(mpl.figure.Figure(figsize=(width, height)))
     ax = fig.add_axes([left / width, bottom / height, 1 - (left + right) / width, 1 - (bottom + top) / height])
     return fig, ax

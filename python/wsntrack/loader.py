@@ -128,13 +128,19 @@ class Run(StoneSoupConversions):
                       ospa, gospa, gospa_localisation, gospa_missed, gospa_false
     metrics           metrics.json as a dict (headline eps_k, eps_x, ospa; "metrics": ...)
     network           network.json as a dict (ranges, counts and ratios of the network model)
-    info              run.json as a dict (run_id, domain, ticks, processes, ...)
+    info              run.json as a dict (run_id, domain, ticks, processes, status, ...)
+    incomplete        None for a complete run; else why not ("incomplete run (status failed: ...)"),
+                      loaded only with allow_incomplete=True
     """
 
-    def __init__(self, path):
+    def __init__(self, path, allow_incomplete=False):
         self.path = Path(path)
         if not self.path.is_dir():
             raise RunError(f"{self.path}: not a directory")
+        #: None for a complete run, else why it is not (only with allow_incomplete)
+        self.incomplete = rundir.incomplete_reason(self.path)
+        if self.incomplete and not allow_incomplete:
+            raise RunError(f"{self.path}: {self.incomplete}")
         p = self.path
         summary = rundir.read_scenario(p)  # checks what the arrays below depend on, with FILE:LINE
         self.scenario = summary["document"]
@@ -207,16 +213,18 @@ class Run(StoneSoupConversions):
         return np.column_stack([records.x, records.y, records.vx, records.vy])
 
 
-def load_run(path):
+def load_run(path, allow_incomplete=False):
     """Loads the run directory `path` (see :class:`Run` for what it holds). Raises RunError
     (``FILE[:LINE]: what was expected``) for a missing or malformed file, ToolMissing without
     PyYAML; scenario.yaml, truth.csv and tracks.csv must be there, the other files are None when
-    absent.
+    absent. A run that is not complete (run.json's status is not "complete": failed, interrupted,
+    still running, or no status at all) raises RunError "RUN_DIR: incomplete run (status failed:
+    REASON)" unless `allow_incomplete`; then `run.incomplete` says why.
 
     >>> run = load_run("runs/demo")                                   # doctest: +SKIP
     >>> run.tracks_at(50)[["label", "x", "y"]]                        # doctest: +SKIP
     """
-    return Run(path)
+    return Run(path, allow_incomplete)
 
 
 def main(argv):

@@ -40,6 +40,33 @@ no_leftovers() {
   fi
 }
 
+# run.json's string value of key $2 in run directory $1 (one key per line, as the launcher writes it).
+run_json() { sed -n "s/^  \"$2\": \"\(.*\)\",\{0,1\}$/\1/p" "$1/run.json"; }
+
+# Waits up to $2 seconds for process $1 (started by this test) to exit and sets rc to its exit status;
+# a process still there is killed (by its PID) and the test fails: every case bounds its time.
+wait_bounded() {
+  local pid="$1" tenths=$(( $2 * 10 ))
+  while kill -0 "$pid" 2>/dev/null && [ "$tenths" -gt 0 ]; do sleep 0.1; tenths=$(( tenths - 1 )); done
+  if kill -0 "$pid" 2>/dev/null; then kill -9 "$pid"; wait "$pid" 2>/dev/null; fail "pid $pid still running after $2 s"; fi
+  wait "$pid"; rc=$?
+}
+
+now() { date +%s.%N; }
+# Fails unless fewer than $3 seconds passed from $1 to $2; prints the time taken.
+within() {
+  echo "$4: $(awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", b - a }') s" >&2
+  awk -v a="$1" -v b="$2" -v bound="$3" 'BEGIN { exit !(b - a < bound) }' || fail "$4 took longer than $3 s"
+}
+
+# A 10^7-sensor grid whose launcher-side resolution is instant (every engine parameter the observation
+# statistics would derive is given), so that the time goes into the roles' own set-up: sensor layouts,
+# topology and tiles of 10^7 sensors, where no role looks at a stop request.
+huge_roles=(--set sensors.spacing=0.032 --set tracker.engine=gnn --set aggregator.association=gated
+            --set tracker.params.confirm_hits=3 --set tracker.params.confirm_window=6
+            --set tracker.params.initial_velocity_sigma=1 --set tracker.params.max_misses=5
+            --set tracker.params.measurement_sigma=0.09 --set tracker.params.merge_radius=0)
+
 case "$case_name" in
   determinism)
     # Same scenario and seed: byte-identical outputs multi-process with 1, 2, 4 node processes and in-process.
@@ -305,6 +332,104 @@ PY
     grep -q "^wsntrack run: interrupted by SIGINT before the last tick; the run directory is incomplete (exit status 130)$" \
       i.stderr || { cat i.stderr >&2; fail "the interruption is not named as one"; }
     ! grep -q "FAILED\|: exit [0-9]" i.stderr || { cat i.stderr >&2; fail "an interrupted run lists failures"; }
+    no_leftovers ;;
+  run_status)
+    # A run that ends well says so last; its summary shows the unreachable reports.
+    run_ok "$PWD/c" --no-plot
+    [ "$(run_json "$PWD/c" status)" = complete ] || { cat "$PWD/c/run.json" >&2; fail "a complete run is not marked complete"; }
+    grep -q '"reason"' "$PWD/c/run.json" && fail "a complete run has a reason"
+    tail -2 "$PWD/c/run.json" | head -1 | grep -q '^  "provenance": {' || fail "provenance is not run.json's last line"
+    grep -q "^  reports unreachable  *[0-9]" "$PWD/c.stdout" || { cat "$PWD/c.stdout" >&2; fail "no unreachable line"; }
+    no_leftovers ;;
+  killed_aggregator)
+    # kill -9 of the aggregator mid-run: the run is marked failed, naming the role and the signal.
+    "$wsntrack" run "$scenario" --quiet --no-plot --out "$PWD/a" --tick-interval 0.04 >a.stdout 2>a.stderr & launcher=$!
+    victim=""
+    for _ in $(seq 1 100); do
+      victim=$(pgrep -f "wsntrack-aggregator.*--run-dir $PWD/a" | head -1)
+      [ -n "$victim" ] && break
+      sleep 0.1
+    done
+    [ -n "$victim" ] || fail "no aggregator process found"
+    [ "$(run_json "$PWD/a" status)" = running ] || { cat "$PWD/a/run.json" >&2; fail "run.json is not running mid-run"; }
+    sleep 2; kill -9 "$victim"  # tick 20-40 of 100 at 0.04 s a tick
+    wait_bounded "$launcher" 30
+    [ "$rc" -eq 1 ] || { cat a.stderr >&2; fail "launcher exited $rc after the aggregator was killed, expected 1"; }
+    grep -q "^wsntrack run: FAILED: aggregator 0 killed by SIGKILL; log " a.stderr || { cat a.stderr >&2; fail "failure text"; }
+    [ "$(run_json "$PWD/a" status)" = failed ] || { cat "$PWD/a/run.json" >&2; fail "run.json is not failed"; }
+    run_json "$PWD/a" reason | grep -q "^aggregator 0 killed by SIGKILL; log $PWD/a/logs/aggregator-0.log$" \
+      || { cat "$PWD/a/run.json" >&2; fail "run.json's reason does not name the aggregator and SIGKILL"; }
+    no_leftovers ;;
+  overwrite_live)
+    # --overwrite into a live run's directory is refused before anything is deleted; the live run
+    # completes with the outputs it would have had alone.
+    "$wsntrack" run "$scenario" --quiet --no-plot --out "$PWD/live" --tick-interval 0.04 >live.stdout 2>live.stderr & launcher=$!
+    for _ in $(seq 1 100); do [ "$(run_json "$PWD/live" status 2>/dev/null)" = running ] && break; sleep 0.1; done
+    [ "$(run_json "$PWD/live" status)" = running ] || fail "the live run did not start"
+    "$wsntrack" run "$scenario" --quiet --no-plot --seed 2 --out "$PWD/live" --overwrite >o.stdout 2>o.stderr; orc=$?
+    [ "$orc" -eq 1 ] || { cat o.stderr >&2; fail "--overwrite of a live run exited $orc, expected 1"; }
+    grep -q "^wsntrack run: $PWD/live: a run is still live there (wsntrack launcher pid $launcher)" o.stderr \
+      || { cat o.stderr >&2; fail "the refusal does not name the directory and the live launcher's pid"; }
+    "$wsntrack" run "$scenario" --quiet --no-plot --seed 2 --out "$PWD/live" >n.stdout 2>n.stderr \
+      && fail "a second run without --overwrite into a live run's directory was started"
+    grep -q "a run is still live there" n.stderr || { cat n.stderr >&2; fail "no live-run refusal without --overwrite"; }
+    wait_bounded "$launcher" 40
+    [ "$rc" -eq 0 ] || { cat live.stderr >&2; fail "the live run exited $rc after the refused --overwrite"; }
+    [ "$(run_json "$PWD/live" status)" = complete ] || fail "the live run is not marked complete"
+    run_ok "$PWD/alone" --no-plot
+    same_outputs "$PWD/alone" "$PWD/live"
+    # Once it has ended, --overwrite takes the directory.
+    run_ok "$PWD/live" --no-plot --seed 2 --overwrite
+    grep -q "^  seed: 2$" "$PWD/live/scenario.yaml" || fail "--overwrite after the run ended did not replace it"
+    no_leftovers ;;
+  setup_interrupted)
+    # SIGTERM while every role is still building its 10^7-sensor set-up, in-process and multi-process,
+    # and SIGINT during the launcher's own resolution (the observation statistics of 10^7 sensors).
+    for mode in in-process processes; do
+      extra=(); [ "$mode" = in-process ] && extra=(--in-process)
+      "$wsntrack" run "$scenario" "${huge_roles[@]}" "${extra[@]}" --no-plot --out "$PWD/$mode" \
+        >"$mode.stdout" 2>"$mode.stderr" & launcher=$!
+      for _ in $(seq 1 100); do [ "$(run_json "$PWD/$mode" status 2>/dev/null)" = running ] && break; sleep 0.1; done
+      sleep 2; kill -TERM "$launcher"; signalled=$(now)
+      wait_bounded "$launcher" 20
+      within "$signalled" "$(now)" 8 "$mode: SIGTERM during the roles' set-up to exit"
+      [ "$rc" -eq 143 ] || { cat "$mode.stderr" >&2; fail "$mode: exit $rc after SIGTERM, expected 143"; }
+      grep -q "^wsntrack run: interrupted by SIGTERM before the last tick; the run directory is incomplete" "$mode.stderr" \
+        || { cat "$mode.stderr" >&2; fail "$mode: the interruption is not named"; }
+      [ "$(run_json "$PWD/$mode" status)" = failed ] || { cat "$PWD/$mode/run.json" >&2; fail "$mode: run.json not failed"; }
+      run_json "$PWD/$mode" reason | grep -q "^interrupted by SIGTERM" || fail "$mode: run.json's reason"
+    done
+    grep -q "did not stop within 3 s" in-process.stderr || { cat in-process.stderr >&2; fail "in-process: stuck threads not named"; }
+    # A role process still in set-up ends itself 2 s after SIGTERM, before the launcher's SIGKILL.
+    grep -q "wsntrack-network 0: SIGTERM not honoured within 2 s" "$PWD/processes/logs/network-0.log" \
+      || { tail -3 "$PWD"/processes/logs/*.log >&2; fail "processes: the network role did not end itself"; }
+    "$wsntrack" run "$scenario" --set sensors.spacing=0.032 --in-process --no-plot --out "$PWD/resolving" \
+      >resolving.stdout 2>resolving.stderr & launcher=$!
+    sleep 1; kill -INT "$launcher"; signalled=$(now)
+    wait_bounded "$launcher" 10
+    within "$signalled" "$(now)" 1 "SIGINT during the launcher's resolution to exit"
+    [ "$rc" -eq 130 ] || { cat resolving.stderr >&2; fail "resolution: exit $rc after SIGINT, expected 130"; }
+    grep -q "^wsntrack run: interrupted by SIGINT during set-up (resolving the scenario) (exit status 130)$" resolving.stderr \
+      || { cat resolving.stderr >&2; fail "resolution: the interruption is not named"; }
+    [ -e "$PWD/resolving" ] && fail "resolution: a run directory was made before the scenario was resolved"
+    no_leftovers ;;
+  setup_timeout)
+    # --timeout bounds the whole command: the roles' set-up in-process, and the launcher's resolution.
+    start=$(now)
+    "$wsntrack" run "$scenario" "${huge_roles[@]}" --in-process --no-plot --timeout 3 --out "$PWD/t" >t.stdout 2>t.stderr & launcher=$!
+    wait_bounded "$launcher" 20
+    within "$start" "$(now)" 9 "--timeout 3 in the roles' set-up to exit"
+    [ "$rc" -eq 1 ] || { cat t.stderr >&2; fail "exit $rc after --timeout 3, expected 1"; }
+    grep -q "^wsntrack run: FAILED: timed out after 3 s" t.stderr || { cat t.stderr >&2; fail "the timeout is not named"; }
+    [ "$(run_json "$PWD/t" status)" = failed ] || { cat "$PWD/t/run.json" >&2; fail "run.json not failed"; }
+    run_json "$PWD/t" reason | grep -q "^timed out after 3 s" || fail "run.json's reason"
+    start=$(now)
+    "$wsntrack" run "$scenario" --set sensors.spacing=0.032 --no-plot --timeout 2 --out "$PWD/r" >r.stdout 2>r.stderr & launcher=$!
+    wait_bounded "$launcher" 10
+    within "$start" "$(now)" 3 "--timeout 2 in the launcher's resolution to exit"
+    [ "$rc" -eq 1 ] || { cat r.stderr >&2; fail "resolution: exit $rc after --timeout 2, expected 1"; }
+    grep -q "^wsntrack run: FAILED: timed out after 2 s during set-up (resolving the scenario)" r.stderr \
+      || { cat r.stderr >&2; fail "resolution: the timeout is not named"; }
     no_leftovers ;;
   acoustic)
     # An et al.'s world through the real cluster: acoustic Doppler sensors whose raw detections

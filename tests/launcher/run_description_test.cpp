@@ -2,7 +2,11 @@
 // one key per line for the sed of shell scripts, and a damaged file is named with what is wrong.
 #include "launcher/run_description.hpp"
 
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 namespace wsn::launcher {
@@ -21,6 +25,8 @@ RunDescription described() {
   run.tick_interval_s = 0.1;
   run.in_process = false;
   run.launcher_pid = 31337;
+  run.status = kRunFailed;
+  run.reason = "supernode 2 killed by SIGKILL; log d/logs/supernode-2.log";
   run.provenance_json = R"({"version":"0.1.0","command_line":["wsntrack","run"],"host":"h"})";
   return run;
 }
@@ -57,10 +63,11 @@ TEST_CASE("run.json has one key per line in the layout scripts read with sed", "
   CHECK(text.find("\n  \"viewer_participant_indices\": [9, 12],\n") != std::string::npos);
   CHECK(text.find("\n  \"tick_interval_s\": 0.1,\n") != std::string::npos);
   CHECK(text.find("\n  \"in_process\": false,\n") != std::string::npos);
+  CHECK(text.find("\n  \"status\": \"failed\",\n") != std::string::npos);
   // The provenance is the last line, on one line, as provenanceJson wrote it.
   CHECK(text.find("\n  \"provenance\": " + described().provenance_json + "\n}\n") != std::string::npos);
-  // Eleven keys, eleven lines between the braces.
-  CHECK(std::count(text.begin(), text.end(), '\n') == 13);
+  // Thirteen keys, thirteen lines between the braces.
+  CHECK(std::count(text.begin(), text.end(), '\n') == 15);
   CHECK(nlohmann::json::parse(text).at("scenario") == "oh \"quadrants\"");
 }
 
@@ -92,8 +99,42 @@ TEST_CASE("a damaged run.json is named with the key that is wrong", "[launcher][
   CHECK(with("domain", 999) == "d/run.json: values out of range");
   CHECK(with("viewer_participant_indices", nlohmann::json::array({9, 8})) == "d/run.json: values out of range");
   CHECK(with("ticks", 0) == "d/run.json: values out of range");
+  CHECK(with("status", "done") == "d/run.json: no valid \"status\"");
+  CHECK(with("status", 1) == "d/run.json: no valid \"status\"");
   // Keys it does not know are left alone (a newer launcher may add some).
   CHECK(with("future", 1).empty());
+  // A run.json from before the status existed reads with an empty one.
+  CHECK(without("status").empty());
+  CHECK(without("reason").empty());
+}
+
+TEST_CASE("markRun rewrites the status and the reason's first line, provenance still last", "[launcher][run_json]") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("wsn-run-json-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  auto run = described();
+  run.status = kRunRunning;
+  run.reason.clear();
+  writeRunDescription(dir.string(), run);
+  CHECK(readRunDescription(dir.string()).status == "running");
+  markRun(dir.string(), kRunFailed, "node 0 killed by SIGKILL; log d/logs/node-0.log:\n    last line of the log\n");
+  const auto failed = readRunDescription(dir.string());
+  CHECK(failed.status == "failed");
+  CHECK(failed.reason == "node 0 killed by SIGKILL; log d/logs/node-0.log");
+  run.status = failed.status;
+  run.reason = failed.reason;
+  CHECK(failed == run);  // everything else as it was
+  std::ifstream in(dir / "run.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(text.find("\n  \"provenance\": " + run.provenance_json + "\n}\n") != std::string::npos);
+  markRun(dir.string(), kRunComplete);
+  CHECK(readRunDescription(dir.string()).status == "complete");
+  CHECK(readRunDescription(dir.string()).reason.empty());
+  CHECK_FALSE(fs::exists(dir / "run.json.tmp"));
+  fs::remove_all(dir);
+  // A directory without run.json: the error names the file.
+  CHECK_THROWS_WITH(markRun((dir / "none").string(), kRunComplete), Catch::Contains("run.json: cannot read"));
 }
 
 }  // namespace

@@ -17,7 +17,7 @@ constexpr const char* kMetrics = R"({
   "timing": {"wall_s": 1.23456, "ticks_per_s": 80.04}
 })";
 constexpr const char* kNetwork = R"({
-  "communication_range": 11.6, "sent": 1174, "lost": 319, "delayed": 449,
+  "communication_range": 11.6, "sent": 1174, "lost": 319, "delayed": 449, "unreachable": 12,
   "supernodes": [{"supernode": 0, "sent": 1, "lost": 2, "delayed": 3}]
 })";
 
@@ -77,6 +77,7 @@ TEST_CASE("the summary of a multi-process run lists figures and each process's m
         "  reports sent              1174\n"
         "  reports lost              319\n"
         "  reports delayed           449\n"
+        "  reports unreachable       12\n"
         "  dropped (older than ws)   3\n"
         "  wall time (tick loop)     1.235 s\n"
         "  ticks/s (tick loop)       80.0\n"
@@ -111,6 +112,24 @@ TEST_CASE("a failed run names the failure and every process that exited non-zero
         "wsntrack run: FAILED: supernode 1 exited with 3\n"
         "  supernode 1: exit 3 (bad engine)\n"
         "  network 0: exit 143\n");
+}
+
+TEST_CASE("a process killed by a signal is named with the signal, its exit code kept", "[launcher][run_summary]") {
+  CHECK(signalName(SIGKILL) == "SIGKILL");
+  CHECK(signalName(SIGSEGV) == "SIGSEGV");
+  CHECK(signalName(SIGTERM) == "SIGTERM");
+  CHECK(signalName(64) == "signal 64");
+  RoleOutcome killed{"supernode 2", 128 + SIGKILL, "", "", 0, SIGKILL};
+  CHECK(exitDescription(killed) == "killed by SIGKILL");
+  // A process that exits with 137 itself is not a signal death.
+  CHECK(exitDescription({"node 0", 137, "", "", 0}) == "exited with code 137");
+  auto result = processes();
+  result.ok = false;
+  result.failure = "supernode 2 killed by SIGKILL; log d/logs/supernode-2.log";
+  result.outcomes.push_back(killed);
+  CHECK(runFailure(result) ==
+        "wsntrack run: FAILED: supernode 2 killed by SIGKILL; log d/logs/supernode-2.log\n"
+        "  supernode 2: killed by SIGKILL, exit 137\n");
 }
 
 TEST_CASE("an interrupted run is named as one, with its exit status, and lists no process as failed",

@@ -161,13 +161,32 @@ class Errors(unittest.TestCase):
     def test_optional_files_absent(self):
         d = fresh("e-optional")
         for name in ("observations.csv", "tracks_supernode.csv", "metrics_per_tick.csv", "metrics.json",
-                     "network.json", "run.json"):
+                     "network.json"):
             (d / name).unlink()
         run = load_run(d)
         self.assertIsNone(run.observations)
         self.assertIsNone(run.supernode_tracks)
         self.assertIsNone(run.metrics_per_tick)
         self.assertIsNone(run.metrics)
+
+    def test_incomplete_runs_refused(self):
+        # Only run.json's "complete" loads; every other state says why, naming the directory.
+        d = fresh("i-failed")
+        tiny_run.mark(d, "failed", "aggregator 0 killed by SIGKILL; log i-failed/logs/aggregator-0.log")
+        self.expect(d, r"i-failed: incomplete run \(status failed: aggregator 0 killed by SIGKILL; log "
+                       r"i-failed/logs/aggregator-0\.log\)$")
+        tiny_run.mark(d, "running")
+        self.expect(d, r"i-failed: incomplete run \(status running: its launcher has not finished")
+        tiny_run.mark(d, None)
+        self.expect(d, r"i-failed: incomplete run \(status missing: run\.json has no status")
+        (d / "run.json").unlink()
+        self.expect(d, r"i-failed: incomplete run \(status missing: no run\.json")
+        # Asked for, an incomplete run loads and says why it is incomplete; a complete one says None.
+        tiny_run.mark(d, "failed", "timed out after 3 s")
+        run = load_run(d, allow_incomplete=True)
+        self.assertEqual(run.incomplete, "incomplete run (status failed: timed out after 3 s)")
+        self.assertEqual(len(run.truth), 17)
+        self.assertIsNone(load_run(fresh("i-complete")).incomplete)
 
     def edit(self, name, file, line, text):
         d = fresh(name)

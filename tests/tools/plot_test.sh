@@ -82,6 +82,7 @@ EOF
     } >run/tracks.csv
     printf '{\n  "metrics": {\n    "first_tick": 1,\n    "eps_k": 0.25,\n    "ospa_mean": 1.5,\n    "ospa_per_tick": [5, 0.1, 0.1, 5, 5, 0.2, 0.2, 2.5, 0.3, 0.3]\n  },\n  "timing": {"wall_s": 0.1}\n}\n' \
       >run/metrics.json
+    printf '{\n  "run_id": "00ff",\n  "domain": 7,\n  "ticks": 10,\n  "status": "complete"\n}\n' >run/run.json
 
     "$python" "$plot" --help >help.txt || fail "--help failed"
     grep -q "tracks.FORMAT" help.txt && grep -q "Exit status" help.txt || fail "--help does not explain the outputs"
@@ -94,6 +95,35 @@ EOF
     grep -q "from metrics.json" svg/ospa.svg || fail "ospa.svg does not say it read metrics.json"
     grep -q "true target path" svg/tracks.svg || fail "tracks.svg lacks its legend"
     grep -q "tracking-group boundary" svg/tracks.svg || fail "tracks.svg draws no tracking-group boundary"
+
+    # Only a complete run is drawn (run.json's status); --allow-incomplete stamps every figure.
+    grep -q "INCOMPLETE RUN" svg/*.svg && fail "a complete run's plots are stamped INCOMPLETE RUN"
+    rm -rf failed; cp -r run failed; rm -rf failed/plots
+    printf '{\n  "run_id": "00ff",\n  "status": "failed",\n  "reason": "supernode 2 killed by SIGKILL"\n}\n' \
+      >failed/run.json
+    "$python" "$plot" failed --out "$PWD/failed-plots" >/dev/null 2>err.txt
+    code=$?
+    [ "$code" -eq 2 ] || { cat err.txt >&2; fail "a failed run: exit $code, expected 2"; }
+    grep -q "failed: incomplete run (status failed: supernode 2 killed by SIGKILL)" err.txt \
+      || { cat err.txt >&2; fail "a failed run: not refused with its status and reason"; }
+    [ -e failed-plots ] && fail "a failed run: plots were drawn"
+    for state in '"status": "running"' '"run_id": "00ff"'; do  # still running; no status (an older wsntrack)
+      printf '{\n  %s\n}\n' "$state" >failed/run.json
+      "$python" "$plot" failed --out "$PWD/failed-plots" >/dev/null 2>err.txt && fail "run.json {$state}: drawn"
+      grep -q "failed: incomplete run (status " err.txt || { cat err.txt >&2; fail "run.json {$state}: message"; }
+    done
+    rm failed/run.json
+    "$python" "$plot" failed >/dev/null 2>err.txt && fail "no run.json: drawn"
+    grep -q "failed: incomplete run (status missing: no run.json" err.txt || { cat err.txt >&2; fail "no run.json: message"; }
+    printf '{\n  "status": "failed",\n  "reason": "timed out after 3 s"\n}\n' >failed/run.json
+    "$python" "$plot" failed --allow-incomplete --format svg --out "$PWD/failed-svg" >/dev/null 2>err.txt \
+      || { cat err.txt >&2; fail "--allow-incomplete failed"; }
+    grep -q "warning: .*incomplete run (status failed: timed out after 3 s)" err.txt || fail "--allow-incomplete: no warning"
+    for name in tracks cardinality ospa; do
+      grep -q "INCOMPLETE RUN" "failed-svg/$name.svg" \
+        || fail "failed-svg/$name.svg is not stamped INCOMPLETE RUN"
+      grep -q "timed out after 3 s" "failed-svg/$name.svg" || fail "failed-svg/$name.svg does not give the reason"
+    done
 
     # --wait (how wsntrack runs it): nothing before the word to go, nothing at all without it.
     echo go | "$python" "$plot" run --wait --out "$PWD/waited" >/dev/null 2>err.txt || { cat err.txt >&2; fail "--wait"; }
@@ -160,7 +190,7 @@ EOF
     # Typed sensors (sensors.layout list, sensor_model field_sensors): a marker and a colour per type,
     # each sensor's coverage (a sector of its range and field of view, a disc for 360 degrees), and a
     # legend entry per type present with its number of sensors; an untyped entry stays a plain dot.
-    rm -rf typed; mkdir typed; cp run/truth.csv run/tracks.csv run/metrics.json typed/
+    rm -rf typed; mkdir typed; cp run/truth.csv run/tracks.csv run/metrics.json run/run.json typed/
     cat >typed/scenario.yaml <<'EOF'
 # wsntrack resolved scenario (a small hand-made one, with typed sensors)
 name: "tiny typed"

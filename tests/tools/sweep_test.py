@@ -219,6 +219,17 @@ class MainSweep(unittest.TestCase):
         self.assertIn("[1/1] gnn pte=0.3 seed=2 ... ok", again.stderr)
         json.loads(victim.read_text())
 
+    def test_6b_run_marked_failed_is_run_again(self):
+        # metrics.json intact, but run.json says the run failed: never reused as a result.
+        run_json = self.dir / "runs" / "gnn_pte-0.3_seed-1" / "run.json"
+        run_json.write_text(run_json.read_text().replace('"status": "complete"',
+                                                         '"status": "failed",\n  "reason": "by hand"'))
+        again = run_sweep(self.spec, self.dir)
+        self.assertEqual(again.returncode, 0, again.stderr)
+        self.assertIn("7 complete from an earlier invocation, 1 to run", again.stderr)
+        self.assertIn("[1/1] gnn pte=0.3 seed=1 ... ok", again.stderr)
+        self.assertIn('"status": "complete"', run_json.read_text())
+
     def test_7_changed_spec_is_refused(self):
         records = {p: p.stat().st_mtime_ns for p in (self.dir / "runs").glob("*/sweep_run.json")}
         changed = run_sweep(self.spec, self.dir, "--set", "network.pde=0.1", "--seeds", "1")
@@ -375,6 +386,32 @@ exec "{WSNTRACK}" "$@"
         self.assertEqual(result.returncode, 1, result.stderr)
         self.assertEqual(calls, 3)
         self.assertEqual([r["status"] for r in rows(out / "results.csv")], ["failed"])
+
+
+class NotComplete(unittest.TestCase):
+    """A run that exits 0 but whose run.json does not say complete is a failed run: its numbers never
+    enter results.csv or summary.csv. Simulated by a wrapper that marks the finished run failed."""
+
+    def test_counted_as_failed(self):
+        out = fresh("not-complete")
+        wrapper = write(WORK / "not_complete.sh", f"""#!/bin/sh
+"{WSNTRACK}" "$@" || exit $?
+[ "$1" = run ] || exit 0
+for a in "$@"; do [ "$prev" = --out ] && dir="$a"; prev="$a"; done
+sed -i 's/"status": "complete"/"status": "failed",\\n  "reason": "marked by the test"/' "$dir/run.json"
+""")
+        wrapper.chmod(0o755)
+        spec = write(WORK / "not_complete.yaml", "scenario: scenarios/oh_single_supernode.yaml\n"
+                     "grid: {network.pte: [0]}\nengines: [gnn]\nset: {run.ticks: 10}\nin_process: true\n")
+        result = run_sweep(spec, out, wsntrack=wrapper)
+        self.assertEqual(result.returncode, 1, result.stderr)
+        self.assertIn("1 of 1 runs failed", result.stderr)
+        results = rows(out / "results.csv")
+        self.assertEqual([r["status"] for r in results], ["failed"])
+        self.assertEqual(results[0]["eps_k"], "")
+        log = (out / "logs" / "gnn_pte-0_seed-1.log").read_text()
+        self.assertIn("not counted", log)
+        self.assertIn("incomplete run (status failed: marked by the test)", log)
 
 
 class Pieces(unittest.TestCase):

@@ -147,8 +147,18 @@ def write(directory, old=False):
         '2.25, 2.5]\n  },\n  "timing": {"wall_s": 0.1, "ticks_per_s": 90}\n}\n', encoding="utf-8")
     (d / "network.json").write_text('{\n  "communication_range": 3.0,\n  "pte": 0.1,\n  "pde": 0.2,\n'
                                     '  "sent": 21,\n  "lost": 1\n}\n', encoding="utf-8")
-    (d / "run.json").write_text('{\n  "run_id": "00ff",\n  "domain": 7,\n  "scenario": "tiny",\n  "ticks": 10\n}\n',
-                                encoding="utf-8")
+    mark(d, "complete")
+
+
+def mark(directory, status, reason=None):
+    """Writes DIR/run.json as a launcher leaves it: `status` complete, failed (with `reason`) or
+    running; None leaves the status out, as a wsntrack from before it did."""
+    lines = ['"run_id": "00ff"', '"domain": 7', '"scenario": "tiny"', '"ticks": 10']
+    if status is not None:
+        lines.append(f'"status": "{status}"')
+    if reason is not None:
+        lines.append(f'"reason": "{reason}"')
+    (Path(directory) / "run.json").write_text("{\n  " + ",\n  ".join(lines) + "\n}\n", encoding="utf-8")
 
 
 if __name__ == "__main__":

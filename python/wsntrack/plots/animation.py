@@ -7,6 +7,7 @@ import math
 import sys
 from types import SimpleNamespace
 
+from ..figures import stamp_if_incomplete
 from .charts import integer_axis
 from .field import REGION_COLOURS, TRACK_COLOURS, TRUTH_COLOUR, draw_groups_and_region, draw_terrain, length_unit
 from .geometry import ELLIPSE_SIGMAS, ellipse_axes, interior_edges
@@ -28,6 +29,7 @@ def _layout(mpl, size):
     dpi = height_px / 7.2
     fig = mpl.figure.Figure(figsize=((width_px + 0.25) / dpi, (height_px + 0.25) / dpi), dpi=dpi)
     fig.patch.set_facecolor("white")
+    stamp_if_incomplete(fig)
     canvas = FigureCanvasAgg(fig)
     fig_w, fig_h = fig.get_size_inches()
     return SimpleNamespace(fig=fig, canvas=canvas, dpi=dpi, fig_w=fig_w, fig_h=fig_h, left=0.62, bottom=0.5,

@@ -6,8 +6,8 @@ import sys
 import time
 from pathlib import Path
 
-from ..figures import load_matplotlib
-from ..rundir import InputError, ToolMissing, read_metrics_summary, read_per_tick, read_scenario, read_tracks, read_truth
+from ..figures import INCOMPLETE_STAMP, load_matplotlib
+from ..rundir import InputError, ToolMissing, incomplete_reason, read_metrics_summary, read_per_tick, read_scenario, read_tracks, read_truth
 from .charts import plot_cardinality, plot_detections, plot_ospa
 from .inputs import few_observations, read_detections, read_sensors
 from .replay import ANIMATION_DEFAULTS, ANIMATION_FORMATS, EXIT_BAD_INPUT, EXIT_TOOL_MISSING, animate_main
@@ -71,6 +71,12 @@ class, is malformed input; so is, for typed sensors, a type not listed above, a 
 that is not a number, a heading outside [-360, 360], an entry's 'range' outside [0, 1e6] or 'fov'
 outside [0, 360], or a type's 'range' outside (0, 1e6] or 'fov_deg' outside (0, 360].
 
+Only a complete run is drawn: one whose run.json says "status": "complete" (the launcher writes it
+once every process exited 0 and every output exists). A failed, interrupted or still running run,
+or one whose run.json has no status (wsntrack before 0.1.0's run status), is refused as malformed
+input ("RUN_DIR: incomplete run (status failed: REASON)"); --allow-incomplete draws it anyway with
+"INCOMPLETE RUN" and the reason written across every figure (and every frame of --animate).
+
 Exit status: 0 on success; 1 when the video encoder (ffmpeg) fails; 2 for a bad command line, a
 missing or malformed input file (reported as FILE:LINE: what was expected) or an output that cannot
 be written; 3 when a tool is missing: PyYAML or matplotlib (or numpy or Pillow for --animate) for
@@ -88,6 +94,9 @@ def _parser():
                              "ending in .gif, .mp4 or .html, or a directory for replay.FORMAT (default "
                              "RUN_DIR/plots/replay.FORMAT)")
     parser.add_argument("--dpi", type=int, help="resolution of PNG files (default 150)")
+    parser.add_argument("--allow-incomplete", action="store_true",
+                        help="draw a run that is not complete (failed, interrupted, still running, or without a "
+                             "status in run.json) anyway, every figure stamped INCOMPLETE RUN with the reason")
     parser.add_argument("--wait", action="store_true",
                         help="load matplotlib first, then wait for a line 'go' on stdin before reading RUN_DIR "
                              "(any other line, or the end of stdin: exit 0 without plotting). 'wsntrack run' "
@@ -124,7 +133,7 @@ def main(argv):
             if getattr(args, name):
                 parser.error(f"--{name} draws the still plots, not --animate"
                              + (f": use {instead}" if instead else ""))
-        return animate_main(parser, args)
+        return _refuse_incomplete(args) or animate_main(parser, args)
     for name in animation_options + ("quiet",):
         if getattr(args, name) not in (None, False):
             parser.error(f"--{name.replace('_', '-')} needs --animate")
@@ -137,7 +146,26 @@ def main(argv):
         loaded = load_matplotlib(args.dpi, warm_up=True)
         if sys.stdin.readline().strip() != "go":
             return 0
-    return _draw_stills(args, loaded)
+    return _refuse_incomplete(args) or _draw_stills(args, loaded)
+
+
+def _refuse_incomplete(args):
+    """EXIT_BAD_INPUT (after saying why) for a run that is not complete, unless --allow-incomplete,
+    which stamps every figure instead; None to go on. Checked after --wait's word to go: the launcher
+    marks its run complete just before it gives it. A RUN_DIR that is no directory is left to the
+    readers, which say so."""
+    run_dir = Path(args.run_dir)
+    if not run_dir.is_dir():
+        return None
+    why = incomplete_reason(run_dir)
+    if why and not args.allow_incomplete:
+        print(f"plot_run.py: {run_dir}: {why} (--allow-incomplete draws it anyway, stamped INCOMPLETE RUN)",
+              file=sys.stderr)
+        return EXIT_BAD_INPUT
+    if why:
+        print(f"plot_run.py: warning: {run_dir}: {why}; every figure is stamped INCOMPLETE RUN", file=sys.stderr)
+    INCOMPLETE_STAMP["reason"] = why
+    return None
 
 
 def _draw_stills(args, loaded):

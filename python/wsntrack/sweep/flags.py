@@ -13,7 +13,7 @@ import sys
 import time
 from pathlib import Path
 
-from ..rundir import read_json
+from ..rundir import incomplete_reason, read_json
 from .common import (REPO, UsageError, make_runs, parse_seeds, plural, run_command, scenario_engine, seeds_text,
                      short_names, split_key_value, engine_sets, validate)
 from .metrics import DEFAULT_METRICS, METRIC_SOURCES, metric_value
@@ -82,7 +82,11 @@ def parse_grid(texts):
 
 
 def read_metrics(run, metrics):
-    """The run's tabulated metrics; None for a metric the run leaves undefined."""
+    """The run's tabulated metrics; None for a metric the run leaves undefined. ValueError for a run
+    that is not complete (run.json's status): its numbers must never enter the table."""
+    incomplete = incomplete_reason(run.run_dir)
+    if incomplete:
+        raise ValueError(f"{run.run_dir}: {incomplete}")
     data = read_json(run.run_dir / "metrics.json")
     try:
         return {metric: metric_value(metric, data, run.run_dir) for metric in metrics}
@@ -175,7 +179,7 @@ def finish(run, process, metrics):
     except (OSError, ValueError) as error:
         run.status = "failed"
         with open(run.log, "a", encoding="utf-8") as log:
-            log.write(f"sweep: cannot read {run.run_dir / 'metrics.json'}: {error}\n")
+            log.write(f"sweep: the run exited 0 but is not counted: {error}\n")
 
 
 def progress(done, total, run):

@@ -15,7 +15,7 @@ import sys
 import time
 from pathlib import Path
 
-from ..rundir import InputError, read_json
+from ..rundir import InputError, incomplete_reason, read_json
 from .common import UsageError, duration, engine_sets, plural, scenario_engine, validate
 from .metrics import METRIC_SOURCES, metric_value
 from .spec import SpecError
@@ -68,7 +68,11 @@ def check_with_wsntrack(spec, wsntrack):
 
 
 def metrics_of(path, metrics):
-    """The metrics of a complete metrics.json; ValueError for an incomplete or malformed one."""
+    """The metrics of a complete run's metrics.json; ValueError for a run that is not complete
+    (run.json's status: a failed run must never enter the results as numbers) or a malformed file."""
+    incomplete = incomplete_reason(Path(path).parent)
+    if incomplete:
+        raise ValueError(f"{Path(path).parent}: {incomplete}")
     data = read_json(Path(path))
     if not isinstance(data, dict) or not isinstance(data.get("metrics"), dict):
         raise ValueError("no 'metrics' object: not a complete metrics.json")
@@ -155,7 +159,7 @@ def finish_spec_run(run, scenario_sha, metrics):
         except (OSError, ValueError) as error:
             record["exit"] = None
             with open(run.log, "a", encoding="utf-8") as log:
-                log.write(f"sweep: cannot read {run.run_dir / 'metrics.json'}: {error}\n")
+                log.write(f"sweep: the run exited 0 but is not counted: {error}\n")
     record["status"] = run.status
     if run.run_dir.is_dir():
         temporary = run.run_dir / (RECORD + ".tmp")
