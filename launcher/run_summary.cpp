@@ -43,6 +43,21 @@ void row(std::ostringstream& out, const std::string& name, const std::string& va
   out << "  " << name << std::string(name.size() < 26 ? 26 - name.size() : 1, ' ') << value << "\n";
 }
 
+/// "kill of supernode 2 at tick 40: 2 of 2 tracks carried on, the first after 0 ticks".
+std::string faultLine(const nlohmann::json& fault) {
+  std::string line = fault.value("what", std::string("fault"));
+  if (fault.contains("tracks_left") && fault["tracks_left"].is_number()) {
+    const auto left = fault["tracks_left"].get<long>();
+    const auto carried = fault.value("tracks_carried_on", 0L);
+    line += ": " + std::to_string(carried) + " of " + std::to_string(left) + " tracks carried on";
+    if (fault.contains("rehome_ticks") && fault["rehome_ticks"].is_number())
+      line += ", the first after " + std::to_string(fault["rehome_ticks"].get<long>()) + " ticks";
+  }
+  if (fault.contains("handoffs_lost") && fault["handoffs_lost"].is_number())
+    line += ": " + std::to_string(fault["handoffs_lost"].get<long>()) + " handoffs lost";
+  return line;
+}
+
 }  // namespace
 
 RunFigures parseRunFigures(const std::string& metrics_json, const std::string& network_json) {
@@ -63,6 +78,9 @@ RunFigures parseRunFigures(const std::string& metrics_json, const std::string& n
   f.reports_lost = numberAt(network, "/lost");
   f.reports_delayed = numberAt(network, "/delayed");
   f.reports_unreachable = numberAt(network, "/unreachable");
+  f.reports_lost_dead_supernode = numberAt(network, "/lost_dead_supernode");
+  if (metrics.contains("faults") && metrics["faults"].is_array())
+    for (const auto& fault : metrics["faults"]) f.faults.push_back(faultLine(fault));
   return f;
 }
 
@@ -94,6 +112,8 @@ std::string runSummary(const std::string& run_dir, const RunFigures& f, const Cl
   row(out, "reports lost", show(f.reports_lost, 0));
   row(out, "reports delayed", show(f.reports_delayed, 0));
   row(out, "reports unreachable", show(f.reports_unreachable, 0));
+  if (f.reports_lost_dead_supernode) row(out, "lost to dead supernodes", show(f.reports_lost_dead_supernode, 0));
+  for (const auto& fault : f.faults) row(out, "fault", fault);
   row(out, "dropped (older than ws)", show(f.dropped_stale, 0));
   row(out, "wall time (tick loop)", show(f.wall_s, 3) + " s");
   row(out, "ticks/s (tick loop)", show(f.ticks_per_s, 1));

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "common/scenario_config.hpp"
 #include "launcher/cluster.hpp"
@@ -30,6 +31,10 @@ struct RunFigures {
   std::optional<double> reports_lost;
   std::optional<double> reports_delayed;
   std::optional<double> reports_unreachable;  ///< no route to any supernode (network.json's unreachable)
+  std::optional<double> reports_lost_dead_supernode;  ///< due at a supernode a fault killed (runs with faults)
+  /// One line per fault of the scenario (metrics.json's faults): what it was and, for a supernode
+  /// that died, how many of its tracks the adopters carried on and after how many ticks.
+  std::vector<std::string> faults;
 };
 
 /// The figures of the texts of metrics.json and network.json ("" for a missing file); a text that

@@ -164,5 +164,28 @@ TEST_CASE("the start line says what runs where", "[launcher][run_summary]") {
         "wsntrack: oh (seed 3, 20 ticks) on 4 node tiles, 2 supernodes, engine gnn, domain 17, in-process\n");
 }
 
+
+TEST_CASE("a run with faults lists each fault and the reports lost to dead supernodes", "[launcher][run_summary]") {
+  const std::string metrics = R"({"eps_k": 0.2, "faults": [
+    {"tick": 20, "action": "partition", "what": "partition between supernodes 0 and 1 at tick 20 for 15 ticks",
+     "handoffs_lost": 2},
+    {"tick": 40, "action": "kill", "what": "kill of supernode 2 at tick 40", "tracks_left": 3,
+     "tracks_carried_on": 2, "tracks_lost": 1, "rehome_ticks": 1},
+    {"tick": 60, "action": "pause", "what": "pause of supernode 1 at tick 60 for 10 ticks", "tracks_left": 0,
+     "tracks_carried_on": 0, "tracks_lost": 0, "rehome_ticks": null}]})";
+  const auto figures = parseRunFigures(metrics, R"({"sent": 10, "lost_dead_supernode": 7})");
+  REQUIRE(figures.faults.size() == 3);
+  CHECK(figures.faults[0] == "partition between supernodes 0 and 1 at tick 20 for 15 ticks: 2 handoffs lost");
+  CHECK(figures.faults[1] == "kill of supernode 2 at tick 40: 2 of 3 tracks carried on, the first after 1 ticks");
+  CHECK(figures.faults[2] == "pause of supernode 1 at tick 60 for 10 ticks: 0 of 0 tracks carried on");
+  const auto text = runSummary("d", figures, processes(), false, std::nullopt);
+  CHECK(text.find("  lost to dead supernodes   7\n") != std::string::npos);
+  CHECK(text.find("  fault                     kill of supernode 2 at tick 40: 2 of 3") != std::string::npos);
+  // A run without faults has neither line.
+  const auto plain = runSummary("d", parseRunFigures(kMetrics, kNetwork), processes(), false, std::nullopt);
+  CHECK(plain.find("fault") == std::string::npos);
+  CHECK(plain.find("dead supernodes") == std::string::npos);
+}
+
 }  // namespace
 }  // namespace wsn::launcher
