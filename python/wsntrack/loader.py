@@ -36,7 +36,7 @@ track_label = rundir.track_label
 TRUTH_DTYPE = np.dtype([("tick", "i4"), ("target", "i8"), ("x", "f8"), ("y", "f8"), ("vx", "f8"), ("vy", "f8")])
 
 #: ``tick_delivered`` and ``delay`` are -1 for a report that was not delivered (fate ``lost``,
-#: ``unreachable`` or ``after_end``); ``hops`` is -1 when no path led to a supernode; ``target``
+#: ``unreachable``, ``after_end`` or ``dead_supernode``); ``hops`` is -1 when no path led to a supernode; ``target``
 #: is -1 for a false alarm.
 OBSERVATION_DTYPE = np.dtype([
     ("tick_generated", "i4"), ("tick_delivered", "i4"), ("sensor", "i8"), ("supernode", "i4"), ("hops", "i4"),

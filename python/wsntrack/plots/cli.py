@@ -207,7 +207,7 @@ def _draw_stills(args, loaded):
     plots = [("tracks", lambda path: plot_tracks(matplotlib, scenario, sensors, truth, tracks, summary, path,
                                                  observations, truth_classes)),
              ("cardinality", lambda path: plot_cardinality(matplotlib, scenario, ticks, k_true, k, summary, path)),
-             ("ospa", lambda path: plot_ospa(matplotlib, scenario, ticks, ospa, source, path))]
+             ("ospa", lambda path: plot_ospa(matplotlib, scenario, ticks, ospa, source, path, summary))]
     if detections is not None:
         plots.append(("detections", lambda path: plot_detections(matplotlib, scenario, detections, path)))
     for name, draw in plots:

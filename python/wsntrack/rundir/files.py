@@ -94,7 +94,8 @@ def read_truth(path):
     return [row[:6] for row in rows], classes
 
 
-OBSERVATION_FATES = ("delivered", "lost", "unreachable", "after_end")
+# dead_supernode: due at a supernode that a fault of the scenario killed or paused (docs/FAULTS.md).
+OBSERVATION_FATES = ("delivered", "lost", "unreachable", "after_end", "dead_supernode")
 
 
 def read_observations(path):
@@ -177,10 +178,20 @@ def read_per_tick(run_dir, scenario, truth, tracks):
 
 
 def read_metrics_summary(run_dir):
-    """eps_K, eps_X and mean OSPA of metrics.json for titles; absent or unreadable values are left out."""
+    """eps_K, eps_X and mean OSPA of metrics.json for titles, and under "faults" the scenario's faults
+    as (first tick, last tick, what) of their "during" windows (docs/FAULTS.md), to mark them on the
+    charts; absent or unreadable values are left out."""
     try:
-        metrics = read_json(run_dir / "metrics.json").get("metrics", {})
-        return {k: metrics.get(k) for k in ("eps_k", "eps_x", "ospa_mean") if isinstance(metrics.get(k), (int, float))}
+        document = read_json(run_dir / "metrics.json")
+        metrics = document.get("metrics", {})
+        summary = {k: metrics.get(k) for k in ("eps_k", "eps_x", "ospa_mean") if isinstance(metrics.get(k), (int, float))}
+        faults = [(f["during"]["first_tick"], f["during"]["last_tick"], str(f.get("what", f.get("action", "fault"))))
+                  for f in document.get("faults") or []
+                  if isinstance(f, dict) and isinstance(f.get("during"), dict)
+                  and all(isinstance(f["during"].get(k), int) for k in ("first_tick", "last_tick"))]
+        if faults:
+            summary["faults"] = faults
+        return summary
     except (InputError, AttributeError):
         return {}
 
