@@ -31,7 +31,7 @@ void FaultReport::addTick(std::int32_t t, const FaultTickScores& scores, const s
 
 Json FaultReport::window(std::int32_t first, std::int32_t last) const {
   first = std::max(first, 1);
-  last = std::min(last, static_cast<std::int32_t>(by_tick_.size()));
+  last = std::min({last, ticks_, static_cast<std::int32_t>(by_tick_.size())});
   Json out{{"first_tick", first}, {"last_tick", last}};
   double abs_k_error = 0, k_true = 0, ospa = 0;
   std::int32_t n = 0;
