@@ -258,7 +258,10 @@ void runAggregatorRole(const dds::RoleContext& context) {
       const auto live = plan.liveSupernodes(t);
       const auto expected = static_cast<std::size_t>(std::count(live.begin(), live.end(), true));
       loop.waitUntil([&] { return inbox.count(t) >= expected; },
-                     [&] { return "tracks of tick " + std::to_string(t) + " from every live supernode"; });
+                     [&] {
+                       return "tracks of tick " + std::to_string(t) + " from " +
+                              inbox.missing(t, plan.liveSupernodeIndices(t), "supernode");
+                     });
       if (!first_tick_at) first_tick_at = Clock::now();
       auto batches = inbox.take(t);
       faults.noteHandoffsLost(batches);

@@ -106,6 +106,20 @@ std::int32_t FaultPlan::liveTileCount(std::int32_t tick) const {
   return n;
 }
 
+std::vector<std::uint32_t> FaultPlan::liveTiles(std::int32_t tick) const {
+  std::vector<std::uint32_t> out;
+  for (std::int32_t i = 0; i < tiles_; ++i)
+    if (tileLive(i, tick)) out.push_back(static_cast<std::uint32_t>(i));
+  return out;
+}
+
+std::vector<std::uint32_t> FaultPlan::liveSupernodeIndices(std::int32_t tick) const {
+  std::vector<std::uint32_t> out;
+  for (std::int32_t j = 0; j < supernodes_; ++j)
+    if (supernodeLive(j, tick)) out.push_back(static_cast<std::uint32_t>(j));
+  return out;
+}
+
 std::optional<FaultSpec> FaultPlan::processFaultAt(FaultRole role, std::int32_t index, std::int32_t tick) const {
   for (const auto& f : faults_)
     if ((f.action == FaultAction::kKill || f.action == FaultAction::kPause) && f.role == role && f.index == index &&

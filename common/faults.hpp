@@ -78,6 +78,9 @@ class FaultPlan {
   bool settles(std::int32_t supernode, std::int32_t tick, std::int32_t window_size, std::int32_t run_ticks) const;
   /// The live tiles at `tick`.
   std::int32_t liveTileCount(std::int32_t tick) const;
+  /// The indices of the tiles and of the supernodes live at `tick`, ascending.
+  std::vector<std::uint32_t> liveTiles(std::int32_t tick) const;
+  std::vector<std::uint32_t> liveSupernodeIndices(std::int32_t tick) const;
   /// The ticks a process stops at: the ticks at which a kill or pause of it begins.
   std::optional<FaultSpec> processFaultAt(FaultRole role, std::int32_t index, std::int32_t tick) const;
 

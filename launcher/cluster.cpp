@@ -25,6 +25,7 @@
 #include "common/dds/entity.hpp"
 #include "common/dds/role_runtime.hpp"
 #include "launcher/fault_signals.hpp"
+#include "launcher/stopped_processes.hpp"
 #include "launcher/run_description.hpp"
 #include "launcher/run_summary.hpp"
 #include "network_model/role.hpp"
@@ -226,6 +227,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
     result.outcomes[i].name = slots[i].name();
     result.outcomes[i].log_path = options.run_dir + "/logs/" + slots[i].role + "-" + std::to_string(slots[i].index) + ".log";
   }
+  StoppedProcesses stopped(Clock::now());
   FaultSignals fault_signals(common::FaultPlan(options.scenario.faults, options.scenario.run.node_processes,
                                                 static_cast<std::int32_t>(options.scenario.supernodes.size())),
                              options.scenario.run.ticks);
@@ -275,6 +277,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
           if (slots[slot].role == f.role && slots[slot].index == f.index) fault_signals.announced(pid, f.role, f.index, f.tick);
       faulted.clear();
       fault_signals.progressed(tick);
+      for (const auto& [pid, slot] : running) stopped.sample(pid, slots[slot].name(), fault_signals.pausing(pid));
       progress.update(tick);
       reap(false);
       if (!failures.empty() && result.failure.empty()) result.failure = failures.front();
@@ -286,6 +289,10 @@ ClusterResult runProcesses(const ClusterOptions& options) {
   } catch (const std::exception& error) {
     if (result.failure.empty()) result.failure = std::string("launcher: ") + error.what();
   }
+  // A stopped peer is the likely cause of a stall that another role reported: say so first.
+  if (const auto stops = stopped.diagnosis(); !result.failure.empty() && !stops.empty())
+    result.failure = stops + "; its peers drop a process stopped longer than its DDS lease (10 s), and the run stalled:\n  " +
+                     result.failure;
 
   // Stop whatever is left: politely first, then for good. Every pid we started is reaped.
   if (!running.empty()) {

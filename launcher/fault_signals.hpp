@@ -26,6 +26,8 @@ class FaultSignals {
   void progressed(std::int32_t tick);
   /// The fault that made the launcher kill `pid`, when it did: that death is the run's design.
   std::optional<std::string> killedByFault(pid_t pid) const;
+  /// Whether the launcher holds `pid` stopped for a pause of the scenario.
+  bool pausing(pid_t pid) const { return paused_until_.count(pid) != 0; }
   /// Continues every process still stopped (before the cluster is stopped, so that SIGTERM lands).
   void continueAll();
 

@@ -46,7 +46,7 @@ void runNetworkRole(const dds::RoleContext& context) {
       const auto live_tiles = static_cast<std::size_t>(plan.liveTileCount(t));
       faults_seen.silent_tile_ticks += static_cast<std::uint64_t>(context.shape.tiles) - live_tiles;
       loop.waitUntil([&] { return inbox.count(t) >= live_tiles; },
-                     [&] { return "reports of tick " + std::to_string(t) + " from every live tile"; });
+                     [&] { return "reports of tick " + std::to_string(t) + " from " + inbox.missing(t, plan.liveTiles(t), "node"); });
       std::vector<common::Report> reports;
       for (auto& [tile, batch] : inbox.take(t)) reports.insert(reports.end(), batch.begin(), batch.end());
 

@@ -69,7 +69,12 @@ void runNodeRole(const dds::RoleContext& context) {
         // Only the tiles live at t send: a dead or paused tile's sensors are silent.
         const auto others = static_cast<std::size_t>(plan.liveTileCount(t) - 1);
         loop.waitUntil([&] { return boundary_inbox.count(t) >= others; },
-                       [&] { return "boundary readings of tick " + std::to_string(t) + " from the other live tiles"; });
+                       [&] {
+                         auto others_live = plan.liveTiles(t);
+                         std::erase(others_live, context.index);
+                         return "boundary readings of tick " + std::to_string(t) + " from " +
+                                boundary_inbox.missing(t, others_live, "node");
+                       });
         for (auto& [tile, readings] : boundary_inbox.take(t))
           foreign.insert(foreign.end(), readings.begin(), readings.end());
       }

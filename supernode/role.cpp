@@ -108,8 +108,13 @@ void runSupernodeRole(const dds::RoleContext& context) {
             return deliveries.count(t) == 1 && (t == 1 || handoffs.count(t - 1) >= others) && orphans.count(t) >= dying;
           },
           [&] {
-            return "deliveries of tick " + std::to_string(t) + ", the live supernodes' handoffs of tick " +
-                   std::to_string(t - 1) + (dying > 0 ? " and the aggregator's re-homed tracks" : "");
+            std::vector<std::uint32_t> senders;
+            for (const auto j : plan.liveSupernodeIndices(t - 1))
+              if (j != self) senders.push_back(j);
+            return "deliveries of tick " + std::to_string(t) + (deliveries.count(t) == 1 ? " (in)" : " (missing)") +
+                   ", the handoffs of tick " + std::to_string(t - 1) + " from " +
+                   (t == 1 ? std::string("none") : handoffs.missing(t - 1, senders, "supernode")) +
+                   (dying > 0 ? " and the aggregator's re-homed tracks" : "");
           });
       auto delivered = std::move(deliveries.take(t)[0]);
       const auto incoming = incomingAt(t, self, plan, handoffs.take(t - 1), orphans.take(t), handoffs_lost_partition);

@@ -181,6 +181,14 @@ class TickInbox {
     return node.empty() ? std::map<std::uint32_t, BatchT>{} : std::move(node.mapped());
   }
   std::uint64_t rejected() const { return rejected_; }
+  /// "node 0, node 3": the producers among `expected` whose batch of `tick` has not arrived, each
+  /// named `role` and its index, for the message of a wait that stalled.
+  std::string missing(std::int32_t tick, const std::vector<std::uint32_t>& expected, const std::string& role) const {
+    std::string out;
+    for (const auto producer : expected)
+      if (!has(tick, producer)) out += (out.empty() ? "" : ", ") + role + " " + std::to_string(producer);
+    return out.empty() ? "none" : out;
+  }
   /// Forgets every tick up to `tick` unread (a role that was paused skips them); later batches of
   /// those ticks are rejected like consumed ones.
   void skipThrough(std::int32_t tick) {

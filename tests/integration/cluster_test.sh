@@ -301,6 +301,37 @@ PY
     # supernode never said DONE, and the run still completed (exit 0, metrics.json written).
     ! grep -q "DONE" mp/logs/supernode-2.log 2>/dev/null || fail "supernode 2 ran to the end"
     no_leftovers ;;
+  stopped_role)
+    # SIGSTOP of one supernode (by hand, not by the scenario). Stopped for 3 s, well inside its DDS
+    # lease, it is re-admitted: the run completes with the outputs of a run nobody stopped. Stopped
+    # for 15 s, past the lease, its peers drop it and the run fails within --stall-timeout, the
+    # failure naming the stopped supernode rather than the peer whose wait ran out.
+    stop_for() {  # stop_for OUT SECONDS: a paced run, supernode 1 stopped 2 s in for SECONDS
+      local out="$1" seconds="$2"
+      timeout 120 "$wsntrack" run "$scenario" --quiet --no-plot --out "$PWD/$out" --ticks 150 --tick-interval 0.04 \
+        --stall-timeout 15 >"$out.stdout" 2>"$out.stderr" & launcher=$!
+      local victim=""
+      for _ in $(seq 1 100); do
+        victim=$(pgrep -f "wsntrack-supernode.*--run-dir $PWD/$out .*--index 1\b" | head -1)
+        [ -n "$victim" ] && break
+        sleep 0.1
+      done
+      [ -n "$victim" ] || fail "$out: no supernode 1 process found"
+      sleep 2; kill -STOP "$victim"; sleep "$seconds"; kill -CONT "$victim"
+      wait "$launcher"; rc=$?
+    }
+    run_ok "$PWD/reference" --no-plot --ticks 150 --in-process
+    stop_for short 3
+    [ "$rc" -eq 0 ] || { cat short.stderr >&2; fail "a run whose supernode stopped for 3 s exited $rc"; }
+    same_outputs "$PWD/reference" "$PWD/short"
+    started=$SECONDS
+    stop_for long 15
+    [ "$rc" -eq 1 ] || { cat long.stderr >&2; fail "a run whose supernode stopped for 15 s exited $rc, not 1"; }
+    grep -q "supernode 1 was stopped (SIGSTOP or a debugger) for about 1[45]\.[0-9] s" long.stderr \
+      || { cat long.stderr >&2; fail "the failure does not name the stopped supernode"; }
+    grep -q '"status": "failed"' long/run.json || fail "the stalled run is not marked failed"
+    [ $((SECONDS - started)) -le 45 ] || fail "the stalled run took $((SECONDS - started)) s to fail"
+    no_leftovers ;;
   killed_process)
     # A node process killed mid-run: the launcher reports the failure and stops every other process.
     timeout 120 "$wsntrack" run "$scenario" --quiet --out "$PWD/k" --ticks 100000 >k.stdout 2>k.stderr & launcher=$!
