@@ -48,8 +48,7 @@ Json FaultReport::window(std::int32_t first, std::int32_t last) const {
   return out;
 }
 
-Json FaultReport::faultJson(std::size_t k) const {
-  const auto& f = plan_.faults()[k];
+Json FaultReport::faultJson(const common::FaultSpec& f) const {
   Json out{{"tick", f.tick}, {"action", common::faultActionName(f.action)}, {"what", f.describe()}};
   // A kill has no end: its "during" is one window, the adopters' transient.
   const std::int32_t last = f.action == common::FaultAction::kKill ? f.tick + window_ - 1 : f.lastTick();
@@ -88,7 +87,19 @@ Json FaultReport::faultJson(std::size_t k) const {
 
 Json FaultReport::json() const {
   Json out = Json::array();
-  for (std::size_t k = 0; k < plan_.faults().size(); ++k) out.push_back(faultJson(k));
+  for (const auto& f : plan_.faults()) out.push_back(faultJson(f));
+  for (const auto& f : unscheduled_) {
+    Json entry = faultJson(f);
+    // Lost outside the scenario: the tick is the first whose outputs the aggregator missed.
+    entry["unscheduled"] = true;
+    const std::string who = std::string(common::faultRoleName(f.role)) + " " + std::to_string(f.index);
+    entry["what"] = f.role == common::FaultRole::kSupernode
+                        ? who + " lost outside the scenario (killed by hand), its tracks missing from tick " +
+                              std::to_string(f.tick)
+                        : who + " lost outside the scenario (killed by hand), announced at tick " + std::to_string(f.tick) +
+                              " of the aggregator";
+    out.push_back(std::move(entry));
+  }
   return out;
 }
 

@@ -28,6 +28,9 @@ class FaultReport {
   /// window: the time its memory takes to fill again); a pause, partition or burst uses its own length.
   FaultReport(common::FaultPlan plan, std::int32_t window, std::int32_t ticks);
 
+  /// A process lost outside the scenario (killed by hand), as a kill at the first tick its
+  /// outputs were missing; reported after the scenario's faults, marked "unscheduled".
+  void addUnscheduled(const common::FaultSpec& fault) { unscheduled_.push_back(fault); }
   /// The tracks a supernode dying at `tick` left behind (their ids), as handed to the adopters.
   void addOrphans(std::uint32_t dead, std::int32_t tick, const std::vector<common::TrackHandoff>& orphans);
   /// Tick t of the live stream: its scores, every supernode's tracks, and the running total of
@@ -35,7 +38,8 @@ class FaultReport {
   void addTick(std::int32_t t, const FaultTickScores& scores, const std::vector<SupernodeTracks>& live,
                std::uint64_t handoffs_lost_partition);
 
-  /// The "faults" block: one object per fault of the scenario, in the scenario's order.
+  /// The "faults" block: one object per fault of the scenario, in the scenario's order, then the
+  /// unscheduled losses.
   Json json() const;
 
  private:
@@ -45,9 +49,10 @@ class FaultReport {
     std::int32_t first_carried = 0;     ///< tick of the first one; 0: none yet
   };
   Json window(std::int32_t first, std::int32_t last) const;
-  Json faultJson(std::size_t k) const;
+  Json faultJson(const common::FaultSpec& f) const;
 
   common::FaultPlan plan_;
+  std::vector<common::FaultSpec> unscheduled_;
   std::int32_t window_;
   std::int32_t ticks_;
   std::vector<FaultTickScores> by_tick_;             ///< index t - 1

@@ -102,7 +102,7 @@ class SettledStream {
   std::uint32_t supernodes_;
   std::int32_t window_size_;
   std::int32_t ticks_;
-  common::FaultPlan plan_;
+  const common::FaultPlan& plan_;  ///< the role's: a supernode lost by hand joins it during the run
   std::int32_t settled_through_ = 0;
 };
 
@@ -168,34 +168,67 @@ class FaultsAtAggregator {
   }
 
   void afterTick(std::int32_t t, const TickScores& scores, const std::vector<SupernodeTracks>& live) {
-    if (plan_.empty()) return;
     std::uint64_t handoffs_lost = 0;
     for (const auto& [supernode, lost] : handoffs_lost_) handoffs_lost += lost;
     report_.addTick(t, {scores.find("truth_targets").value_or(0), scores.find("tracks").value_or(0),
                         scores.find("ospa").value_or(0)},
                     live, handoffs_lost);
-    if (t >= ticks_) return;
-    context_.live = plan_.liveSupernodes(t + 1);
-    for (const std::int32_t dead : plan_.dyingAt(t + 1)) {
-      std::vector<common::TrackEstimate> last;
-      for (const auto& supernode : live)
-        if (supernode.supernode == static_cast<std::uint32_t>(dead)) last = supernode.tracks;
-      const auto orphans = supernode::orphanHandoffs(last, t, context_);
-      report_.addOrphans(static_cast<std::uint32_t>(dead), t + 1, orphans);
-      auto encoded = dds::encode(orphans);
-      wsn_msg_HandoffBatch sample{};
-      sample.run_id = run_id_;
-      sample.from_supernode = static_cast<std::uint32_t>(dead);
-      sample.tick = t + 1;
-      sample.handoffs = dds::sequenceView<dds_sequence_wsn_msg_TrackHandoff>(encoded.items);
-      writer_.write(sample);
+    for (const auto& supernode : live) last_tracks_[supernode.supernode] = supernode.tracks;
+    for (auto it = pending_.begin(); it != pending_.end();) {
+      if (it->second - 1 != t) {
+        ++it;
+        continue;
+      }
+      publishOrphans(it->first, it->second);
+      it = pending_.erase(it);
     }
+    if (t >= ticks_) return;
+    for (const std::int32_t dead : plan_.dyingAt(t + 1)) publishOrphans(static_cast<std::uint32_t>(dead), t + 1);
+  }
+
+  /// A node tile lost by hand, announced while tick `current` was awaited: recorded, no more.
+  void loseTile(std::int32_t tile, std::int32_t current) {
+    common::FaultSpec fault;
+    fault.tick = current;
+    fault.role = common::FaultRole::kNode;
+    fault.index = tile;
+    report_.addUnscheduled(fault);
+  }
+
+  /// A supernode lost by hand, its tracks missing from tick `from` on, seen while tick `current`
+  /// was awaited: its tracks of from - 1 go to the adopters at once when that tick is done, else
+  /// once it is.
+  void lose(std::uint32_t supernode, std::int32_t from, std::int32_t current) {
+    common::FaultSpec fault;
+    fault.tick = from;
+    fault.role = common::FaultRole::kSupernode;
+    fault.index = static_cast<std::int32_t>(supernode);
+    report_.addUnscheduled(fault);
+    if (from > ticks_) return;
+    if (from == current)
+      publishOrphans(supernode, from);
+    else
+      pending_[supernode] = from;
   }
 
   /// The "faults" block of metrics.json; null for a run without faults.
   Json json() const { return plan_.empty() ? Json(nullptr) : report_.json(); }
 
  private:
+  /// The tracks `dead` reported at tick - 1, addressed to the supernodes live at `tick`.
+  void publishOrphans(std::uint32_t dead, std::int32_t tick) {
+    context_.live = plan_.liveSupernodes(tick);
+    const auto orphans = supernode::orphanHandoffs(last_tracks_[dead], tick - 1, context_);
+    report_.addOrphans(dead, tick, orphans);
+    auto encoded = dds::encode(orphans);
+    wsn_msg_HandoffBatch sample{};
+    sample.run_id = run_id_;
+    sample.from_supernode = dead;
+    sample.tick = tick;
+    sample.handoffs = dds::sequenceView<dds_sequence_wsn_msg_TrackHandoff>(encoded.items);
+    writer_.write(sample);
+  }
+
   const common::FaultPlan& plan_;
   FaultReport report_;
   supernode::OrphanContext context_;
@@ -203,6 +236,8 @@ class FaultsAtAggregator {
   std::uint64_t run_id_;
   dds::Writer<wsn_msg_HandoffBatch> writer_;
   std::map<std::uint32_t, std::uint64_t> handoffs_lost_;
+  std::map<std::uint32_t, std::vector<common::TrackEstimate>> last_tracks_;  ///< each supernode's latest
+  std::map<std::uint32_t, std::int32_t> pending_;  ///< lost by hand -> the tick its orphans go out for
 };
 
 }  // namespace
@@ -217,7 +252,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
     // Read now, not after the run: a malformed run.json must not cost the run's metrics.json.
     const std::string provenance = common::readRunProvenance(context.run_dir + "/run.json");
     RunScorer scorer(kLiveStream, scenario.metrics, scenario.supernodes);
-    const auto plan = context.faultPlan();
+    auto plan = context.faultPlan();
 
     Reader<wsn_msg_TrackBatch> track_reader(participant, topics.track_batch, Qos::reliableKeepAll());
     Writer<wsn_msg_GlobalTrackBatch> global_writer(participant, topics.global_track_batch, Qos::reliableKeepAll());
@@ -239,6 +274,19 @@ void runAggregatorRole(const dds::RoleContext& context) {
                    decodeSettled(batch.settled, batch.settled_first, batch.settled_last, scenario.tracker.window_size)});
       });
     });
+    // A supernode killed by hand: its tracks stop at the first tick that did not come, and its last
+    // ones go to the adopters.
+    std::int32_t current = 1;
+    LostProcesses lost(participant, topics, context, loop, [&](common::FaultRole role, std::int32_t index) {
+      if (role == common::FaultRole::kNode) {
+        faults.loseTile(index, current);  // its reports stop at the network model, not here
+        return;
+      }
+      const auto j = static_cast<std::uint32_t>(index);
+      const std::int32_t from = inbox.firstMissing(j, current);
+      plan.loseUnscheduled(role, index, from);
+      faults.lose(j, from, current);
+    });
     // Every role reads the global batches: the tiles for back-pressure, all for the end of run.
     const int global_readers = context.shape.processes() - 1;
     waitForDiscovery(participant, {{&global_writer, global_readers}, {&faults.writer(), context.shape.supernodes}},
@@ -255,9 +303,8 @@ void runAggregatorRole(const dds::RoleContext& context) {
     std::optional<Clock::time_point> first_tick_at;
     const std::int32_t ticks = scenario.run.ticks;
     for (std::int32_t t = 1; t <= ticks; ++t) {
-      const auto live = plan.liveSupernodes(t);
-      const auto expected = static_cast<std::size_t>(std::count(live.begin(), live.end(), true));
-      loop.waitUntil([&] { return inbox.count(t) >= expected; },
+      current = t;
+      loop.waitUntil([&] { return inbox.count(t) >= plan.liveSupernodeIndices(t).size(); },
                      [&] {
                        return "tracks of tick " + std::to_string(t) + " from " +
                               inbox.missing(t, plan.liveSupernodeIndices(t), "supernode");

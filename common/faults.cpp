@@ -42,12 +42,35 @@ std::string FaultSpec::describe() const {
 FaultPlan::FaultPlan(std::vector<FaultSpec> faults, std::int32_t tiles, std::int32_t supernodes)
     : faults_(std::move(faults)), tiles_(tiles), supernodes_(supernodes) {}
 
-bool FaultPlan::live(FaultRole role, std::int32_t index, std::int32_t tick) const {
-  for (const auto& f : faults_) {
+namespace {
+
+bool liveUnder(const std::vector<FaultSpec>& faults, FaultRole role, std::int32_t index, std::int32_t tick) {
+  for (const auto& f : faults) {
     if ((f.action != FaultAction::kKill && f.action != FaultAction::kPause) || f.role != role || f.index != index) continue;
     if (tick >= f.tick && tick <= f.lastTick()) return false;
   }
   return true;
+}
+
+}  // namespace
+
+bool FaultPlan::scheduledLive(FaultRole role, std::int32_t index, std::int32_t tick) const {
+  return liveUnder(faults_, role, index, tick);
+}
+
+bool FaultPlan::live(FaultRole role, std::int32_t index, std::int32_t tick) const {
+  return liveUnder(faults_, role, index, tick) && liveUnder(lost_, role, index, tick);
+}
+
+void FaultPlan::loseUnscheduled(FaultRole role, std::int32_t index, std::int32_t from_tick) {
+  for (const auto& f : lost_)
+    if (f.role == role && f.index == index) return;  // lost once, from the first tick seen
+  FaultSpec f;
+  f.tick = std::max(from_tick, 1);
+  f.action = FaultAction::kKill;
+  f.role = role;
+  f.index = index;
+  lost_.push_back(f);
 }
 
 bool FaultPlan::tileLive(std::int32_t tile, std::int32_t tick) const { return live(FaultRole::kNode, tile, tick); }
@@ -67,7 +90,8 @@ bool FaultPlan::supernodeReturns(std::int32_t supernode, std::int32_t tick) cons
 }
 
 bool FaultPlan::supernodeDies(std::int32_t supernode, std::int32_t tick) const {
-  return tick > 1 && !supernodeLive(supernode, tick) && supernodeLive(supernode, tick - 1);
+  return tick > 1 && !scheduledLive(FaultRole::kSupernode, supernode, tick) &&
+         scheduledLive(FaultRole::kSupernode, supernode, tick - 1) && supernodeLive(supernode, tick - 1);
 }
 
 std::vector<std::int32_t> FaultPlan::dyingAt(std::int32_t tick) const {

@@ -52,8 +52,16 @@ class FaultPlan {
   FaultPlan() = default;
   FaultPlan(std::vector<FaultSpec> faults, std::int32_t tiles, std::int32_t supernodes);
 
-  bool empty() const { return faults_.empty(); }
+  /// True without scheduled faults and without processes lost by hand.
+  bool empty() const { return faults_.empty() && lost_.empty(); }
   const std::vector<FaultSpec>& faults() const { return faults_; }
+
+  /// A tile or supernode lost outside the scenario (killed by hand): dead from `from_tick` on, as
+  /// the role holding this plan saw it go. Its death is not scheduled, so supernodeDies and
+  /// dyingAt leave it out (nobody waits for its orphans); every liveness query counts it.
+  void loseUnscheduled(FaultRole role, std::int32_t index, std::int32_t from_tick);
+  /// The processes lost by hand, as kills at the tick each was lost from.
+  const std::vector<FaultSpec>& lostUnscheduled() const { return lost_; }
 
   bool tileLive(std::int32_t tile, std::int32_t tick) const;
   bool supernodeLive(std::int32_t supernode, std::int32_t tick) const;
@@ -88,7 +96,9 @@ class FaultPlan {
 
  private:
   bool live(FaultRole role, std::int32_t index, std::int32_t tick) const;
+  bool scheduledLive(FaultRole role, std::int32_t index, std::int32_t tick) const;
   std::vector<FaultSpec> faults_;
+  std::vector<FaultSpec> lost_;
   std::int32_t tiles_ = 0;
   std::int32_t supernodes_ = 0;
 };

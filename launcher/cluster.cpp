@@ -14,6 +14,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <set>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -22,6 +23,7 @@
 
 #include "aggregator/role.hpp"
 #include "common/dds/cyclone_config.hpp"
+#include "common/faults.hpp"
 #include "common/dds/entity.hpp"
 #include "common/dds/role_runtime.hpp"
 #include "launcher/fault_signals.hpp"
@@ -133,6 +135,7 @@ class StatusObserver {
         participant_(domain_.id()),
         topics_(participant_),
         reader_(participant_, topics_.process_status, dds::Qos::lastValueTransientLocal(dds::Endpoint::kViewer)),
+        writer_(participant_, topics_.process_status, dds::Qos::lastValueTransientLocal(dds::Endpoint::kViewer)),
         condition_(reader_),
         waitset_(participant_),
         run_id_(options.identity.run_id) {
@@ -160,11 +163,25 @@ class StatusObserver {
     });
   }
 
+  /// Tells the roles that `role` `index` is gone outside the scenario's faults (FAULTED at tick 0,
+  /// under the lost role's key): they go on without it (dds::LostProcesses).
+  void announceLost(const std::string& role, std::uint32_t index, const std::string& why) {
+    wsn_msg_ProcessStatus sample{};
+    sample.run_id = run_id_;
+    sample.role = const_cast<char*>(role.c_str());
+    sample.index = index;
+    sample.state = wsn_msg_FAULTED;
+    sample.tick = 0;
+    sample.message = const_cast<char*>(why.c_str());
+    writer_.write(sample);
+  }
+
  private:
   dds::Domain domain_;
   dds::Participant participant_;
   dds::RunTopics topics_;
   dds::Reader<wsn_msg_ProcessStatus> reader_;
+  dds::Writer<wsn_msg_ProcessStatus> writer_;
   dds::ReadCondition condition_;
   dds::WaitSet waitset_;
   std::uint64_t run_id_;
@@ -235,6 +252,25 @@ ClusterResult runProcesses(const ClusterOptions& options) {
     fault_signals.continueAll();
     for (const auto& [pid, slot] : running) ::kill(pid, signal_number);
   };
+  // A node tile or supernode killed by hand (SIGKILL) is survivable while a supernode stays live;
+  // the network model and the aggregator are the run's own machinery.
+  std::vector<std::size_t> lost_now;
+  std::set<std::uint32_t> supernodes_lost;
+  const common::FaultPlan plan(options.scenario.faults, options.scenario.run.node_processes,
+                               static_cast<std::int32_t>(options.scenario.supernodes.size()));
+  auto survivable = [&](const RoleSlot& slot) {
+    if (slot.role == "node") return true;
+    if (slot.role != "supernode") return false;
+    std::size_t left = 0;
+    for (std::int32_t j = 0; j < static_cast<std::int32_t>(options.scenario.supernodes.size()); ++j)
+      left += j != static_cast<std::int32_t>(slot.index) && supernodes_lost.count(static_cast<std::uint32_t>(j)) == 0 &&
+                      plan.supernodeLive(j, options.scenario.run.ticks)
+                  ? 1
+                  : 0;
+    if (left == 0) return false;
+    supernodes_lost.insert(slot.index);
+    return true;
+  };
   auto reap = [&](bool block) {
     int status = 0;
     struct rusage usage {};
@@ -242,7 +278,8 @@ ClusterResult runProcesses(const ClusterOptions& options) {
     while ((pid = ::wait4(-1, &status, block ? 0 : WNOHANG, &usage)) > 0) {
       const auto it = running.find(pid);
       if (it == running.end()) continue;
-      auto& outcome = result.outcomes[it->second];
+      const std::size_t slot_index = it->second;
+      auto& outcome = result.outcomes[slot_index];
       outcome.peak_rss_kb = usage.ru_maxrss;  // Linux reports kilobytes
       outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
       outcome.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
@@ -251,6 +288,12 @@ ClusterResult runProcesses(const ClusterOptions& options) {
       if (fault && outcome.signal == SIGKILL) {
         outcome.exit_code = 0;  // the death the scenario asked for
         outcome.message = "killed by SIGKILL as the scenario's faults asked (" + *fault + ")";
+      } else if (outcome.signal == SIGKILL && g_interrupt_signal.load() == 0 && result.failure.empty() &&
+                 survivable(slots[slot_index])) {
+        // A deployment loses nodes and supernodes: the run goes on without this one.
+        outcome.exit_code = 0;
+        outcome.message = "killed by SIGKILL outside the scenario's faults; the cluster went on without it";
+        lost_now.push_back(slot_index);
       }
       // After an interrupt the roles stop because they were told to (a terminal's Ctrl-C reaches
       // every process of the group): their exit codes say nothing about a fault.
@@ -271,7 +314,8 @@ ClusterResult runProcesses(const ClusterOptions& options) {
     std::vector<std::string> failures;
     std::vector<StatusObserver::Faulted> faulted;
     while (!running.empty() && result.failure.empty()) {
-      observer.poll(std::chrono::milliseconds(200), tick, failures, faulted);
+      // 50 ms: a process lost by hand is announced within that (plus its tick in flight).
+      observer.poll(std::chrono::milliseconds(50), tick, failures, faulted);
       for (const auto& f : faulted)
         for (const auto& [pid, slot] : running)
           if (slots[slot].role == f.role && slots[slot].index == f.index) fault_signals.announced(pid, f.role, f.index, f.tick);
@@ -280,6 +324,9 @@ ClusterResult runProcesses(const ClusterOptions& options) {
       for (const auto& [pid, slot] : running) stopped.sample(pid, slots[slot].name(), fault_signals.pausing(pid));
       progress.update(tick);
       reap(false);
+      for (const std::size_t lost : lost_now)
+        observer.announceLost(slots[lost].role, slots[lost].index, result.outcomes[lost].message);
+      lost_now.clear();
       if (!failures.empty() && result.failure.empty()) result.failure = failures.front();
       if (g_interrupt_signal.load() != 0) markInterrupted(result);
       if (Clock::now() - options.started > options.timeout)

@@ -15,7 +15,7 @@ void runNetworkRole(const dds::RoleContext& context) {
   using namespace wsn::dds;
   runRole(context, [&](const Participant& participant, const RunTopics& topics, StatusPublisher& status) {
     const auto& scenario = context.scenario;
-    const auto plan = context.faultPlan();
+    auto plan = context.faultPlan();
     const common::SensorLayout layout(sensorFieldConfig(scenario));
     LiveTopologies topologies(topologyConfig(scenario), layout.truePositions());
     Router router(routerConfig(scenario), topologies.full());
@@ -34,6 +34,17 @@ void runNetworkRole(const dds::RoleContext& context) {
         inbox.put(batch.tick, batch.tile, decode(batch.reports, batch.tick));
       });
     });
+    // A process killed by hand: a tile is silent from the first tick whose reports did not come,
+    // a supernode's group is re-homed from the tick being routed (its pending deliveries lost).
+    std::int32_t t = 1;
+    LostProcesses lost(participant, topics, context, loop, [&](common::FaultRole role, std::int32_t index) {
+      if (role == common::FaultRole::kNode) {
+        plan.loseUnscheduled(role, index, inbox.firstMissing(static_cast<std::uint32_t>(index), t));
+      } else {
+        plan.loseUnscheduled(role, index, t);
+        router.loseSupernode(static_cast<std::uint32_t>(index), t);
+      }
+    });
     waitForDiscovery(participant, {{&delivery_writer, context.shape.supernodes}},
                      {{&report_reader, context.shape.tiles}, {&progress.reader(), 1}}, context);
     status.ready();
@@ -41,21 +52,23 @@ void runNetworkRole(const dds::RoleContext& context) {
     common::CsvFile observations(context.run_dir + "/observations.csv", kObservationsHeader);
     NetworkReport faults_seen;
     const std::int32_t ticks = scenario.run.ticks;
-    for (std::int32_t t = 1; t <= ticks; ++t) {
-      // A dead or paused tile sends nothing: wait for the live ones only.
-      const auto live_tiles = static_cast<std::size_t>(plan.liveTileCount(t));
-      faults_seen.silent_tile_ticks += static_cast<std::uint64_t>(context.shape.tiles) - live_tiles;
-      loop.waitUntil([&] { return inbox.count(t) >= live_tiles; },
+    for (; t <= ticks; ++t) {
+      // A dead or paused tile sends nothing: wait for the live ones only (a loss announced
+      // meanwhile changes whom).
+      loop.waitUntil([&] { return inbox.count(t) >= static_cast<std::size_t>(plan.liveTileCount(t)); },
                      [&] { return "reports of tick " + std::to_string(t) + " from " + inbox.missing(t, plan.liveTiles(t), "node"); });
+      faults_seen.silent_tile_ticks += static_cast<std::uint64_t>(context.shape.tiles - plan.liveTileCount(t));
       std::vector<common::Report> reports;
-      for (auto& [tile, batch] : inbox.take(t)) reports.insert(reports.end(), batch.begin(), batch.end());
+      for (auto& [tile, batch] : inbox.take(t))
+        if (plan.tileLive(static_cast<std::int32_t>(tile), t)) reports.insert(reports.end(), batch.begin(), batch.end());
 
       // Oh §V over the survivors: the groups and hop counts of the supernodes live at t.
       const auto live = plan.liveSupernodes(t);
       const Topology& before = router.topology();
       const Topology& now = topologies.at(live);
-      for (const std::int32_t dead : plan.dyingAt(t))
-        faults_seen.rehomes.push_back(rehomeOf(before, now, static_cast<std::uint32_t>(dead), t));
+      for (std::uint32_t j = 0; j < live.size(); ++j)
+        if (!live[j] && before.groupSize(j) > 0)  // it owned a group until now: a death at t
+          faults_seen.rehomes.push_back(rehomeOf(before, now, j, t));
       router.useTopology(now);
       for (const auto& fate : router.submit(t, reports)) observations.row(observationRow(fate));
       router.forgetFatesBefore(t + 1);

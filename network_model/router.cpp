@@ -58,6 +58,23 @@ void Router::prepareLinks(double pte) {
   links_pte_ = pte;
 }
 
+void Router::loseSupernode(std::uint32_t supernode, std::int32_t from_tick) {
+  config_.faults.loseUnscheduled(common::FaultRole::kSupernode, static_cast<std::int32_t>(supernode), from_tick);
+  auto& group = per_supernode_.at(supernode);
+  auto& store = pending_.at(supernode);
+  for (auto it = store.lower_bound(from_tick); it != store.end();) {
+    const auto n = static_cast<std::uint64_t>(it->second.size());
+    group.delivered -= n;
+    group.lost_dead_supernode += n;
+    pending_count_ -= it->second.size();
+    it = store.erase(it);
+  }
+  const std::uint64_t rejected = total_.rejected;
+  total_ = NetworkCounts{};
+  for (const NetworkCounts& g : per_supernode_) total_ += g;
+  total_.rejected = rejected;
+}
+
 void Router::useTopology(const Topology& topology) {
   if (topology.sensorCount() != topology_->sensorCount() || topology.supernodeCount() != topology_->supernodeCount())
     throw std::logic_error("network router: a topology of other sensors or supernodes");

@@ -69,6 +69,11 @@ class Router {
   /// The configuration it routes with (network.json records pte and pde from it).
   const RouterConfig& config() const { return config_; }
 
+  /// A supernode lost outside the scenario (killed by hand), seen at `from_tick`: what is pending
+  /// for it is lost with it (moved from delivered to lost_dead_supernode), and nothing due from
+  /// then on is routed to it. Rows of observations.csv written before keep the fate they had.
+  void loseSupernode(std::uint32_t supernode, std::int32_t from_tick);
+
   /// Routes the next ticks over `topology` (a fault changed the live supernodes): the same
   /// sensors and supernode indices, other groups and hop counts. It must outlive the router.
   void useTopology(const Topology& topology);

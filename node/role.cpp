@@ -25,7 +25,7 @@ void runNodeRole(const dds::RoleContext& context) {
     RoleLoop loop(participant, context);
     PipelineProgress progress(participant, topics, context, loop);
 
-    const auto plan = context.faultPlan();
+    auto plan = context.faultPlan();
     TickInbox<std::vector<common::SensorReading>> boundary_inbox;
     loop.watch(boundary_reader, [&] {
       boundary_reader.take([&](const wsn_msg_SensorBoundary& batch) {
@@ -37,6 +37,12 @@ void runNodeRole(const dds::RoleContext& context) {
       });
     });
 
+    // Another tile killed by hand: its boundary readings stop at the first tick that did not come.
+    std::int32_t t = 1;
+    LostProcesses lost(participant, topics, context, loop, [&](common::FaultRole role, std::int32_t index) {
+      if (role == common::FaultRole::kNode)
+        plan.loseUnscheduled(role, index, boundary_inbox.firstMissing(static_cast<std::uint32_t>(index), t));
+    });
     const int tiles_count = context.shape.tiles;
     waitForDiscovery(participant, {{&boundary_writer, tiles_count}, {&report_writer, 1}},
                      {{&boundary_reader, tiles_count}, {&progress.reader(), 1}}, context);
@@ -47,7 +53,7 @@ void runNodeRole(const dds::RoleContext& context) {
     const std::int32_t ticks = scenario.run.ticks;
     const std::int32_t in_flight = scenario.run.max_ticks_in_flight;
     const auto self = static_cast<std::int32_t>(context.index);
-    for (std::int32_t t = 1; t <= ticks; ++t) {
+    for (; t <= ticks; ++t) {
       if (const auto fault = plan.processFaultAt(common::FaultRole::kNode, self, t)) {
         enactProcessFault(*fault, context, status, progress, loop);
         t = fault->lastTick();  // a pause: its sensors stayed silent through these ticks
@@ -67,8 +73,7 @@ void runNodeRole(const dds::RoleContext& context) {
         boundary_writer.write(boundary_sample);
 
         // Only the tiles live at t send: a dead or paused tile's sensors are silent.
-        const auto others = static_cast<std::size_t>(plan.liveTileCount(t) - 1);
-        loop.waitUntil([&] { return boundary_inbox.count(t) >= others; },
+        loop.waitUntil([&] { return boundary_inbox.count(t) >= static_cast<std::size_t>(plan.liveTileCount(t) - 1); },
                        [&] {
                          auto others_live = plan.liveTiles(t);
                          std::erase(others_live, context.index);
@@ -76,7 +81,7 @@ void runNodeRole(const dds::RoleContext& context) {
                                 boundary_inbox.missing(t, others_live, "node");
                        });
         for (auto& [tile, readings] : boundary_inbox.take(t))
-          foreign.insert(foreign.end(), readings.begin(), readings.end());
+          if (plan.tileLive(static_cast<std::int32_t>(tile), t)) foreign.insert(foreign.end(), readings.begin(), readings.end());
       }
       const std::vector<common::Report> tick_reports = sensors->report(t, foreign);
 

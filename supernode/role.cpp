@@ -37,6 +37,35 @@ std::vector<common::TrackHandoff> incomingAt(std::int32_t t, std::uint32_t self,
   return incoming;
 }
 
+/// The last tracks of supernodes lost by hand, which the aggregator sends once it saw them go: taken
+/// at the next step after they arrive, but for those the lost supernode handed on itself at its
+/// last tick (every supernode receives every handoff batch, so each knows them).
+class LateOrphans {
+ public:
+  /// Keeps the ids each sender handed on in its latest batch.
+  void noteHandoffs(const std::map<std::uint32_t, std::vector<common::TrackHandoff>>& batches) {
+    for (const auto& [from, batch] : batches) {
+      auto& ids = last_handed_[from];
+      ids.clear();
+      for (const auto& handoff : batch) ids.insert(handoff.track);
+    }
+  }
+  void add(std::uint32_t dead, std::vector<common::TrackHandoff> orphans) { pending_.emplace_back(dead, std::move(orphans)); }
+  /// The orphans addressed to `self` that arrived since the last call.
+  std::vector<common::TrackHandoff> takeFor(std::uint32_t self) {
+    std::vector<common::TrackHandoff> out;
+    for (auto& [dead, batch] : pending_)
+      for (auto& orphan : batch)
+        if (orphan.to_supernode == self && last_handed_[dead].count(orphan.track) == 0) out.push_back(std::move(orphan));
+    pending_.clear();
+    return out;
+  }
+
+ private:
+  std::map<std::uint32_t, std::set<common::TrackId>> last_handed_;
+  std::vector<std::pair<std::uint32_t, std::vector<common::TrackHandoff>>> pending_;
+};
+
 }  // namespace
 
 void runSupernodeRole(const dds::RoleContext& context) {
@@ -45,8 +74,9 @@ void runSupernodeRole(const dds::RoleContext& context) {
     const auto& scenario = context.scenario;
     const std::uint32_t self = context.index;
     const auto supernodes = static_cast<std::uint32_t>(context.shape.supernodes);
-    const auto plan = context.faultPlan();
+    auto plan = context.faultPlan();
     auto tracker = std::make_unique<SupernodeTracker>(supernodeConfig(scenario, self));
+    LateOrphans late_orphans;
 
     Reader<wsn_msg_DeliveryBatch> delivery_reader(participant, topics.delivery_batch, Qos::reliableKeepAll());
     Reader<wsn_msg_HandoffBatch> handoff_reader(participant, topics.handoff_batch, Qos::reliableKeepAll());
@@ -75,11 +105,18 @@ void runSupernodeRole(const dds::RoleContext& context) {
     });
     loop.watch(rehome_reader, [&] {
       rehome_reader.take([&](const wsn_msg_HandoffBatch& batch) {
-        if (batch.run_id != context.run_id || batch.from_supernode >= supernodes ||
-            !plan.supernodeDies(static_cast<std::int32_t>(batch.from_supernode), batch.tick))
-          return;
-        orphans.put(batch.tick, batch.from_supernode, decode(batch.handoffs));
+        if (batch.run_id != context.run_id || batch.from_supernode >= supernodes) return;
+        if (plan.supernodeDies(static_cast<std::int32_t>(batch.from_supernode), batch.tick))
+          orphans.put(batch.tick, batch.from_supernode, decode(batch.handoffs));
+        else  // a supernode lost by hand
+          late_orphans.add(batch.from_supernode, decode(batch.handoffs));
       });
+    });
+    // Another supernode killed by hand: its handoffs stop at the first tick that did not come.
+    std::int32_t t = 1;
+    LostProcesses lost(participant, topics, context, loop, [&](common::FaultRole role, std::int32_t index) {
+      if (role == common::FaultRole::kSupernode)
+        plan.loseUnscheduled(role, index, handoffs.firstMissing(static_cast<std::uint32_t>(index), t - 1));
     });
     const int s = context.shape.supernodes;
     waitForDiscovery(participant, {{&handoff_writer, s}, {&track_writer, 1}},
@@ -89,7 +126,7 @@ void runSupernodeRole(const dds::RoleContext& context) {
 
     const std::int32_t ticks = scenario.run.ticks;
     std::uint64_t handoffs_lost_partition = 0;
-    for (std::int32_t t = 1; t <= ticks; ++t) {
+    for (; t <= ticks; ++t) {
       if (const auto fault = plan.processFaultAt(common::FaultRole::kSupernode, static_cast<std::int32_t>(self), t)) {
         enactProcessFault(*fault, context, status, progress, loop);
         // Back from a pause: the supernodes that adopted the group meanwhile hand its tracks back.
@@ -98,14 +135,17 @@ void runSupernodeRole(const dds::RoleContext& context) {
         if (t < ticks) tracker = std::make_unique<SupernodeTracker>(supernodeConfig(scenario, self), t + 1);
         continue;
       }
-      // The handoffs of t - 1 come from every supernode live then, the orphans from the aggregator.
-      std::size_t others = 0;
-      for (std::uint32_t j = 0; j < supernodes; ++j)
-        others += j != self && t > 1 && plan.supernodeLive(static_cast<std::int32_t>(j), t - 1) ? 1 : 0;
+      // The handoffs of t - 1 come from every supernode live then (a loss announced meanwhile changes
+      // which), the orphans of a scheduled death from the aggregator.
+      const auto others = [&] {
+        std::size_t n = 0;
+        for (const auto j : plan.liveSupernodeIndices(t - 1)) n += j != self ? 1 : 0;
+        return n;
+      };
       const std::size_t dying = plan.dyingAt(t).size();
       loop.waitUntil(
           [&] {
-            return deliveries.count(t) == 1 && (t == 1 || handoffs.count(t - 1) >= others) && orphans.count(t) >= dying;
+            return deliveries.count(t) == 1 && (t == 1 || handoffs.count(t - 1) >= others()) && orphans.count(t) >= dying;
           },
           [&] {
             std::vector<std::uint32_t> senders;
@@ -117,7 +157,11 @@ void runSupernodeRole(const dds::RoleContext& context) {
                    (dying > 0 ? " and the aggregator's re-homed tracks" : "");
           });
       auto delivered = std::move(deliveries.take(t)[0]);
-      const auto incoming = incomingAt(t, self, plan, handoffs.take(t - 1), orphans.take(t), handoffs_lost_partition);
+      auto handed = handoffs.take(t - 1);
+      late_orphans.noteHandoffs(handed);
+      auto incoming = incomingAt(t, self, plan, std::move(handed), orphans.take(t), handoffs_lost_partition);
+      for (auto& orphan : late_orphans.takeFor(self))
+        if (!tracker->tracks(orphan.track)) incoming.push_back(std::move(orphan));
 
       tracker->setLiveSupernodes(plan.liveSupernodes(std::min(t + 1, ticks)));
       auto output = tracker->step(t, delivered, incoming);

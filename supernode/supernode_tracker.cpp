@@ -88,6 +88,12 @@ SupernodeTracker::TickOutput SupernodeTracker::step(std::int32_t tick, std::span
   return out;
 }
 
+bool SupernodeTracker::tracks(common::TrackId track) const {
+  for (const auto& prediction : engine_->predictions())
+    if (prediction.track == track) return true;
+  return false;
+}
+
 void SupernodeTracker::keepSettledOf(common::TrackId track, std::int32_t tick) {
   // The neighbour continues the track from an anchor at `tick` (and settles that tick itself):
   // the ticks before it that are still in this window would be in neither window's revised

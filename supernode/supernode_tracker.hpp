@@ -79,6 +79,8 @@ class SupernodeTracker {
   Settled settleRemaining();
 
   std::uint32_t supernodeIndex() const { return index_; }
+  /// Whether the engine holds a live track of this id (tentative ones included).
+  bool tracks(common::TrackId track) const;
   const ObservationWindow& window() const { return window_; }
   const Engine& engine() const { return *engine_; }
   /// Incoming handoffs that named another supernode (dropped, counted).

@@ -200,7 +200,7 @@ void LiveRolesDone::wait() {
   while (!waiting.empty() && Clock::now() < deadline && !context.stop.stop_requested()) {
     waitset_.wait(until(deadline));
     reader_.take([&](const wsn_msg_ProcessStatus& s) {
-      if (s.run_id == context.run_id && s.state == wsn_msg_DONE) waiting.erase({s.role, s.index});
+      if (s.run_id == context.run_id && (s.state == wsn_msg_DONE || announcesLoss(s))) waiting.erase({s.role, s.index});
     });
   }
 }
@@ -248,6 +248,19 @@ void enactProcessFault(const common::FaultSpec& fault, const RoleContext& contex
   }
   if (!context.signalled_faults) throw ScheduledDeath(fault.describe());
   loop.waitUntil([] { return false; }, [&] { return "the launcher's SIGKILL (" + fault.describe() + ")"; });
+}
+
+LostProcesses::LostProcesses(const Participant& participant, const RunTopics& topics, const RoleContext& context,
+                             RoleLoop& loop, OnLost on_lost)
+    : loop_(loop), reader_(participant, topics.process_status, Qos::lastValueTransientLocal()) {
+  loop_.watch(reader_, [this, &context, on_lost = std::move(on_lost)] {
+    reader_.take([&](const wsn_msg_ProcessStatus& s) {
+      if (s.run_id != context.run_id || !announcesLoss(s)) return;
+      const std::string role = s.role;
+      if ((role != "node" && role != "supernode") || !seen_.emplace(role, s.index).second) return;
+      on_lost(role == "node" ? common::FaultRole::kNode : common::FaultRole::kSupernode, static_cast<std::int32_t>(s.index));
+    });
+  });
 }
 
 void runWithStatus(StatusPublisher& status, const std::function<void()>& body) {

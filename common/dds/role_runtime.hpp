@@ -181,6 +181,12 @@ class TickInbox {
     return node.empty() ? std::map<std::uint32_t, BatchT>{} : std::move(node.mapped());
   }
   std::uint64_t rejected() const { return rejected_; }
+  /// The first tick from `from` on whose batch of `producer` has not arrived.
+  std::int32_t firstMissing(std::uint32_t producer, std::int32_t from) const {
+    std::int32_t t = std::max(from, consumed_through_ + 1);
+    while (has(t, producer)) ++t;
+    return t;
+  }
   /// "node 0, node 3": the producers among `expected` whose batch of `tick` has not arrived, each
   /// named `role` and its index, for the message of a wait that stalled.
   std::string missing(std::int32_t tick, const std::vector<std::uint32_t>& expected, const std::string& role) const {
@@ -321,6 +327,28 @@ class LiveRolesDone {
   WaitSet waitset_;
   StopCondition stop_;
 };
+
+/// Processes of the cluster lost outside the scenario's faults (a node tile or supernode killed by
+/// hand): the launcher announces each on the status topic (FAULTED at tick 0, for the lost role's
+/// key), and `on_lost` is called once per process from the role's loop, to decide from which tick
+/// the role goes on without it (the first tick whose input from it the role does not hold).
+class LostProcesses {
+ public:
+  using OnLost = std::function<void(common::FaultRole role, std::int32_t index)>;
+  LostProcesses(const Participant& participant, const RunTopics& topics, const RoleContext& context, RoleLoop& loop,
+                OnLost on_lost);
+  LostProcesses(const LostProcesses&) = delete;
+  LostProcesses& operator=(const LostProcesses&) = delete;
+  ~LostProcesses() { loop_.unwatch(reader_); }
+
+ private:
+  RoleLoop& loop_;
+  Reader<wsn_msg_ProcessStatus> reader_;
+  std::set<std::pair<std::string, std::uint32_t>> seen_;
+};
+
+/// True for the status sample by which the launcher announces a process lost outside the scenario.
+inline bool announcesLoss(const wsn_msg_ProcessStatus& s) { return s.state == wsn_msg_FAULTED && s.tick == 0; }
 
 /// Runs `body`, publishing READY-to-FAILED status around it: any exception is reported on the
 /// status topic (so the launcher and peers learn why) and rethrown.

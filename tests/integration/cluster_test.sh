@@ -333,19 +333,48 @@ PY
     [ $((SECONDS - started)) -le 45 ] || fail "the stalled run took $((SECONDS - started)) s to fail"
     no_leftovers ;;
   killed_process)
-    # A node process killed mid-run: the launcher reports the failure and stops every other process.
-    timeout 120 "$wsntrack" run "$scenario" --quiet --out "$PWD/k" --ticks 100000 >k.stdout 2>k.stderr & launcher=$!
-    victim=""
-    for _ in $(seq 1 100); do
-      victim=$(pgrep -f "wsntrack-node.*--run-dir $PWD/k" | head -1)
-      [ -n "$victim" ] && break
-      sleep 0.1
-    done
-    [ -n "$victim" ] || fail "no node process found"
-    sleep 3; kill -9 "$victim"  # well into the run: discovery takes well under a second
-    wait $launcher; rc=$?
-    [ "$rc" -ne 0 ] || fail "launcher exited 0 after a node was killed"
-    grep -q "node" k.stderr || { cat k.stderr >&2; fail "failure message does not name the node"; }
+    # kill -9 by hand, outside the scenario's faults, of a node tile and then of a supernode: the
+    # cluster goes on without them (exit 0, run.json complete), the supernode's group is re-homed
+    # within max_ticks_in_flight ticks of its last tracks, and metrics.json records both losses.
+    # kill -9 of the network model, the run's own machinery, fails the run and names it.
+    timeout 120 "$wsntrack" run "$scenario" --quiet --no-plot --out "$PWD/k" --ticks 200 --tick-interval 0.03 \
+      >k.stdout 2>k.stderr & launcher=$!
+    victim() {  # victim DIR ROLE [INDEX]: the pid of that role process of the run in DIR
+      local pid=""
+      for _ in $(seq 1 100); do
+        pid=$(pgrep -f "wsntrack-$2.*--run-dir $1 ${3:+.*--index $3\b}" | head -1)
+        [ -n "$pid" ] && break
+        sleep 0.1
+      done
+      echo "$pid"
+    }
+    node=$(victim "$PWD/k" node 1); supernode=$(victim "$PWD/k" supernode 2)
+    [ -n "$node" ] && [ -n "$supernode" ] || fail "no node 1 or supernode 2 process found"
+    sleep 2; kill -9 "$node"; sleep 1; kill -9 "$supernode"  # about ticks 40 and 75 of 200
+    wait "$launcher"; rc=$?
+    [ "$rc" -eq 0 ] || { cat k.stderr >&2; fail "the launcher exited $rc after a node and a supernode were killed by hand"; }
+    grep -q '"status": "complete"' k/run.json || { cat k/run.json >&2; fail "the run is not marked complete"; }
+    python3 - "$PWD/k" <<'PY' || fail "metrics.json and network.json do not record the losses"
+import json, sys
+run = sys.argv[1]
+faults = json.load(open(f"{run}/metrics.json"))["faults"]
+lost = {(f["role"], f["index"]): f for f in faults if f.get("unscheduled")}
+assert set(lost) == {("node", 1), ("supernode", 2)}, faults
+supernode = lost[("supernode", 2)]
+rehomes = [r for r in json.load(open(f"{run}/network.json"))["rehomes"] if r["supernode"] == 2]
+assert len(rehomes) == 1, rehomes
+# The network model re-routes the group from the first tick it had not routed when it heard: at
+# most max_ticks_in_flight (4) ticks after the supernode's last tracks.
+assert 0 <= rehomes[0]["tick"] - supernode["tick"] <= 4, (rehomes, supernode)
+PY
+    timeout 60 "$wsntrack" run "$scenario" --quiet --no-plot --out "$PWD/n" --tick-interval 0.04 >n.stdout 2>n.stderr & launcher=$!
+    network=$(victim "$PWD/n" network)
+    [ -n "$network" ] || fail "no network process found"
+    sleep 2; kill -9 "$network"
+    wait "$launcher"; rc=$?
+    [ "$rc" -eq 1 ] || { cat n.stderr >&2; fail "the launcher exited $rc after the network model was killed"; }
+    grep -q "^wsntrack run: FAILED: network 0 killed by SIGKILL" n.stderr || { cat n.stderr >&2; fail "failure text"; }
+    grep -q '"status": "failed"' n/run.json || fail "the run without its network model is not marked failed"
     no_leftovers ;;
   interrupted)
     # Ctrl-C in a terminal: SIGINT reaches the launcher and every role of its process group. The run
