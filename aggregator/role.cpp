@@ -188,22 +188,14 @@ class FaultsAtAggregator {
 
   /// A node tile lost by hand, announced while tick `current` was awaited: recorded, no more.
   void loseTile(std::int32_t tile, std::int32_t current) {
-    common::FaultSpec fault;
-    fault.tick = current;
-    fault.role = common::FaultRole::kNode;
-    fault.index = tile;
-    report_.addUnscheduled(fault);
+    report_.addUnscheduled(common::FaultSpec::kill(common::FaultRole::kNode, tile, current));
   }
 
   /// A supernode lost by hand, its tracks missing from tick `from` on, seen while tick `current`
   /// was awaited: its tracks of from - 1 go to the adopters at once when that tick is done, else
   /// once it is.
   void lose(std::uint32_t supernode, std::int32_t from, std::int32_t current) {
-    common::FaultSpec fault;
-    fault.tick = from;
-    fault.role = common::FaultRole::kSupernode;
-    fault.index = static_cast<std::int32_t>(supernode);
-    report_.addUnscheduled(fault);
+    report_.addUnscheduled(common::FaultSpec::kill(common::FaultRole::kSupernode, static_cast<std::int32_t>(supernode), from));
     if (from > ticks_) return;
     if (from == current)
       publishOrphans(supernode, from);

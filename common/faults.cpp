@@ -7,6 +7,40 @@
 
 namespace wsn::common {
 
+FaultSpec FaultSpec::kill(FaultRole role, std::int32_t index, std::int32_t tick) {
+  FaultSpec f;
+  f.tick = tick;
+  f.action = FaultAction::kKill;
+  f.role = role;
+  f.index = index;
+  return f;
+}
+
+FaultSpec FaultSpec::pause(FaultRole role, std::int32_t index, std::int32_t tick, std::int32_t ticks) {
+  FaultSpec f = kill(role, index, tick);
+  f.action = FaultAction::kPause;
+  f.ticks = ticks;
+  return f;
+}
+
+FaultSpec FaultSpec::partition(std::int32_t a, std::int32_t b, std::int32_t tick, std::int32_t ticks) {
+  FaultSpec f;
+  f.tick = tick;
+  f.action = FaultAction::kPartition;
+  f.between = {a, b};
+  f.ticks = ticks;
+  return f;
+}
+
+FaultSpec FaultSpec::burstLoss(double pte, std::int32_t tick, std::int32_t ticks) {
+  FaultSpec f;
+  f.tick = tick;
+  f.action = FaultAction::kBurstLoss;
+  f.pte = pte;
+  f.ticks = ticks;
+  return f;
+}
+
 std::int32_t FaultSpec::lastTick() const {
   if (action == FaultAction::kKill) return std::numeric_limits<std::int32_t>::max();
   return tick + std::max(ticks, 1) - 1;
@@ -65,12 +99,7 @@ bool FaultPlan::live(FaultRole role, std::int32_t index, std::int32_t tick) cons
 void FaultPlan::loseUnscheduled(FaultRole role, std::int32_t index, std::int32_t from_tick) {
   for (const auto& f : lost_)
     if (f.role == role && f.index == index) return;  // lost once, from the first tick seen
-  FaultSpec f;
-  f.tick = std::max(from_tick, 1);
-  f.action = FaultAction::kKill;
-  f.role = role;
-  f.index = index;
-  lost_.push_back(f);
+  lost_.push_back(FaultSpec::kill(role, index, std::max(from_tick, 1)));
 }
 
 bool FaultPlan::tileLive(std::int32_t tile, std::int32_t tick) const { return live(FaultRole::kNode, tile, tick); }

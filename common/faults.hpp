@@ -34,6 +34,11 @@ struct FaultSpec {
   std::vector<std::int32_t> between;       ///< partition: the two supernodes
   friend bool operator==(const FaultSpec&, const FaultSpec&) = default;
 
+  static FaultSpec kill(FaultRole role, std::int32_t index, std::int32_t tick);
+  static FaultSpec pause(FaultRole role, std::int32_t index, std::int32_t tick, std::int32_t ticks);
+  static FaultSpec partition(std::int32_t a, std::int32_t b, std::int32_t tick, std::int32_t ticks);
+  static FaultSpec burstLoss(double pte, std::int32_t tick, std::int32_t ticks);
+
   /// The last tick the fault holds (a kill holds to the end of any run).
   std::int32_t lastTick() const;
   /// "kill of supernode 2 at tick 40": how messages and metrics.json name it.

@@ -21,33 +21,8 @@ using common::FaultRole;
 using common::FaultSpec;
 using test::track;
 
-FaultSpec process(FaultAction action, FaultRole role, std::int32_t index, std::int32_t tick, std::int32_t ticks = 0) {
-  FaultSpec f;
-  f.tick = tick;
-  f.action = action;
-  f.role = role;
-  f.index = index;
-  f.ticks = ticks;
-  return f;
-}
 
-FaultSpec partition(std::int32_t a, std::int32_t b, std::int32_t tick, std::int32_t ticks) {
-  FaultSpec f;
-  f.tick = tick;
-  f.action = FaultAction::kPartition;
-  f.between = {a, b};
-  f.ticks = ticks;
-  return f;
-}
 
-FaultSpec burst(double pte, std::int32_t tick, std::int32_t ticks) {
-  FaultSpec f;
-  f.tick = tick;
-  f.action = FaultAction::kBurstLoss;
-  f.pte = pte;
-  f.ticks = ticks;
-  return f;
-}
 
 /// Windows (kill: ws = 3 ticks from its tick; the others their own length), in a 12-tick run:
 ///   0 kill of supernode 1 at 5:           before 2..4,  during 5..7,   after 8..10
@@ -59,10 +34,10 @@ FaultSpec burst(double pte, std::int32_t tick, std::int32_t ticks) {
 ///   6 kill of node 0 at 12:               before 9..11, during 12,     after none
 ///   7 partition 1-2 at 12 for 3:          during 12 (the handoffs of tick 13 on are past the run)
 FaultPlan plan() {
-  return FaultPlan({process(FaultAction::kKill, FaultRole::kSupernode, 1, 5),
-                    process(FaultAction::kPause, FaultRole::kSupernode, 2, 9, 2), partition(0, 2, 3, 2),
-                    burst(0.3, 11, 4), partition(0, 1, 1, 2), burst(0.6, 8, 2),
-                    process(FaultAction::kKill, FaultRole::kNode, 0, 12), partition(1, 2, 12, 3)},
+  return FaultPlan({FaultSpec::kill(FaultRole::kSupernode, 1, 5),
+                    FaultSpec::pause(FaultRole::kSupernode, 2, 9, 2), FaultSpec::partition(0, 2, 3, 2),
+                    FaultSpec::burstLoss(0.3, 11, 4), FaultSpec::partition(0, 1, 1, 2), FaultSpec::burstLoss(0.6, 8, 2),
+                    FaultSpec::kill(FaultRole::kNode, 0, 12), FaultSpec::partition(1, 2, 12, 3)},
                    2, 3);
 }
 
@@ -204,7 +179,7 @@ TEST_CASE("a dying supernode's tracks are counted as carried on or lost, with th
   CHECK(json[1].at("rehome_ticks").is_null());
 
   // A supernode that died with no tracks left nothing, and took no ticks.
-  FaultReport bare(FaultPlan({process(FaultAction::kKill, FaultRole::kSupernode, 0, 2)}, 1, 2), 3, 4);
+  FaultReport bare(FaultPlan({FaultSpec::kill(FaultRole::kSupernode, 0, 2)}, 1, 2), 3, 4);
   for (std::int32_t t = 1; t <= 4; ++t) bare.addTick(t, {1, 1, 0}, {tracksOf(1, {5})}, 0);
   const Json none = bare.json();
   CHECK(none[0].at("tracks_left") == 0);
@@ -213,7 +188,7 @@ TEST_CASE("a dying supernode's tracks are counted as carried on or lost, with th
   CHECK(none[0].at("rehome_ticks").is_null());
 
   // An adopter reporting an orphan at the death tick itself: 0 ticks.
-  FaultReport at_once(FaultPlan({process(FaultAction::kKill, FaultRole::kSupernode, 0, 2)}, 1, 2), 3, 4);
+  FaultReport at_once(FaultPlan({FaultSpec::kill(FaultRole::kSupernode, 0, 2)}, 1, 2), 3, 4);
   at_once.addOrphans(0, 2, {orphan(5), orphan(6)});
   at_once.addTick(1, {1, 1, 0}, {tracksOf(0, {5, 6})}, 0);
   at_once.addTick(2, {1, 1, 0}, {tracksOf(1, {5})}, 0);

@@ -12,45 +12,15 @@
 namespace wsn::common {
 namespace {
 
-FaultSpec kill(FaultRole role, std::int32_t index, std::int32_t tick) {
-  FaultSpec f;
-  f.tick = tick;
-  f.action = FaultAction::kKill;
-  f.role = role;
-  f.index = index;
-  return f;
-}
 
-FaultSpec pause(FaultRole role, std::int32_t index, std::int32_t tick, std::int32_t ticks) {
-  FaultSpec f = kill(role, index, tick);
-  f.action = FaultAction::kPause;
-  f.ticks = ticks;
-  return f;
-}
 
-FaultSpec partition(std::int32_t a, std::int32_t b, std::int32_t tick, std::int32_t ticks) {
-  FaultSpec f;
-  f.tick = tick;
-  f.action = FaultAction::kPartition;
-  f.between = {a, b};
-  f.ticks = ticks;
-  return f;
-}
 
-FaultSpec burst(double pte, std::int32_t tick, std::int32_t ticks) {
-  FaultSpec f;
-  f.tick = tick;
-  f.action = FaultAction::kBurstLoss;
-  f.pte = pte;
-  f.ticks = ticks;
-  return f;
-}
 
 /// 4 tiles, 3 supernodes: supernode 1 killed at 10, tile 2 paused on 5..7, supernode 2 paused
 /// on 20..23, supernodes 0 and 2 partitioned on 30..31.
 FaultPlan plan() {
-  return FaultPlan({kill(FaultRole::kSupernode, 1, 10), pause(FaultRole::kNode, 2, 5, 3),
-                    pause(FaultRole::kSupernode, 2, 20, 4), partition(0, 2, 30, 2)},
+  return FaultPlan({FaultSpec::kill(FaultRole::kSupernode, 1, 10), FaultSpec::pause(FaultRole::kNode, 2, 5, 3),
+                    FaultSpec::pause(FaultRole::kSupernode, 2, 20, 4), FaultSpec::partition(0, 2, 30, 2)},
                    4, 3);
 }
 
@@ -128,7 +98,7 @@ TEST_CASE("a supernode dies on its first dead tick and returns on its first live
   // The pause of tile 2 at 5 is no supernode dying.
   CHECK(p.dyingAt(5).empty());
   // Two at once, in index order whatever the order of the list.
-  const FaultPlan two({kill(FaultRole::kSupernode, 2, 7), pause(FaultRole::kSupernode, 0, 7, 2)}, 1, 3);
+  const FaultPlan two({FaultSpec::kill(FaultRole::kSupernode, 2, 7), FaultSpec::pause(FaultRole::kSupernode, 0, 7, 2)}, 1, 3);
   CHECK(two.dyingAt(7) == std::vector<std::int32_t>{0, 2});
   CHECK(two.supernodeReturns(0, 9));
 }
@@ -152,7 +122,7 @@ TEST_CASE("a partition cuts the handoffs between its two supernodes, both ways, 
 
 TEST_CASE("a burst replaces pte for its ticks, overlapping bursts taking the highest", "[faults]") {
   // 0.4 on 40..44, 0.9 on 42..43, 0.2 on 43..46 (the lowest last, so "the last one wins" fails).
-  const FaultPlan p({burst(0.4, 40, 5), burst(0.9, 42, 2), burst(0.2, 43, 4)}, 1, 1);
+  const FaultPlan p({FaultSpec::burstLoss(0.4, 40, 5), FaultSpec::burstLoss(0.9, 42, 2), FaultSpec::burstLoss(0.2, 43, 4)}, 1, 1);
   CHECK_FALSE(p.burstPte(39).has_value());
   CHECK(p.burstPte(40) == std::optional<double>(0.4));
   CHECK(p.burstPte(41) == std::optional<double>(0.4));
@@ -163,7 +133,7 @@ TEST_CASE("a burst replaces pte for its ticks, overlapping bursts taking the hig
   CHECK(p.burstPte(46) == std::optional<double>(0.2));
   CHECK_FALSE(p.burstPte(47).has_value());
   // A burst of pte 0 is a burst: a lossless stretch, not "no burst".
-  const FaultPlan lossless({burst(0.0, 3, 1)}, 1, 1);
+  const FaultPlan lossless({FaultSpec::burstLoss(0.0, 3, 1)}, 1, 1);
   REQUIRE(lossless.burstPte(3).has_value());
   CHECK(*lossless.burstPte(3) == 0.0);
   CHECK_FALSE(lossless.burstPte(4).has_value());
@@ -190,7 +160,7 @@ TEST_CASE("a supernode settles a tick only when live from it through its window 
   CHECK_FALSE(p.settles(1, 10, 1, 100));
   // The run's end clips the window: with a kill at 60 and a run of 55 ticks, tick 50 settles at
   // the run's end (50..55 live); in a run of 60 ticks it would need tick 59, fine, but 51 needs 60.
-  const FaultPlan late({kill(FaultRole::kSupernode, 0, 60)}, 1, 2);
+  const FaultPlan late({FaultSpec::kill(FaultRole::kSupernode, 0, 60)}, 1, 2);
   CHECK(late.settles(0, 50, 10, 55));
   CHECK(late.settles(0, 51, 10, 55));
   CHECK(late.settles(0, 50, 10, 60));
@@ -202,33 +172,33 @@ TEST_CASE("a process fault is found at the tick it begins, for its role and inde
   const FaultPlan p = plan();
   const auto killed = p.processFaultAt(FaultRole::kSupernode, 1, 10);
   REQUIRE(killed.has_value());
-  CHECK(*killed == kill(FaultRole::kSupernode, 1, 10));
+  CHECK(*killed == FaultSpec::kill(FaultRole::kSupernode, 1, 10));
   CHECK_FALSE(p.processFaultAt(FaultRole::kSupernode, 1, 11).has_value());  // not where it holds
   CHECK_FALSE(p.processFaultAt(FaultRole::kSupernode, 1, 9).has_value());
   CHECK_FALSE(p.processFaultAt(FaultRole::kNode, 1, 10).has_value());       // another role
   CHECK_FALSE(p.processFaultAt(FaultRole::kSupernode, 0, 10).has_value());  // another index
   const auto paused = p.processFaultAt(FaultRole::kNode, 2, 5);
   REQUIRE(paused.has_value());
-  CHECK(*paused == pause(FaultRole::kNode, 2, 5, 3));
+  CHECK(*paused == FaultSpec::pause(FaultRole::kNode, 2, 5, 3));
   CHECK_FALSE(p.processFaultAt(FaultRole::kSupernode, 2, 5).has_value());
-  CHECK(p.processFaultAt(FaultRole::kSupernode, 2, 20) == std::optional<FaultSpec>(pause(FaultRole::kSupernode, 2, 20, 4)));
+  CHECK(p.processFaultAt(FaultRole::kSupernode, 2, 20) == std::optional<FaultSpec>(FaultSpec::pause(FaultRole::kSupernode, 2, 20, 4)));
   // A partition stops no process.
   CHECK_FALSE(p.processFaultAt(FaultRole::kSupernode, 0, 30).has_value());
   CHECK_FALSE(p.processFaultAt(FaultRole::kSupernode, 2, 30).has_value());
 }
 
 TEST_CASE("a fault describes itself and knows its last tick", "[faults]") {
-  CHECK(kill(FaultRole::kSupernode, 2, 40).describe() == "kill of supernode 2 at tick 40");
-  CHECK(kill(FaultRole::kNode, 0, 3).describe() == "kill of node 0 at tick 3");
-  CHECK(pause(FaultRole::kNode, 3, 5, 4).describe() == "pause of node 3 at tick 5 for 4 ticks");
-  CHECK(partition(0, 2, 30, 2).describe() == "partition between supernodes 0 and 2 at tick 30 for 2 ticks");
-  CHECK(burst(0.25, 7, 3).describe() == "burst loss (pte 0.25) at tick 7 for 3 ticks");
+  CHECK(FaultSpec::kill(FaultRole::kSupernode, 2, 40).describe() == "kill of supernode 2 at tick 40");
+  CHECK(FaultSpec::kill(FaultRole::kNode, 0, 3).describe() == "kill of node 0 at tick 3");
+  CHECK(FaultSpec::pause(FaultRole::kNode, 3, 5, 4).describe() == "pause of node 3 at tick 5 for 4 ticks");
+  CHECK(FaultSpec::partition(0, 2, 30, 2).describe() == "partition between supernodes 0 and 2 at tick 30 for 2 ticks");
+  CHECK(FaultSpec::burstLoss(0.25, 7, 3).describe() == "burst loss (pte 0.25) at tick 7 for 3 ticks");
 
-  CHECK(kill(FaultRole::kSupernode, 2, 40).lastTick() == std::numeric_limits<std::int32_t>::max());
-  CHECK(pause(FaultRole::kNode, 3, 5, 4).lastTick() == 8);
-  CHECK(pause(FaultRole::kNode, 3, 5, 1).lastTick() == 5);
-  CHECK(partition(0, 2, 30, 2).lastTick() == 31);
-  CHECK(burst(0.5, 7, 3).lastTick() == 9);
+  CHECK(FaultSpec::kill(FaultRole::kSupernode, 2, 40).lastTick() == std::numeric_limits<std::int32_t>::max());
+  CHECK(FaultSpec::pause(FaultRole::kNode, 3, 5, 4).lastTick() == 8);
+  CHECK(FaultSpec::pause(FaultRole::kNode, 3, 5, 1).lastTick() == 5);
+  CHECK(FaultSpec::partition(0, 2, 30, 2).lastTick() == 31);
+  CHECK(FaultSpec::burstLoss(0.5, 7, 3).lastTick() == 9);
 
   CHECK(std::string(faultActionName(FaultAction::kKill)) == "kill");
   CHECK(std::string(faultActionName(FaultAction::kPause)) == "pause");

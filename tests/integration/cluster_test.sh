@@ -67,6 +67,18 @@ huge_roles=(--set sensors.spacing=0.032 --set tracker.engine=gnn --set aggregato
             --set tracker.params.initial_velocity_sigma=1 --set tracker.params.max_misses=5
             --set tracker.params.measurement_sigma=0.09 --set tracker.params.merge_radius=0)
 
+# role_pid DIR ROLE [INDEX]: the pid of that role process of the run in DIR, waiting up to 10 s
+# for it to start; empty when it does not.
+role_pid() {
+  local pid=""
+  for _ in $(seq 1 100); do
+    pid=$(pgrep -f "wsntrack-$2.*--run-dir $1 ${3:+.*--index $3\b}" | head -1)
+    [ -n "$pid" ] && break
+    sleep 0.1
+  done
+  echo "$pid"
+}
+
 case "$case_name" in
   determinism)
     # Same scenario and seed: byte-identical outputs multi-process with 1, 2, 4 node processes and in-process.
@@ -310,12 +322,8 @@ PY
       local out="$1" seconds="$2"
       timeout 120 "$wsntrack" run "$scenario" --quiet --no-plot --out "$PWD/$out" --ticks 150 --tick-interval 0.04 \
         --stall-timeout 15 >"$out.stdout" 2>"$out.stderr" & launcher=$!
-      local victim=""
-      for _ in $(seq 1 100); do
-        victim=$(pgrep -f "wsntrack-supernode.*--run-dir $PWD/$out .*--index 1\b" | head -1)
-        [ -n "$victim" ] && break
-        sleep 0.1
-      done
+      local victim
+      victim=$(role_pid "$PWD/$out" supernode 1)
       [ -n "$victim" ] || fail "$out: no supernode 1 process found"
       sleep 2; kill -STOP "$victim"; sleep "$seconds"; kill -CONT "$victim"
       wait "$launcher"; rc=$?
@@ -339,16 +347,7 @@ PY
     # kill -9 of the network model, the run's own machinery, fails the run and names it.
     timeout 120 "$wsntrack" run "$scenario" --quiet --no-plot --out "$PWD/k" --ticks 200 --tick-interval 0.03 \
       >k.stdout 2>k.stderr & launcher=$!
-    victim() {  # victim DIR ROLE [INDEX]: the pid of that role process of the run in DIR
-      local pid=""
-      for _ in $(seq 1 100); do
-        pid=$(pgrep -f "wsntrack-$2.*--run-dir $1 ${3:+.*--index $3\b}" | head -1)
-        [ -n "$pid" ] && break
-        sleep 0.1
-      done
-      echo "$pid"
-    }
-    node=$(victim "$PWD/k" node 1); supernode=$(victim "$PWD/k" supernode 2)
+    node=$(role_pid "$PWD/k" node 1); supernode=$(role_pid "$PWD/k" supernode 2)
     [ -n "$node" ] && [ -n "$supernode" ] || fail "no node 1 or supernode 2 process found"
     sleep 2; kill -9 "$node"; sleep 1; kill -9 "$supernode"  # about ticks 40 and 75 of 200
     wait "$launcher"; rc=$?
@@ -368,7 +367,7 @@ assert len(rehomes) == 1, rehomes
 assert 0 <= rehomes[0]["tick"] - supernode["tick"] <= 4, (rehomes, supernode)
 PY
     timeout 60 "$wsntrack" run "$scenario" --quiet --no-plot --out "$PWD/n" --tick-interval 0.04 >n.stdout 2>n.stderr & launcher=$!
-    network=$(victim "$PWD/n" network)
+    network=$(role_pid "$PWD/n" network)
     [ -n "$network" ] || fail "no network process found"
     sleep 2; kill -9 "$network"
     wait "$launcher"; rc=$?

@@ -52,23 +52,7 @@ std::vector<std::uint32_t> groupsOf(const nm::Topology& t) {
 
 std::vector<std::int32_t> hopsOf(const nm::Topology& t) { return {t.allHops().begin(), t.allHops().end()}; }
 
-FaultSpec killSupernode(std::int32_t index, std::int32_t tick) {
-  FaultSpec f;
-  f.tick = tick;
-  f.action = FaultAction::kKill;
-  f.role = FaultRole::kSupernode;
-  f.index = index;
-  return f;
-}
 
-FaultSpec burst(double pte, std::int32_t tick, std::int32_t ticks) {
-  FaultSpec f;
-  f.tick = tick;
-  f.action = FaultAction::kBurstLoss;
-  f.pte = pte;
-  f.ticks = ticks;
-  return f;
-}
 
 /// One report per sensor of `count` at `tick`.
 std::vector<Report> everySensor(std::int32_t tick, std::size_t count) {
@@ -169,7 +153,7 @@ TEST_CASE("a burst loss replaces pte for its ticks only", "[network][router][fau
   const nm::Topology topology(lineConfig(), kSensors);
   // pte 0 and pde 0: everything arrives at once, except on the burst's ticks 3 and 4 (pte 1).
   nm::RouterConfig config{.pte = 0.0, .pde = 0.0, .run_ticks = 10, .window_size = 10, .seed = 5};
-  config.faults = FaultPlan({burst(1.0, 3, 2)}, 1, 3);
+  config.faults = FaultPlan({FaultSpec::burstLoss(1.0, 3, 2)}, 1, 3);
   nm::Router router(config, topology);
   for (std::int32_t t = 1; t <= 6; ++t) {
     INFO("tick " << t);
@@ -197,7 +181,7 @@ TEST_CASE("a report due at a dead supernode is lost with it, counted apart", "[n
   // S1 killed at tick 3; the router still routes over the full graph, so S1's group (sensors
   // 1, 2, 3) is due at a dead supernode from tick 3 on.
   nm::RouterConfig config{.pte = 0.0, .pde = 0.0, .run_ticks = 10, .window_size = 10, .seed = 5};
-  config.faults = FaultPlan({killSupernode(1, 3)}, 1, 3);
+  config.faults = FaultPlan({FaultSpec::kill(FaultRole::kSupernode, 1, 3)}, 1, 3);
   nm::Router router(config, topology);
   for (std::int32_t t = 1; t <= 4; ++t) {
     INFO("tick " << t);
@@ -226,7 +210,7 @@ TEST_CASE("the dead supernode is judged at the delivery tick, not the tick of th
   const nm::Topology topology(lineConfig(), kSensors);
   // pde 0.6: delays of several ticks; S1 killed at tick 20, reports from ticks 1..19.
   nm::RouterConfig config{.pte = 0.2, .pde = 0.6, .run_ticks = 40, .window_size = 10, .seed = 11};
-  config.faults = FaultPlan({killSupernode(1, 20)}, 1, 3);
+  config.faults = FaultPlan({FaultSpec::kill(FaultRole::kSupernode, 1, 20)}, 1, 3);
   nm::Router router(config, topology);
   std::uint64_t to_dead = 0;
   for (std::int32_t t = 1; t <= 19; ++t)
@@ -254,7 +238,7 @@ TEST_CASE("the dead supernode is judged at the delivery tick, not the tick of th
 TEST_CASE("the router switches groups and hop counts with the topology", "[network][router][faults]") {
   nm::LiveTopologies topologies(lineConfig(), kSensors);
   nm::RouterConfig config{.pte = 0.0, .pde = 0.0, .run_ticks = 10, .window_size = 10, .seed = 5};
-  config.faults = FaultPlan({killSupernode(1, 2)}, 1, 3);
+  config.faults = FaultPlan({FaultSpec::kill(FaultRole::kSupernode, 1, 2)}, 1, 3);
   nm::Router router(config, topologies.full());
   router.submit(1, everySensor(1, kSensors.size()));
   CHECK(router.deliveriesDue(1, 1).size() == 3);
@@ -361,7 +345,7 @@ TEST_CASE("the router's config carries the scenario's faults over its tiles and 
   scenario.supernodes = kSupernodes;
   scenario.run.node_processes = 3;
   CHECK(nm::routerConfig(scenario).faults.empty());
-  scenario.faults = {killSupernode(1, 4), burst(0.7, 2, 1)};
+  scenario.faults = {FaultSpec::kill(FaultRole::kSupernode, 1, 4), FaultSpec::burstLoss(0.7, 2, 1)};
   const nm::RouterConfig config = nm::routerConfig(scenario);
   CHECK(config.faults == FaultPlan(scenario.faults, 3, 3));
   CHECK(config.faults.liveSupernodes(4) == kWithoutS1);
