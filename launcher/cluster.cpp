@@ -252,25 +252,8 @@ ClusterResult runProcesses(const ClusterOptions& options) {
     fault_signals.continueAll();
     for (const auto& [pid, slot] : running) ::kill(pid, signal_number);
   };
-  // A node tile or supernode killed by hand (SIGKILL) is survivable while a supernode stays live;
-  // the network model and the aggregator are the run's own machinery.
-  std::vector<std::size_t> lost_now;
-  std::set<std::uint32_t> supernodes_lost;
-  const common::FaultPlan plan(options.scenario.faults, options.scenario.run.node_processes,
-                               static_cast<std::int32_t>(options.scenario.supernodes.size()));
-  auto survivable = [&](const RoleSlot& slot) {
-    if (slot.role == "node") return true;
-    if (slot.role != "supernode") return false;
-    std::size_t left = 0;
-    for (std::int32_t j = 0; j < static_cast<std::int32_t>(options.scenario.supernodes.size()); ++j)
-      left += j != static_cast<std::int32_t>(slot.index) && supernodes_lost.count(static_cast<std::uint32_t>(j)) == 0 &&
-                      plan.supernodeLive(j, options.scenario.run.ticks)
-                  ? 1
-                  : 0;
-    if (left == 0) return false;
-    supernodes_lost.insert(slot.index);
-    return true;
-  };
+  std::vector<std::size_t> lost_now;  // slots lost by hand since the last announcement
+  HandLosses hand_losses(options.scenario);
   auto reap = [&](bool block) {
     int status = 0;
     struct rusage usage {};
@@ -289,7 +272,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
         outcome.exit_code = 0;  // the death the scenario asked for
         outcome.message = "killed by SIGKILL as the scenario's faults asked (" + *fault + ")";
       } else if (outcome.signal == SIGKILL && g_interrupt_signal.load() == 0 && result.failure.empty() &&
-                 survivable(slots[slot_index])) {
+                 hand_losses.survivable(slots[slot_index].role, slots[slot_index].index)) {
         // A deployment loses nodes and supernodes: the run goes on without this one.
         outcome.exit_code = 0;
         outcome.message = "killed by SIGKILL outside the scenario's faults; the cluster went on without it";

@@ -43,4 +43,23 @@ void FaultSignals::continueAll() {
   paused_until_.clear();
 }
 
+HandLosses::HandLosses(const common::Scenario& scenario)
+    : plan_(scenario.faults, scenario.run.node_processes, static_cast<std::int32_t>(scenario.supernodes.size())),
+      supernodes_(static_cast<std::int32_t>(scenario.supernodes.size())),
+      last_tick_(scenario.run.ticks) {}
+
+bool HandLosses::survivable(const std::string& role, std::uint32_t index) {
+  if (role == "node") return true;
+  if (role != "supernode") return false;
+  std::size_t left = 0;
+  for (std::int32_t j = 0; j < supernodes_; ++j)
+    left += static_cast<std::uint32_t>(j) != index && supernodes_lost_.count(static_cast<std::uint32_t>(j)) == 0 &&
+                    plan_.supernodeLive(j, last_tick_)
+                ? 1
+                : 0;
+  if (left == 0) return false;
+  supernodes_lost_.insert(index);
+  return true;
+}
+
 }  // namespace wsn::launcher

@@ -1,7 +1,8 @@
-// Enacting the scenario's kills and pauses on role processes with real signals: SIGKILL where a
-// role announces its kill, SIGSTOP where it announces its pause and SIGCONT once the pipeline has
-// passed the paused ticks. The roles announce a fault only once everything they wrote before it
-// was acknowledged, so no output depends on when a signal lands.
+// Faults of role processes as the launcher handles them: the scenario's kills and pauses enacted
+// with real signals (SIGKILL where a role announces its kill, SIGSTOP where it announces its pause
+// and SIGCONT once the pipeline has passed the paused ticks; a role announces a fault only once
+// the pipeline finished its tick, so no output depends on when a signal lands), and which
+// processes the cluster can lose by hand and go on.
 #pragma once
 
 #include <sys/types.h>
@@ -9,9 +10,11 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "common/faults.hpp"
+#include "common/scenario_config.hpp"
 
 namespace wsn::launcher {
 
@@ -36,6 +39,22 @@ class FaultSignals {
   std::int32_t run_ticks_;
   std::map<pid_t, std::string> killed_;                 ///< pid -> the fault
   std::map<pid_t, std::int32_t> paused_until_;          ///< pid -> the pause's last tick
+};
+
+/// Which processes the cluster can lose by hand (SIGKILL outside the scenario's faults) and go on:
+/// node tiles, and supernodes while another stays live; the network model and the aggregator are
+/// the run's own machinery.
+class HandLosses {
+ public:
+  explicit HandLosses(const common::Scenario& scenario);
+  /// Whether losing role `role` `index` now leaves a run that can go on; records the loss when so.
+  bool survivable(const std::string& role, std::uint32_t index);
+
+ private:
+  common::FaultPlan plan_;
+  std::int32_t supernodes_;
+  std::int32_t last_tick_;
+  std::set<std::uint32_t> supernodes_lost_;
 };
 
 }  // namespace wsn::launcher

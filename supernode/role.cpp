@@ -66,6 +66,35 @@ class LateOrphans {
   std::vector<std::pair<std::uint32_t, std::vector<common::TrackHandoff>>> pending_;
 };
 
+/// Tick t's tracks (with the settled ticks and the running counts) and handoffs.
+void publishTick(dds::Writer<wsn_msg_TrackBatch>& track_writer, dds::Writer<wsn_msg_HandoffBatch>& handoff_writer,
+                 std::uint64_t run_id, std::uint32_t self, const SupernodeTracker::TickOutput& output,
+                 std::uint64_t handoffs_lost_partition) {
+  using namespace wsn::dds;
+  auto tracks = encode(output.tracks);
+  auto settled = encodeSettled(output.settled.first, output.settled.by_tick);
+  wsn_msg_TrackBatch track_sample{};
+  track_sample.run_id = run_id;
+  track_sample.supernode = self;
+  track_sample.tick = output.tick;
+  track_sample.observations_in_window = output.observations_in_window;
+  track_sample.observations_dropped_stale = static_cast<std::uint32_t>(output.observations_dropped_stale);
+  track_sample.handoffs_lost_partition = static_cast<std::uint32_t>(handoffs_lost_partition);
+  track_sample.tracks = sequenceView<dds_sequence_wsn_msg_TrackEstimate>(tracks.items);
+  track_sample.settled_first = output.settled.first;
+  track_sample.settled_last = output.settled.last();
+  track_sample.settled = sequenceView<dds_sequence_wsn_msg_SettledTrack>(settled.items);
+  track_writer.write(track_sample);
+
+  auto outgoing = encode(output.handoffs);
+  wsn_msg_HandoffBatch handoff_sample{};
+  handoff_sample.run_id = run_id;
+  handoff_sample.from_supernode = self;
+  handoff_sample.tick = output.tick;
+  handoff_sample.handoffs = sequenceView<dds_sequence_wsn_msg_TrackHandoff>(outgoing.items);
+  handoff_writer.write(handoff_sample);
+}
+
 }  // namespace
 
 void runSupernodeRole(const dds::RoleContext& context) {
@@ -170,28 +199,7 @@ void runSupernodeRole(const dds::RoleContext& context) {
         for (auto& tick_tracks : rest.by_tick) output.settled.by_tick.push_back(std::move(tick_tracks));
       }
 
-      auto tracks = encode(output.tracks);
-      auto settled = encodeSettled(output.settled.first, output.settled.by_tick);
-      wsn_msg_TrackBatch track_sample{};
-      track_sample.run_id = context.run_id;
-      track_sample.supernode = self;
-      track_sample.tick = t;
-      track_sample.observations_in_window = output.observations_in_window;
-      track_sample.observations_dropped_stale = static_cast<std::uint32_t>(output.observations_dropped_stale);
-      track_sample.handoffs_lost_partition = static_cast<std::uint32_t>(handoffs_lost_partition);
-      track_sample.tracks = sequenceView<dds_sequence_wsn_msg_TrackEstimate>(tracks.items);
-      track_sample.settled_first = output.settled.first;
-      track_sample.settled_last = output.settled.last();
-      track_sample.settled = sequenceView<dds_sequence_wsn_msg_SettledTrack>(settled.items);
-      track_writer.write(track_sample);
-
-      auto outgoing = encode(output.handoffs);
-      wsn_msg_HandoffBatch handoff_sample{};
-      handoff_sample.run_id = context.run_id;
-      handoff_sample.from_supernode = self;
-      handoff_sample.tick = t;
-      handoff_sample.handoffs = sequenceView<dds_sequence_wsn_msg_TrackHandoff>(outgoing.items);
-      handoff_writer.write(handoff_sample);
+      publishTick(track_writer, handoff_writer, context.run_id, self, output, handoffs_lost_partition);
     }
     progress.waitForCompleted(ticks);
     status.done(ticks);
