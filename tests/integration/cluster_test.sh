@@ -277,6 +277,15 @@ EOF
     same_outputs "$PWD/mp" "$PWD/ip"
     same_outputs "$PWD/mp" "$PWD/mp_again"
     for f in tracks_settled.csv metrics_per_tick.csv; do cmp -s "mp/$f" "ip/$f" || fail "$f differs between layouts"; done
+    # Without its tile fault (which names a tile of two), the scenario gives the same outputs with
+    # one node process as with four.
+    grep -v "action: pause, role: node" "$scenario" >no_tile_fault.yaml
+    [ "$(grep -c "action:" no_tile_fault.yaml)" -eq 4 ] || fail "no_tile_fault.yaml lacks the other four faults"
+    scenario="$PWD/no_tile_fault.yaml"
+    run_ok "$PWD/n1" --no-plot --in-process --nodes 1
+    run_ok "$PWD/n4" --no-plot --in-process --nodes 4
+    same_outputs "$PWD/n1" "$PWD/n4"
+    scenario="$src/scenarios/oh_quadrants_faults.yaml"
     python3 - "$PWD/mp" <<'PY' || fail "the faults did not do what the scenario says"
 import csv, json, sys
 run = sys.argv[1]
