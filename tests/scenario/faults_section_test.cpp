@@ -147,7 +147,7 @@ TEST_CASE("a fault must fall inside the run and hit a process of the cluster", "
         "s.yaml:12: 'faults[0].index' is 3; the run has 3 supernodes, 0 to 2");
 }
 
-TEST_CASE("a partition names two different supernodes as [[supernode, A], [supernode, B]]",
+TEST_CASE("a partition names two different supernodes, each as a supernode and its index",
           "[scenario][faults][errors]") {
   const auto cut = [](const std::string& between) {
     return errorOf(withFaults("  - {tick: 5, action: partition, ticks: 2, between: " + between + "}\n"));
