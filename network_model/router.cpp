@@ -69,9 +69,13 @@ void Router::loseSupernode(std::uint32_t supernode, std::int32_t from_tick) {
     pending_count_ -= it->second.size();
     it = store.erase(it);
   }
+  recountTotal();
+}
+
+void Router::recountTotal() {
   const std::uint64_t rejected = total_.rejected;
   total_ = NetworkCounts{};
-  for (const NetworkCounts& g : per_supernode_) total_ += g;
+  for (const NetworkCounts& group : per_supernode_) total_ += group;
   total_.rejected = rejected;
 }
 
@@ -151,10 +155,7 @@ std::span<const ReportFate> Router::submit(std::int32_t tick, std::span<const co
     fates.push_back(fate);
   }
 
-  const std::uint64_t rejected = total_.rejected;
-  total_ = NetworkCounts{};
-  for (const NetworkCounts& group : per_supernode_) total_ += group;
-  total_.rejected = rejected;
+  recountTotal();
 
   auto& stored = fates_[tick];
   stored = std::move(fates);

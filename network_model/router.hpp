@@ -109,6 +109,8 @@ class Router {
   RouterConfig config_;
   /// pts(pte, k) for k = 0 .. maxHops of the current topology, at the pte of the tick routed.
   void prepareLinks(double pte);
+  /// total_ as the sum of the groups' counts (rejected is counted in total_ alone).
+  void recountTotal();
   std::vector<double> success_by_hops_;
   double links_pte_ = -1.0;  // the pte success_by_hops_ holds
   std::int32_t last_tick_;
