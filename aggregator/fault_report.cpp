@@ -19,6 +19,18 @@ void FaultReport::addTick(std::int32_t t, const FaultTickScores& scores, const s
   by_tick_[static_cast<std::size_t>(t - 1)] = scores;
   handoffs_lost_by_tick_.resize(by_tick_.size(), 0);
   handoffs_lost_by_tick_[static_cast<std::size_t>(t - 1)] = handoffs_lost_partition;
+  for (const auto& f : plan_.faults()) {
+    if (f.action != common::FaultAction::kRestart) continue;
+    const auto back = static_cast<std::uint32_t>(f.index);
+    auto& take_back = take_backs_[{back, f.tick}];
+    for (const auto& supernode : live)
+      for (const auto& track : supernode.tracks) {
+        if (t == f.tick - 1 && supernode.supernode != back) take_back.held.insert(track.track);
+        if (t >= f.tick && supernode.supernode == back && take_back.held.count(track.track) != 0 &&
+            take_back.taken.insert(track.track).second && take_back.first_taken == 0)
+          take_back.first_taken = t;
+      }
+  }
   for (auto& [key, orphans] : orphans_) {
     if (t < key.second) continue;
     for (const auto& supernode : live)
@@ -50,12 +62,23 @@ Json FaultReport::window(std::int32_t first, std::int32_t last) const {
 
 Json FaultReport::faultJson(const common::FaultSpec& f) const {
   Json out{{"tick", f.tick}, {"action", common::faultActionName(f.action)}, {"what", f.describe()}};
-  // A kill has no end: its "during" is one window, the adopters' transient.
-  const std::int32_t last = f.action == common::FaultAction::kKill ? f.tick + window_ - 1 : f.lastTick();
+  // A kill or restart has no end: its "during" is one window, the transient of the trackers it
+  // moves tracks between.
+  const bool open_ended = f.action == common::FaultAction::kKill || f.action == common::FaultAction::kRestart;
+  const std::int32_t last = open_ended ? f.tick + window_ - 1 : f.lastTick();
   const std::int32_t span = last - f.tick + 1;
-  if (f.action == common::FaultAction::kKill || f.action == common::FaultAction::kPause) {
+  if (f.stopsProcess() || f.action == common::FaultAction::kRestart) {
     out["role"] = common::faultRoleName(f.role);
     out["index"] = f.index;
+  }
+  if (f.action == common::FaultAction::kRestart) {
+    const auto it = take_backs_.find({static_cast<std::uint32_t>(f.index), f.tick});
+    const TakeBack none;
+    const TakeBack& b = it == take_backs_.end() ? none : it->second;
+    // The tracks the restarted supernode reports under ids the others held the tick before: its
+    // group handed back to it, and the ticks from the restart to the first of them.
+    out["tracks_taken_back"] = b.taken.size();
+    out["takeback_ticks"] = b.first_taken > 0 ? Json(b.first_taken - f.tick) : Json(nullptr);
   }
   if (f.action == common::FaultAction::kPause || f.action == common::FaultAction::kPartition ||
       f.action == common::FaultAction::kBurstLoss)

@@ -1,6 +1,7 @@
 // What the scenario's faults did to a run (metrics.json "faults"): for each fault its tick and
 // what happened; for a supernode that died, the tracks it left, how many the adopters carried on
-// under their ids and how many ticks that took; for a partition, the handoffs it cut; and for
+// under their ids and how many ticks that took; for a restarted supernode, how many of the
+// tracks of its group it took back from the others, and when; for a partition, the handoffs it cut; and for
 // every fault εK (Oh eq. 9) and mean OSPA over the ticks before, during and after it.
 #pragma once
 
@@ -48,6 +49,12 @@ class FaultReport {
     std::set<common::TrackId> carried;  ///< reported again by a live supernode
     std::int32_t first_carried = 0;     ///< tick of the first one; 0: none yet
   };
+  /// A supernode back at a restart, and the tracks the others held the tick before.
+  struct TakeBack {
+    std::set<common::TrackId> held;   ///< by the other supernodes at restart tick - 1
+    std::set<common::TrackId> taken;  ///< of those, reported by the restarted supernode since
+    std::int32_t first_taken = 0;     ///< tick of the first one; 0: none yet
+  };
   Json window(std::int32_t first, std::int32_t last) const;
   Json faultJson(const common::FaultSpec& f) const;
 
@@ -58,6 +65,7 @@ class FaultReport {
   std::vector<FaultTickScores> by_tick_;             ///< index t - 1
   std::vector<std::uint64_t> handoffs_lost_by_tick_;  ///< running total at t, index t - 1
   std::map<std::pair<std::uint32_t, std::int32_t>, Orphans> orphans_;  ///< (supernode, death tick)
+  std::map<std::pair<std::uint32_t, std::int32_t>, TakeBack> take_backs_;  ///< (supernode, restart tick)
 };
 
 }  // namespace wsn::aggregator

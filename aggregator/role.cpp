@@ -152,13 +152,14 @@ void publishTickMetrics(dds::Writer<wsn_msg_TickMetrics>& writer, std::uint64_t 
 class FaultsAtAggregator {
  public:
   FaultsAtAggregator(const common::FaultPlan& plan, const common::Scenario& scenario, std::uint64_t run_id,
-                     dds::Writer<wsn_msg_HandoffBatch> writer)
+                     dds::Writer<wsn_msg_HandoffBatch> writer, dds::RestartedReaders& restarted)
       : plan_(plan),
         report_(plan, scenario.tracker.window_size, scenario.run.ticks),
         context_{scenario.supernodes, {}, scenario.dynamics.delta, scenario.tracker.window_size},
         ticks_(scenario.run.ticks),
         run_id_(run_id),
-        writer_(std::move(writer)) {}
+        writer_(std::move(writer)),
+        restarted_(restarted) {}
 
   const dds::Writer<wsn_msg_HandoffBatch>& writer() const { return writer_; }
 
@@ -218,6 +219,7 @@ class FaultsAtAggregator {
     sample.from_supernode = dead;
     sample.tick = tick;
     sample.handoffs = dds::sequenceView<dds_sequence_wsn_msg_TrackHandoff>(encoded.items);
+    restarted_.waitFor(writer_, tick);
     writer_.write(sample);
   }
 
@@ -227,6 +229,7 @@ class FaultsAtAggregator {
   std::int32_t ticks_;
   std::uint64_t run_id_;
   dds::Writer<wsn_msg_HandoffBatch> writer_;
+  dds::RestartedReaders& restarted_;
   std::map<std::uint32_t, std::uint64_t> handoffs_lost_;
   std::map<std::uint32_t, std::vector<common::TrackEstimate>> last_tracks_;  ///< each supernode's latest
   std::map<std::uint32_t, std::int32_t> pending_;  ///< lost by hand -> the tick its orphans go out for
@@ -250,8 +253,10 @@ void runAggregatorRole(const dds::RoleContext& context) {
     Writer<wsn_msg_GlobalTrackBatch> global_writer(participant, topics.global_track_batch, Qos::reliableKeepAll());
     // For live views only: not in waitForDiscovery, since nobody need be listening.
     Writer<wsn_msg_TickMetrics> tick_metrics_writer(participant, topics.tick_metrics, Qos::reliableKeepAll());
+    RestartedReaders restarted(participant, context, plan);
     FaultsAtAggregator faults(plan, scenario, context.run_id,
-                              Writer<wsn_msg_HandoffBatch>(participant, topics.rehome_batch, Qos::reliableKeepAll()));
+                              Writer<wsn_msg_HandoffBatch>(participant, topics.rehome_batch, Qos::reliableKeepAll()),
+                              restarted);
     RoleLoop loop(participant, context);
     LiveRolesDone roles_done(participant, topics, context);
     TickInbox<SupernodeBatch> inbox;
@@ -310,6 +315,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
       const TickScores scores = scorer.add(t, truth.at(t), global);
       per_tick_csv.row(scorer.csvRow(scores));
       for (const auto& track : global) global_csv.row(globalTrackCsvRow(t, track));
+      restarted.waitFor(global_writer, t);
       publishGlobalTracks(global_writer, context.run_id, t, global);
       publishTickMetrics(tick_metrics_writer, context.run_id, t, scores);
       faults.afterTick(t, scores, inputs.live);

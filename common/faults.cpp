@@ -41,8 +41,15 @@ FaultSpec FaultSpec::burstLoss(double pte, std::int32_t tick, std::int32_t ticks
   return f;
 }
 
+FaultSpec FaultSpec::restart(FaultRole role, std::int32_t index, std::int32_t tick) {
+  FaultSpec f = kill(role, index, tick);
+  f.action = FaultAction::kRestart;
+  return f;
+}
+
 std::int32_t FaultSpec::lastTick() const {
   if (action == FaultAction::kKill) return std::numeric_limits<std::int32_t>::max();
+  if (action == FaultAction::kRestart) return tick;
   return tick + std::max(ticks, 1) - 1;
 }
 
@@ -52,6 +59,7 @@ const char* faultActionName(FaultAction action) {
     case FaultAction::kPause: return "pause";
     case FaultAction::kPartition: return "partition";
     case FaultAction::kBurstLoss: return "burst_loss";
+    case FaultAction::kRestart: return "restart";
   }
   return "?";
 }
@@ -69,6 +77,8 @@ std::string FaultSpec::describe() const {
       return "partition between supernodes " + std::to_string(between.size() > 0 ? between[0] : -1) + " and " +
              std::to_string(between.size() > 1 ? between[1] : -1) + at + span;
     case FaultAction::kBurstLoss: return "burst loss (pte " + config::compactNumber(pte) + ")" + at + span;
+    case FaultAction::kRestart:
+      return std::string("restart of ") + faultRoleName(role) + " " + std::to_string(index) + at;
   }
   return "fault" + at;
 }
@@ -78,10 +88,23 @@ FaultPlan::FaultPlan(std::vector<FaultSpec> faults, std::int32_t tiles, std::int
 
 namespace {
 
+/// The first restart of `role` `index` after `tick`.
+std::optional<std::int32_t> restartAfter(const std::vector<FaultSpec>& faults, FaultRole role, std::int32_t index,
+                                         std::int32_t tick) {
+  std::optional<std::int32_t> first;
+  for (const auto& f : faults)
+    if (f.action == FaultAction::kRestart && f.role == role && f.index == index && f.tick > tick)
+      first = std::min(first.value_or(f.tick), f.tick);
+  return first;
+}
+
 bool liveUnder(const std::vector<FaultSpec>& faults, FaultRole role, std::int32_t index, std::int32_t tick) {
   for (const auto& f : faults) {
-    if ((f.action != FaultAction::kKill && f.action != FaultAction::kPause) || f.role != role || f.index != index) continue;
-    if (tick >= f.tick && tick <= f.lastTick()) return false;
+    if (!f.stopsProcess() || f.role != role || f.index != index) continue;
+    std::int32_t last = f.lastTick();
+    if (f.action == FaultAction::kKill)
+      if (const auto back = restartAfter(faults, role, index, f.tick)) last = *back - 1;
+    if (tick >= f.tick && tick <= last) return false;
   }
   return true;
 }
@@ -175,10 +198,30 @@ std::vector<std::uint32_t> FaultPlan::liveSupernodeIndices(std::int32_t tick) co
 
 std::optional<FaultSpec> FaultPlan::processFaultAt(FaultRole role, std::int32_t index, std::int32_t tick) const {
   for (const auto& f : faults_)
-    if ((f.action == FaultAction::kKill || f.action == FaultAction::kPause) && f.role == role && f.index == index &&
-        f.tick == tick)
-      return f;
+    if (f.stopsProcess() && f.role == role && f.index == index && f.tick == tick) return f;
   return std::nullopt;
+}
+
+std::vector<std::uint32_t> FaultPlan::restartsAt(std::int32_t tick) const {
+  std::vector<std::uint32_t> out;
+  for (const auto& f : faults_)
+    if (f.action == FaultAction::kRestart && f.role == FaultRole::kSupernode && f.tick == tick)
+      out.push_back(static_cast<std::uint32_t>(f.index));
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::int32_t FaultPlan::incarnation(FaultRole role, std::int32_t index, std::int32_t tick) const {
+  std::int32_t first = 1;
+  for (const auto& f : faults_)
+    if (f.action == FaultAction::kRestart && f.role == role && f.index == index && f.tick <= tick)
+      first = std::max(first, f.tick);
+  return first;
+}
+
+std::optional<std::int32_t> FaultPlan::killEnds(const FaultSpec& kill) const {
+  if (kill.action != FaultAction::kKill) return std::nullopt;
+  return restartAfter(faults_, kill.role, kill.index, kill.tick);
 }
 
 }  // namespace wsn::common

@@ -17,6 +17,7 @@ enum class FaultAction {
   kPause,      ///< the process stops for `ticks` ticks, then comes back
   kPartition,  ///< handoffs between two supernodes are lost for `ticks` ticks
   kBurstLoss,  ///< every hop fails with probability `pte` for `ticks` ticks
+  kRestart,    ///< a new process takes a killed supernode's place from `tick` on, afresh
 };
 
 /// Which processes a kill or a pause can hit: the ones a deployment loses. The network model
@@ -27,8 +28,8 @@ enum class FaultRole { kNode, kSupernode };
 struct FaultSpec {
   std::int32_t tick = 1;  ///< the first tick the fault holds
   FaultAction action = FaultAction::kKill;
-  FaultRole role = FaultRole::kSupernode;  ///< kill, pause
-  std::int32_t index = 0;                  ///< kill, pause: the tile or supernode index
+  FaultRole role = FaultRole::kSupernode;  ///< kill, pause, restart
+  std::int32_t index = 0;                  ///< kill, pause, restart: the tile or supernode index
   std::int32_t ticks = 0;                  ///< pause, partition, burst_loss: how long it holds
   double pte = 0.0;                        ///< burst_loss: the per-hop failure rate meanwhile
   std::vector<std::int32_t> between;       ///< partition: the two supernodes
@@ -38,8 +39,12 @@ struct FaultSpec {
   static FaultSpec pause(FaultRole role, std::int32_t index, std::int32_t tick, std::int32_t ticks);
   static FaultSpec partition(std::int32_t a, std::int32_t b, std::int32_t tick, std::int32_t ticks);
   static FaultSpec burstLoss(double pte, std::int32_t tick, std::int32_t ticks);
+  static FaultSpec restart(FaultRole role, std::int32_t index, std::int32_t tick);
 
-  /// The last tick the fault holds (a kill holds to the end of any run).
+  /// True for the faults that stop a process: kill and pause.
+  bool stopsProcess() const { return action == FaultAction::kKill || action == FaultAction::kPause; }
+  /// The last tick the fault holds (a kill holds to the end of any run, unless a restart ends it:
+  /// see FaultPlan::killEnds; a restart holds at its tick).
   std::int32_t lastTick() const;
   /// "kill of supernode 2 at tick 40": how messages and metrics.json name it.
   std::string describe() const;
@@ -50,7 +55,7 @@ const char* faultActionName(FaultAction action);
 const char* faultRoleName(FaultRole role);
 
 /// The faults of a run as the roles see them: who is live at a tick, who owns a tracking group.
-/// A supernode that comes back after a pause starts afresh (its group is handed back to it by
+/// A supernode that comes back after a pause or a restart starts afresh (its group is handed back to it by
 /// the supernodes that adopted it, through ordinary handoffs).
 class FaultPlan {
  public:
@@ -96,6 +101,14 @@ class FaultPlan {
   std::vector<std::uint32_t> liveSupernodeIndices(std::int32_t tick) const;
   /// The ticks a process stops at: the ticks at which a kill or pause of it begins.
   std::optional<FaultSpec> processFaultAt(FaultRole role, std::int32_t index, std::int32_t tick) const;
+  /// The supernodes a restart brings back at `tick` (new processes, which producers wait for
+  /// before they write what the newcomer reads), in index order.
+  std::vector<std::uint32_t> restartsAt(std::int32_t tick) const;
+  /// The first tick of the process that is `role` `index` at `tick`: 1, or the tick of the last
+  /// restart of it up to `tick`. Names a process incarnation (dds::roleIdentity).
+  std::int32_t incarnation(FaultRole role, std::int32_t index, std::int32_t tick) const;
+  /// The first tick a kill no longer holds: its process's next restart, if any.
+  std::optional<std::int32_t> killEnds(const FaultSpec& kill) const;
 
   friend bool operator==(const FaultPlan&, const FaultPlan&) = default;
 

@@ -265,7 +265,7 @@ struct RunConfig {
   std::int32_t ticks = 100;  ///< T
   std::uint64_t seed = 1;
   std::int32_t node_processes = 2;       ///< one sensor tile per node process
-  std::int32_t max_ticks_in_flight = 4;  ///< back-pressure bound of the lockstep pipeline
+  std::int32_t max_ticks_in_flight = 3;  ///< back-pressure bound of the lockstep pipeline
   friend bool operator==(const RunConfig&, const RunConfig&) = default;
 };
 

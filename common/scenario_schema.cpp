@@ -273,17 +273,20 @@ const FieldTable<FaultSpec>& fault() {
       {
           withNotes(integer<C>("tick", &C::tick, 1, 1e6, "ticks", "the first tick the fault holds"),
                     "[1, run.ticks]", "required"),
-          withNotes(choice<C>("action", &C::action, {"kill", "pause", "partition", "burst_loss"},
-                              "`kill`: the process dies for good; `pause`: it stops for `ticks` ticks and comes back "
-                              "(a supernode afresh); `partition`: the handoffs between two supernodes are lost; "
-                              "`burst_loss`: every hop fails with probability `pte`"),
-                    "`kill`, `pause`, `partition`, `burst_loss`", "required"),
+          withNotes(choice<C>("action", &C::action, {"kill", "pause", "partition", "burst_loss", "restart"},
+                              "`kill`: the process dies (for good, unless a later `restart` brings it back); "
+                              "`pause`: it stops for `ticks` ticks and comes back (a supernode afresh); "
+                              "`partition`: the handoffs between two supernodes are lost; `burst_loss`: every hop "
+                              "fails with probability `pte`; `restart`: a new process takes a killed supernode's "
+                              "place from `tick` on, afresh, and its group is handed back to it"),
+                    "`kill`, `pause`, `partition`, `burst_loss`, `restart`", "required"),
           withNotes(choice<C>("role", &C::role, {"node", "supernode"},
-                              "kill, pause: a node tile (its sensors fall silent) or a supernode (its tracking group "
-                              "is re-homed to the nearest live supernodes, which adopt its last tracks)"),
-                    "`node`, `supernode`", "required by kill and pause"),
-          withNotes(integer<C>("index", &C::index, 0, 1e6, "", "kill, pause: which tile or supernode"),
-                    "below run.node_processes or the number of supernodes", "required by kill and pause"),
+                              "kill, pause, restart: a node tile (its sensors fall silent) or a supernode (its "
+                              "tracking group is re-homed to the nearest live supernodes, which adopt its last "
+                              "tracks); only a supernode restarts"),
+                    "`node`, `supernode`", "required by kill, pause and restart"),
+          withNotes(integer<C>("index", &C::index, 0, 1e6, "", "kill, pause, restart: which tile or supernode"),
+                    "below run.node_processes or the number of supernodes", "required by kill, pause and restart"),
           withNotes(integer<C>("ticks", &C::ticks, 1, 1e6, "ticks", "pause, partition, burst_loss: how long it holds"),
                     "[1, 10^6]", "required by pause, partition and burst_loss"),
           withNotes(real<C>("pte", &C::pte, kProbability, "", "burst_loss: the per-hop transmission failure rate "

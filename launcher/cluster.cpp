@@ -196,7 +196,8 @@ std::string tailOf(const std::string& path, std::size_t lines) {
   return out.str();
 }
 
-pid_t spawn(const RoleSlot& slot, const ClusterOptions& options, const std::string& log_path) {
+/// Starts the process of `slot`; `first_tick` above 1 starts the one a `restart` brings back.
+pid_t spawn(const RoleSlot& slot, const ClusterOptions& options, const std::string& log_path, std::int32_t first_tick = 1) {
   const std::string program = options.bin_dir + "/wsntrack-" + slot.role;
   std::vector<std::string> args = {program,
                                    "--run-dir", options.run_dir,
@@ -209,6 +210,10 @@ pid_t spawn(const RoleSlot& slot, const ClusterOptions& options, const std::stri
   if (slot.role == "node" || slot.role == "supernode") {
     args.push_back("--index");
     args.push_back(std::to_string(slot.index));
+  }
+  if (first_tick > 1) {
+    args.push_back("--first-tick");
+    args.push_back(std::to_string(first_tick));
   }
   const pid_t launcher = ::getpid();
   const pid_t pid = ::fork();
@@ -245,9 +250,17 @@ ClusterResult runProcesses(const ClusterOptions& options) {
     result.outcomes[i].log_path = options.run_dir + "/logs/" + slots[i].role + "-" + std::to_string(slots[i].index) + ".log";
   }
   StoppedProcesses stopped(Clock::now());
-  FaultSignals fault_signals(common::FaultPlan(options.scenario.faults, options.scenario.run.node_processes,
-                                                static_cast<std::int32_t>(options.scenario.supernodes.size())),
-                             options.scenario.run.ticks);
+  const common::FaultPlan plan(options.scenario.faults, options.scenario.run.node_processes,
+                               static_cast<std::int32_t>(options.scenario.supernodes.size()));
+  FaultSignals fault_signals(plan, options.scenario.run.ticks);
+  // The scenario's restarts: the slot, and the tick its new process starts at, in tick order.
+  std::vector<std::pair<std::size_t, std::int32_t>> restarts;
+  for (const auto& f : plan.faults())
+    if (f.action == common::FaultAction::kRestart)
+      for (std::size_t i = 0; i < slots.size(); ++i)
+        if (slots[i].role == "supernode" && slots[i].index == static_cast<std::uint32_t>(f.index)) restarts.emplace_back(i, f.tick);
+  std::sort(restarts.begin(), restarts.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+  std::set<std::size_t> killed_by_fault;  // slots whose process the scenario's faults killed
   auto stopAll = [&](int signal_number) {
     fault_signals.continueAll();
     for (const auto& [pid, slot] : running) ::kill(pid, signal_number);
@@ -271,6 +284,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
       if (fault && outcome.signal == SIGKILL) {
         outcome.exit_code = 0;  // the death the scenario asked for
         outcome.message = "killed by SIGKILL as the scenario's faults asked (" + *fault + ")";
+        killed_by_fault.insert(slot_index);
       } else if (outcome.signal == SIGKILL && g_interrupt_signal.load() == 0 && result.failure.empty() &&
                  hand_losses.survivable(slots[slot_index].role, slots[slot_index].index)) {
         // A deployment loses nodes and supernodes: the run goes on without this one.
@@ -310,6 +324,23 @@ ClusterResult runProcesses(const ClusterOptions& options) {
       for (const std::size_t lost : lost_now)
         observer.announceLost(slots[lost].role, slots[lost].index, result.outcomes[lost].message);
       lost_now.clear();
+      // A restart: a new process once the killed one is gone and the sources may be at most
+      // max_ticks_in_flight ticks from its first tick; the producers of what it reads wait for it
+      // (dds::RestartedReaders), so when it joins changes nothing but the wall time.
+      for (auto it = restarts.begin(); it != restarts.end();) {
+        const auto [slot, first_tick] = *it;
+        if (killed_by_fault.count(slot) == 0 || tick < first_tick - 1 - options.scenario.run.max_ticks_in_flight) {
+          ++it;
+          continue;
+        }
+        killed_by_fault.erase(slot);
+        auto& outcome = result.outcomes[slot];
+        outcome.message += ", restarted at tick " + std::to_string(first_tick);
+        outcome.log_path = options.run_dir + "/logs/" + slots[slot].role + "-" + std::to_string(slots[slot].index) +
+                           "-from-" + std::to_string(first_tick) + ".log";
+        running[spawn(slots[slot], options, outcome.log_path, first_tick)] = slot;
+        it = restarts.erase(it);
+      }
       if (!failures.empty() && result.failure.empty()) result.failure = failures.front();
       if (g_interrupt_signal.load() != 0) markInterrupted(result);
       if (Clock::now() - options.started > options.timeout)
@@ -362,14 +393,29 @@ ClusterResult runThreads(const ClusterOptions& options) {
     // One domain (participant index 0) shared by all role threads; the observer joins it too
     // and outlives them.
     StatusObserver observer(options, 0);
+    const common::FaultPlan plan(options.scenario.faults, options.scenario.run.node_processes,
+                                 static_cast<std::int32_t>(options.scenario.supernodes.size()));
     for (std::size_t i = 0; i < slots.size(); ++i) {
       result.outcomes[i].name = slots[i].name();
       threads.emplace_back([&, i] {
         try {
-          roleRunners().at(slots[i].role)(contexts[i]);
-        } catch (const dds::ScheduledDeath& death) {
-          std::lock_guard lock(mutex);
-          result.outcomes[i].message = std::string("ended as the scenario's faults asked (") + death.what() + ")";
+          // A thread the scenario kills ends there; a restart of it runs the role again from
+          // the restart's tick (its producers wait for its readers, as for a process).
+          while (true) {
+            try {
+              roleRunners().at(slots[i].role)(contexts[i]);
+              break;
+            } catch (const dds::ScheduledDeath& death) {
+              const auto back = plan.killEnds(common::FaultSpec::kill(common::FaultRole::kSupernode,
+                                                                      static_cast<std::int32_t>(slots[i].index),
+                                                                      contexts[i].first_tick));
+              std::lock_guard lock(mutex);
+              result.outcomes[i].message = std::string("ended as the scenario's faults asked (") + death.what() + ")";
+              if (slots[i].role != "supernode" || !back) break;
+              result.outcomes[i].message += ", restarted at tick " + std::to_string(*back);
+              contexts[i].first_tick = *back;
+            }
+          }
         } catch (const std::exception& error) {
           {
             std::lock_guard lock(mutex);

@@ -43,7 +43,8 @@ void row(std::ostringstream& out, const std::string& name, const std::string& va
   out << "  " << name << std::string(name.size() < 26 ? 26 - name.size() : 1, ' ') << value << "\n";
 }
 
-/// "kill of supernode 2 at tick 40: 2 of 2 tracks carried on, the first after 0 ticks".
+/// "kill of supernode 2 at tick 40: 2 of 2 tracks carried on, the first after 0 ticks";
+/// "restart of supernode 2 at tick 70: 1 tracks taken back, the first after 2 ticks".
 std::string faultLine(const nlohmann::json& fault) {
   std::string line = fault.value("what", std::string("fault"));
   if (fault.contains("tracks_left") && fault["tracks_left"].is_number()) {
@@ -52,6 +53,11 @@ std::string faultLine(const nlohmann::json& fault) {
     line += ": " + std::to_string(carried) + " of " + std::to_string(left) + " tracks carried on";
     if (fault.contains("rehome_ticks") && fault["rehome_ticks"].is_number())
       line += ", the first after " + std::to_string(fault["rehome_ticks"].get<long>()) + " ticks";
+  }
+  if (fault.contains("tracks_taken_back") && fault["tracks_taken_back"].is_number()) {
+    line += ": " + std::to_string(fault["tracks_taken_back"].get<long>()) + " tracks taken back";
+    if (fault.contains("takeback_ticks") && fault["takeback_ticks"].is_number())
+      line += ", the first after " + std::to_string(fault["takeback_ticks"].get<long>()) + " ticks";
   }
   if (fault.contains("handoffs_lost") && fault["handoffs_lost"].is_number())
     line += ": " + std::to_string(fault["handoffs_lost"].get<long>()) + " handoffs lost";

@@ -24,6 +24,7 @@ void runNetworkRole(const dds::RoleContext& context) {
     Writer<wsn_msg_DeliveryBatch> delivery_writer(participant, topics.delivery_batch, Qos::reliableKeepAll());
     RoleLoop loop(participant, context);
     PipelineProgress progress(participant, topics, context, loop);
+    RestartedReaders restarted(participant, context, plan);
 
     TickInbox<std::vector<common::Report>> inbox;
     loop.watch(report_reader, [&] {
@@ -73,6 +74,7 @@ void runNetworkRole(const dds::RoleContext& context) {
       for (const auto& fate : router.submit(t, reports)) observations.row(observationRow(fate));
       router.forgetFatesBefore(t + 1);
 
+      restarted.waitFor(delivery_writer, t);
       for (std::uint32_t j = 0; j < static_cast<std::uint32_t>(context.shape.supernodes); ++j) {
         if (!live[j]) continue;  // its deliveries were counted lost when they were routed
         auto due = encode(router.deliveriesDue(t, j));

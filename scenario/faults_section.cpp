@@ -30,6 +30,7 @@ const ActionKeys& keysOf(FaultAction action) {
       {FaultAction::kPause, {{"role", "index", "ticks"}, "which process stops, and for how long"}},
       {FaultAction::kPartition, {{"between", "ticks"}, "which two supernodes lose their handoffs, and for how long"}},
       {FaultAction::kBurstLoss, {{"pte", "ticks"}, "the loss rate, and for how long"}},
+      {FaultAction::kRestart, {{"role", "index"}, "which killed supernode comes back"}},
   };
   return keys.at(action);
 }
@@ -74,19 +75,38 @@ std::vector<std::int32_t> readBetween(const Reader& r, const Entry& entry, const
   return out;
 }
 
-/// One process cannot be hit by two faults at once, nor by anything after a kill.
-void processFaultsApart(const Reader& r, const std::vector<FaultSpec>& faults, const std::vector<int>& lines) {
+/// One process cannot be hit by two faults at once, nor by anything after a kill that no restart
+/// undid.
+void processFaultsApart(const Reader& r, const std::vector<FaultSpec>& faults, const std::vector<int>& lines,
+                        const common::FaultPlan& plan) {
+  // A kill holds until its process's restart, if one comes.
+  const auto last = [&](const FaultSpec& x) { return plan.killEnds(x) ? *plan.killEnds(x) - 1 : x.lastTick(); };
   for (std::size_t a = 0; a < faults.size(); ++a)
     for (std::size_t b = 0; b < a; ++b) {
       const auto& f = faults[a];
       const auto& g = faults[b];
-      const bool process = [](const FaultSpec& x) { return x.action == FaultAction::kKill || x.action == FaultAction::kPause; }(f);
-      const bool other = g.action == FaultAction::kKill || g.action == FaultAction::kPause;
-      if (!process || !other || f.role != g.role || f.index != g.index) continue;
-      if (f.tick <= g.lastTick() && g.tick <= f.lastTick())
+      if (!f.stopsProcess() || !g.stopsProcess() || f.role != g.role || f.index != g.index) continue;
+      if (f.tick <= last(g) && g.tick <= last(f))
         r.fail(lines[a], "faults[" + std::to_string(a) + "] (" + f.describe() + ") overlaps faults[" + std::to_string(b) +
                              "] (" + g.describe() + "); a process can be hit by one kill or pause at a time");
     }
+}
+
+/// A restart brings back a supernode that a kill took: the supernode is dead at the tick before.
+void restartsFollowKills(const Reader& r, const std::vector<FaultSpec>& faults, const std::vector<int>& lines,
+                         const common::FaultPlan& plan) {
+  for (std::size_t k = 0; k < faults.size(); ++k) {
+    const auto& f = faults[k];
+    if (f.action != FaultAction::kRestart) continue;
+    bool killed = false;
+    for (const auto& g : faults)
+      killed = killed || (g.action == FaultAction::kKill && g.role == f.role && g.index == f.index && g.tick < f.tick &&
+                          plan.killEnds(g) == f.tick);
+    if (!killed)
+      r.fail(lines[k], "faults[" + std::to_string(k) + "] (" + f.describe() + ") has no kill of supernode " +
+                           std::to_string(f.index) + " before it that it undoes; a restart brings back a supernode "
+                           "that an earlier `kill` of the list took (and no restart since)");
+  }
 }
 
 /// Some supernode owns the tracking groups at every tick: the live set changes only where a fault
@@ -124,7 +144,11 @@ void readFaults(const Reader& r, const Section& top, common::Scenario& s) {
       r.fail(Reader::lineOf(*item.find("tick")), "'" + item.pathOf("tick") + "' is " + std::to_string(f.tick) +
                                                      ", after the run's last tick " + std::to_string(s.run.ticks) +
                                                      " (run.ticks)");
-    if (f.action == FaultAction::kKill || f.action == FaultAction::kPause) {
+    if (f.action == FaultAction::kRestart && f.role != FaultRole::kSupernode)
+      r.fail(Reader::lineOf(*item.find("role")), "'" + item.pathOf("role") +
+                                                     "' is node; only a supernode restarts (a node tile's kill is for "
+                                                     "good, and a pause brings a tile back)");
+    if (f.stopsProcess() || f.action == FaultAction::kRestart) {
       const std::int32_t count = f.role == FaultRole::kNode ? s.run.node_processes : supernodes;
       if (f.index >= count)
         r.fail(Reader::lineOf(*item.find("index")),
@@ -136,7 +160,9 @@ void readFaults(const Reader& r, const Section& top, common::Scenario& s) {
     s.faults.push_back(std::move(f));
     lines.push_back(line);
   });
-  processFaultsApart(r, s.faults, lines);
+  const common::FaultPlan plan(s.faults, s.run.node_processes, supernodes);
+  processFaultsApart(r, s.faults, lines, plan);
+  restartsFollowKills(r, s.faults, lines, plan);
   someSupernodeLive(r, s, lines);
 }
 

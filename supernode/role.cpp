@@ -66,10 +66,12 @@ class LateOrphans {
   std::vector<std::pair<std::uint32_t, std::vector<common::TrackHandoff>>> pending_;
 };
 
-/// Tick t's tracks (with the settled ticks and the running counts) and handoffs.
+/// Tick t's tracks (with the settled ticks and the running counts), then its handoffs, once the
+/// handoff writer matched every supernode that restarts at t + 1 (the tracks first: the aggregator
+/// must finish t for the restarted supernode's predecessor to be gone).
 void publishTick(dds::Writer<wsn_msg_TrackBatch>& track_writer, dds::Writer<wsn_msg_HandoffBatch>& handoff_writer,
-                 std::uint64_t run_id, std::uint32_t self, const SupernodeTracker::TickOutput& output,
-                 std::uint64_t handoffs_lost_partition) {
+                 dds::RestartedReaders& restarted, std::uint64_t run_id, std::uint32_t self,
+                 const SupernodeTracker::TickOutput& output, std::uint64_t handoffs_lost_partition) {
   using namespace wsn::dds;
   auto tracks = encode(output.tracks);
   auto settled = encodeSettled(output.settled.first, output.settled.by_tick);
@@ -86,6 +88,7 @@ void publishTick(dds::Writer<wsn_msg_TrackBatch>& track_writer, dds::Writer<wsn_
   track_sample.settled = sequenceView<dds_sequence_wsn_msg_SettledTrack>(settled.items);
   track_writer.write(track_sample);
 
+  restarted.waitFor(handoff_writer, output.tick + 1);
   auto outgoing = encode(output.handoffs);
   wsn_msg_HandoffBatch handoff_sample{};
   handoff_sample.run_id = run_id;
@@ -104,7 +107,8 @@ void runSupernodeRole(const dds::RoleContext& context) {
     const std::uint32_t self = context.index;
     const auto supernodes = static_cast<std::uint32_t>(context.shape.supernodes);
     auto plan = context.faultPlan();
-    auto tracker = std::make_unique<SupernodeTracker>(supernodeConfig(scenario, self));
+    // A restarted supernode starts afresh at its first tick; the others at tick 1.
+    auto tracker = std::make_unique<SupernodeTracker>(supernodeConfig(scenario, self), context.first_tick);
     LateOrphans late_orphans;
 
     Reader<wsn_msg_DeliveryBatch> delivery_reader(participant, topics.delivery_batch, Qos::reliableKeepAll());
@@ -114,10 +118,17 @@ void runSupernodeRole(const dds::RoleContext& context) {
     Writer<wsn_msg_TrackBatch> track_writer(participant, topics.track_batch, Qos::reliableKeepAll());
     RoleLoop loop(participant, context);
     PipelineProgress progress(participant, topics, context, loop);
+    RestartedReaders restarted(participant, context, plan);
 
     TickInbox<std::vector<common::Observation>> deliveries;
     TickInbox<std::vector<common::TrackHandoff>> handoffs;
     TickInbox<std::vector<common::TrackHandoff>> orphans;
+    // A restarted supernode reads from its first tick on: the handoffs of the tick before it, the
+    // rest of that tick.
+    const std::int32_t first = context.first_tick;
+    deliveries.skipThrough(first - 1);
+    handoffs.skipThrough(first - 2);
+    orphans.skipThrough(first - 1);
     loop.watch(delivery_reader, [&] {
       delivery_reader.take([&](const wsn_msg_DeliveryBatch& batch) {
         if (batch.run_id != context.run_id || batch.supernode != self) return;
@@ -142,15 +153,27 @@ void runSupernodeRole(const dds::RoleContext& context) {
       });
     });
     // Another supernode killed by hand: its handoffs stop at the first tick that did not come.
-    std::int32_t t = 1;
+    std::int32_t t = first;
     LostProcesses lost(participant, topics, context, loop, [&](common::FaultRole role, std::int32_t index) {
       if (role == common::FaultRole::kSupernode)
         plan.loseUnscheduled(role, index, handoffs.firstMissing(static_cast<std::uint32_t>(index), t - 1));
     });
     const int s = context.shape.supernodes;
-    waitForDiscovery(participant, {{&handoff_writer, s}, {&track_writer, 1}},
-                     {{&delivery_reader, 1}, {&handoff_reader, s}, {&rehome_reader, 1}, {&progress.reader(), 1}},
-                     context);
+    if (first == 1) {
+      waitForDiscovery(participant, {{&handoff_writer, s}, {&track_writer, 1}},
+                       {{&delivery_reader, 1}, {&handoff_reader, s}, {&rehome_reader, 1}, {&progress.reader(), 1}},
+                       context);
+    } else {
+      // Restarted: its writers must reach the live processes, not the dead ones whose endpoints
+      // linger until their lease ends; its producers wait for its readers (RestartedReaders).
+      std::vector<std::string> peers;
+      for (const auto j : plan.liveSupernodeIndices(first))
+        if (j != self)
+          peers.push_back(roleIdentity("supernode", j,
+                                       plan.incarnation(common::FaultRole::kSupernode, static_cast<std::int32_t>(j), first)));
+      waitForRoleReaders(participant, {{&handoff_writer, peers}, {&track_writer, {roleIdentity("aggregator", 0, 1)}}},
+                         context);
+    }
     status.ready();
 
     const std::int32_t ticks = scenario.run.ticks;
@@ -199,7 +222,7 @@ void runSupernodeRole(const dds::RoleContext& context) {
         for (auto& tick_tracks : rest.by_tick) output.settled.by_tick.push_back(std::move(tick_tracks));
       }
 
-      publishTick(track_writer, handoff_writer, context.run_id, self, output, handoffs_lost_partition);
+      publishTick(track_writer, handoff_writer, restarted, context.run_id, self, output, handoffs_lost_partition);
     }
     progress.waitForCompleted(ticks);
     status.done(ticks);

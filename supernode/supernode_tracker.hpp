@@ -60,7 +60,7 @@ class SupernodeTracker {
   /// config.supernodes (index 0 is the single tracking group when there are none), and what
   /// makeEngine throws for an unknown engine or unresolved parameters.
   explicit SupernodeTracker(SupernodeConfig config);
-  /// A tracker that starts afresh at `first_tick` (a supernode back after a pause): it settles
+  /// A tracker that starts afresh at `first_tick` (a supernode back after a pause, or restarted): it settles
   /// ticks from first_tick on, and its first step must be at first_tick.
   SupernodeTracker(SupernodeConfig config, std::int32_t first_tick);
 

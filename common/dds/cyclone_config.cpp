@@ -31,6 +31,14 @@ std::string cycloneConfigTemplate(std::uint64_t run_id, int participants) {
       // On loopback, with at most a dozen peers, the traffic is negligible.
       << "      <SPDPInterval>1 s</SPDPInterval>\n"
       << "    </Discovery>\n"
+      // A killed process's readers stay matched until their lease ends (10 s), and a reliable
+      // writer keeps what they never acknowledge. Cyclone's adaptive watermark (30 kB at first,
+      // lowered whenever a reader asks for retransmits, as a restarted process does when it joins)
+      // then blocked every write of the run for those 10 s; a fixed 8 MB per writer rides that out
+      // and costs nothing while readers keep up.
+      << "    <Internal>\n"
+      << "      <Watermarks><WhcAdaptive>false</WhcAdaptive><WhcHigh>8 MB</WhcHigh><WhcHighInit>8 MB</WhcHighInit></Watermarks>\n"
+      << "    </Internal>\n"
       << "  </Domain>\n"
       << "</CycloneDDS>\n";
   return xml.str();

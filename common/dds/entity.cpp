@@ -2,6 +2,8 @@
 
 #include <cstring>
 #include <memory>
+#include <optional>
+#include <string_view>
 
 namespace wsn::dds {
 namespace {
@@ -12,13 +14,61 @@ void markOwner(Qos& q, Endpoint owner) {
   if (owner == Endpoint::kRole) dds_qset_userdata(q.get(), kRoleMarker, sizeof kRoleMarker - 1);
 }
 
-bool isRoleEndpoint(const dds_qos_t* qos) {
+/// An endpoint's user data, or nothing.
+std::optional<std::string> userData(const dds_qos_t* qos) {
   void* data = nullptr;
   std::size_t size = 0;
-  if (qos == nullptr || !dds_qget_userdata(qos, &data, &size)) return false;
-  const bool role = size == sizeof kRoleMarker - 1 && std::memcmp(data, kRoleMarker, size) == 0;
+  if (qos == nullptr || !dds_qget_userdata(qos, &data, &size)) return std::nullopt;
+  std::string out(static_cast<const char*>(data), size);
   dds_free(data);
-  return role;
+  return out;
+}
+
+/// The marker alone, or followed by a space and the owner's identity.
+bool isRoleEndpoint(const dds_qos_t* qos) {
+  const auto data = userData(qos);
+  const std::string_view marker(kRoleMarker, sizeof kRoleMarker - 1);
+  return data && data->starts_with(marker) && (data->size() == marker.size() || (*data)[marker.size()] == ' ');
+}
+
+bool ownedBy(const dds_qos_t* qos, const std::string& identity) {
+  return userData(qos) == std::string(kRoleMarker) + " " + identity;
+}
+
+/// `qos` with the participant's identity after the role marker, for a role endpoint of a
+/// participant that has one; otherwise nothing (use `qos` as it is).
+std::optional<Qos> withIdentity(const Participant& participant, const Qos& qos) {
+  if (participant.identity().empty() || !isRoleEndpoint(qos.get())) return std::nullopt;
+  Qos copy;
+  check(dds_copy_qos(copy.get(), qos.get()), "dds_copy_qos");
+  const std::string data = std::string(kRoleMarker) + " " + participant.identity();
+  dds_qset_userdata(copy.get(), data.data(), data.size());
+  return copy;
+}
+
+/// The handles of the endpoints matched by `entity`, from `list` (dds_get_matched_subscriptions
+/// or dds_get_matched_publications).
+std::vector<dds_instance_handle_t> matchedHandles(dds_entity_t entity,
+                                                  dds_return_t (*list)(dds_entity_t, dds_instance_handle_t*, size_t),
+                                                  const char* what) {
+  std::vector<dds_instance_handle_t> handles(16);
+  while (true) {
+    const auto n = static_cast<std::size_t>(check(list(entity, handles.data(), handles.size()), what));
+    if (n <= handles.size()) {
+      handles.resize(n);
+      return handles;
+    }
+    handles.resize(n);
+  }
+}
+
+using EndpointData = std::unique_ptr<dds_builtintopic_endpoint_t, void (*)(dds_builtintopic_endpoint_t*)>;
+
+EndpointData endpointData(dds_builtintopic_endpoint_t* data) {
+  // Null when the endpoint unmatched since the list was taken: it no longer counts.
+  return {data, [](dds_builtintopic_endpoint_t* e) {
+            if (e != nullptr) dds_builtintopic_free_endpoint(e);
+          }};
 }
 
 }  // namespace
@@ -49,8 +99,9 @@ Qos Qos::lastValueTransientLocal(Endpoint owner) {
 Domain::Domain(dds_domainid_t id, const std::string& config_xml)
     : Entity(check(dds_create_domain(id, config_xml.c_str()), "dds_create_domain " + std::to_string(id))), id_(id) {}
 
-Participant::Participant(dds_domainid_t domain)
-    : Entity(check(dds_create_participant(domain, nullptr, nullptr), "dds_create_participant")) {}
+Participant::Participant(dds_domainid_t domain, std::string identity)
+    : Entity(check(dds_create_participant(domain, nullptr, nullptr), "dds_create_participant")),
+      identity_(std::move(identity)) {}
 
 dds_entity_t createTopic(const Participant& participant, const dds_topic_descriptor_t& descriptor,
                          std::size_t sample_size, const std::string& name) {
@@ -62,7 +113,11 @@ dds_entity_t createTopic(const Participant& participant, const dds_topic_descrip
 }
 
 WriterBase::WriterBase(const Participant& participant, dds_entity_t topic, const Qos& qos)
-    : Entity(check(dds_create_writer(participant.handle(), topic, qos.get(), nullptr), "dds_create_writer")) {
+    : Entity([&] {
+        const auto own = withIdentity(participant, qos);
+        return check(dds_create_writer(participant.handle(), topic, own ? own->get() : qos.get(), nullptr),
+                     "dds_create_writer");
+      }()) {
   check(dds_set_status_mask(handle(), DDS_PUBLICATION_MATCHED_STATUS), "dds_set_status_mask(writer)");
 }
 
@@ -73,26 +128,20 @@ std::int32_t WriterBase::matchedReaders() const {
 }
 
 std::int32_t WriterBase::matchedRoleReaders() const {
-  std::vector<dds_instance_handle_t> readers(16);
-  while (true) {
-    const auto n = static_cast<std::size_t>(
-        check(dds_get_matched_subscriptions(handle(), readers.data(), readers.size()), "dds_get_matched_subscriptions"));
-    if (n <= readers.size()) {
-      readers.resize(n);
-      break;
-    }
-    readers.resize(n);
-  }
   std::int32_t roles = 0;
-  for (const auto reader : readers) {
-    // Null when the reader unmatched since the list was taken: it no longer counts.
-    const std::unique_ptr<dds_builtintopic_endpoint_t, void (*)(dds_builtintopic_endpoint_t*)> data(
-        dds_get_matched_subscription_data(handle(), reader), [](dds_builtintopic_endpoint_t* e) {
-          if (e != nullptr) dds_builtintopic_free_endpoint(e);
-        });
+  for (const auto reader : matchedHandles(handle(), dds_get_matched_subscriptions, "dds_get_matched_subscriptions")) {
+    const auto data = endpointData(dds_get_matched_subscription_data(handle(), reader));
     if (data && isRoleEndpoint(data->qos)) ++roles;
   }
   return roles;
+}
+
+bool WriterBase::matchesReaderOf(const std::string& identity) const {
+  for (const auto reader : matchedHandles(handle(), dds_get_matched_subscriptions, "dds_get_matched_subscriptions")) {
+    const auto data = endpointData(dds_get_matched_subscription_data(handle(), reader));
+    if (data && ownedBy(data->qos, identity)) return true;
+  }
+  return false;
 }
 
 void WriterBase::waitForAcknowledgements(std::chrono::milliseconds timeout) const {
@@ -101,7 +150,11 @@ void WriterBase::waitForAcknowledgements(std::chrono::milliseconds timeout) cons
 }
 
 ReaderBase::ReaderBase(const Participant& participant, dds_entity_t topic, const Qos& qos)
-    : Entity(check(dds_create_reader(participant.handle(), topic, qos.get(), nullptr), "dds_create_reader")) {
+    : Entity([&] {
+        const auto own = withIdentity(participant, qos);
+        return check(dds_create_reader(participant.handle(), topic, own ? own->get() : qos.get(), nullptr),
+                     "dds_create_reader");
+      }()) {
   check(dds_set_status_mask(handle(), DDS_SUBSCRIPTION_MATCHED_STATUS), "dds_set_status_mask(reader)");
 }
 
@@ -109,6 +162,14 @@ std::int32_t ReaderBase::matchedWriters() const {
   dds_subscription_matched_status_t status;
   check(dds_get_subscription_matched_status(handle(), &status), "dds_get_subscription_matched_status");
   return static_cast<std::int32_t>(status.current_count);
+}
+
+bool ReaderBase::matchesWriterOf(const std::string& identity) const {
+  for (const auto writer : matchedHandles(handle(), dds_get_matched_publications, "dds_get_matched_publications")) {
+    const auto data = endpointData(dds_get_matched_publication_data(handle(), writer));
+    if (data && ownedBy(data->qos, identity)) return true;
+  }
+  return false;
 }
 
 ReadCondition::ReadCondition(const ReaderBase& reader)

@@ -92,9 +92,17 @@ class Domain : public Entity {
   dds_domainid_t id_;
 };
 
+/// A participant; `identity` names the role process it belongs to ("supernode 2 from 60"): every
+/// role endpoint it makes carries it after the role marker in its user data, so that a peer can
+/// tell a restarted process's endpoints from the dead one's, which stay matched until their lease
+/// ends. Empty for a viewer or the launcher's observer.
 class Participant : public Entity {
  public:
-  explicit Participant(dds_domainid_t domain);
+  explicit Participant(dds_domainid_t domain, std::string identity = "");
+  const std::string& identity() const { return identity_; }
+
+ private:
+  std::string identity_;
 };
 
 /// Binds a generated C sample type to its idlc descriptor. Specialised once per type, with a
@@ -125,6 +133,8 @@ class WriterBase : public Entity {
   std::int32_t matchedReaders() const;
   /// Number of matched readers that belong to cluster roles (Endpoint::kRole), viewers excluded.
   std::int32_t matchedRoleReaders() const;
+  /// Whether a reader of the role process named `identity` (Participant::identity) is matched.
+  bool matchesReaderOf(const std::string& identity) const;
   /// Blocks until every matched reader acknowledged everything written (used once at exit).
   void waitForAcknowledgements(std::chrono::milliseconds timeout) const;
 
@@ -148,6 +158,8 @@ class ReaderBase : public Entity {
  public:
   /// Number of writers currently matched.
   std::int32_t matchedWriters() const;
+  /// Whether a writer of the role process named `identity` (Participant::identity) is matched.
+  bool matchesWriterOf(const std::string& identity) const;
 
  protected:
   ReaderBase(const Participant& participant, dds_entity_t topic, const Qos& qos);

@@ -2,6 +2,7 @@
 
 #include <pthread.h>
 
+#include <algorithm>
 #include <atomic>
 #include <boost/program_options.hpp>
 #include <cerrno>
@@ -124,7 +125,10 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
       "seconds without any input after which the role gives up (a producer died)")(
       "tick-interval", po::value(&tick_interval_s)->default_value(0.0),
       "sources start at most one tick per this many seconds (0: as fast as possible)");
-  if (indexed) options.add_options()("index", po::value(&index)->required(), "tile or supernode index of this process");
+  if (indexed)
+    options.add_options()("index", po::value(&index)->required(), "tile or supernode index of this process")(
+        "first-tick", po::value(&context.first_tick)->default_value(1),
+        "the first tick this process takes part in: 1, or the tick of the scenario's `restart` of this supernode");
 
   try {
     po::variables_map vm;
@@ -171,6 +175,12 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
     const StopSignals stop_signals(stop_source, "wsntrack-" + role + " " + std::to_string(context.index));
     context.scenario = load_scenario(context.run_dir + "/scenario.yaml");
     context.shape.supernodes = static_cast<std::int32_t>(context.scenario.supernodes.size());
+    if (context.first_tick != 1) {
+      const auto restarts = context.faultPlan().restartsAt(context.first_tick);
+      if (role != "supernode" || std::find(restarts.begin(), restarts.end(), context.index) == restarts.end())
+        throw std::invalid_argument("--first-tick " + std::to_string(context.first_tick) + ": the scenario's faults have no "
+                                    "restart of " + role + " " + std::to_string(context.index) + " at that tick");
+    }
     Domain domain_handle(context.domain, cycloneConfigFor(readConfigTemplate(context.run_dir), participant_index));
     runner(context);
     return 0;

@@ -151,6 +151,47 @@ void waitForDiscovery(const Participant& participant, const std::vector<std::pai
   }
 }
 
+std::string roleIdentity(const std::string& role, std::uint32_t index, std::int32_t first_tick) {
+  return role + " " + std::to_string(index) + " from " + std::to_string(first_tick);
+}
+
+void waitForRoleReaders(const Participant& participant,
+                        const std::vector<std::pair<const WriterBase*, std::vector<std::string>>>& writers,
+                        const RoleContext& context) {
+  WaitSet waitset(participant);
+  const StopCondition stop(participant, context.stop);
+  waitset.attach(stop.handle(), kStopToken);
+  for (const auto& [writer, identities] : writers) waitset.attach(writer->handle(), 0);
+  auto missing = [&]() {
+    std::string out;
+    for (const auto& [writer, identities] : writers)
+      for (const auto& identity : identities)
+        if (!writer->matchesReaderOf(identity))
+          out += " writer " + std::to_string(writer->handle()) + " has not matched the reader of " + identity + ";";
+    return out;
+  };
+  const auto deadline = Clock::now() + context.stall_timeout;
+  while (!missing().empty()) {
+    throwIfStopped(context);
+    if (Clock::now() > deadline)
+      throw RoleAborted(context.role + " " + std::to_string(context.index) + ": discovery incomplete:" + missing());
+    waitset.wait(std::min(kDiscoveryRecheck, until(deadline)));  // matched-status changes wake it too
+  }
+}
+
+void RestartedReaders::waitFor(const WriterBase& writer, std::int32_t tick) {
+  std::vector<std::string> identities;
+  for (const auto j : plan_.liveSupernodeIndices(tick)) {
+    const std::int32_t first = plan_.incarnation(common::FaultRole::kSupernode, static_cast<std::int32_t>(j), tick);
+    if (first <= 1) continue;
+    auto identity = roleIdentity("supernode", j, first);
+    if (matched_.count({writer.handle(), identity}) == 0) identities.push_back(std::move(identity));
+  }
+  if (identities.empty()) return;
+  waitForRoleReaders(participant_, {{&writer, identities}}, context_);
+  for (auto& identity : identities) matched_.emplace(writer.handle(), std::move(identity));
+}
+
 void waitForClusterReady(const Participant& participant, const RunTopics& topics, const RoleContext& context,
                          std::chrono::milliseconds timeout) {
   Reader<wsn_msg_ProcessStatus> reader(participant, topics.process_status, Qos::lastValueTransientLocal());
@@ -211,7 +252,10 @@ namespace wsn::dds {
 
 PipelineProgress::PipelineProgress(const Participant& participant, const RunTopics& topics,
                                    const RoleContext& context, RoleLoop& loop)
-    : context_(context), loop_(loop), reader_(participant, topics.global_track_batch, Qos::reliableKeepAll()) {
+    : context_(context),
+      loop_(loop),
+      reader_(participant, topics.global_track_batch, Qos::reliableKeepAll()),
+      completed_through_(std::max(context.first_tick - 1, 0)) {
   loop_.watch(reader_, [this] {
     reader_.take([this](const wsn_msg_GlobalTrackBatch& batch) {
       if (batch.run_id != context_.run_id || batch.tick <= completed_through_) return;
@@ -280,7 +324,7 @@ void runWithStatus(StatusPublisher& status, const std::function<void()>& body) {
 
 void runRole(const RoleContext& context,
              const std::function<void(const Participant&, const RunTopics&, StatusPublisher&)>& body) {
-  Participant participant(context.domain);
+  Participant participant(context.domain, roleIdentity(context.role, context.index, context.first_tick));
   RunTopics topics(participant);
   StatusPublisher status(participant, topics, context);
   status.starting();

@@ -101,10 +101,17 @@ struct RoleContext {
   /// kills and pauses of it with real signals (SIGKILL; SIGSTOP, then SIGCONT) once the role
   /// announces them. False for a role thread (--in-process), which ends or waits by itself.
   bool signalled_faults = false;
+  /// The first tick this process takes part in: 1, or the tick of the scenario's `restart` that
+  /// started it (a supernode that a kill took, back afresh).
+  std::int32_t first_tick = 1;
 
   /// The scenario's faults as every role applies them (common/faults.hpp).
   common::FaultPlan faultPlan() const { return {scenario.faults, shape.tiles, shape.supernodes}; }
 };
+
+/// "supernode 2 from 60": the name of one process incarnation, carried by its endpoints
+/// (Participant::identity), so that peers can wait for a restarted process's readers.
+std::string roleIdentity(const std::string& role, std::uint32_t index, std::int32_t first_tick);
 
 /// Thrown when a role stops before finishing: stopped from outside or stalled.
 class RoleAborted : public std::runtime_error {
@@ -261,6 +268,30 @@ class RoleLoop {
 void waitForDiscovery(const Participant& participant, const std::vector<std::pair<const WriterBase*, int>>& writers,
                       const std::vector<std::pair<const ReaderBase*, int>>& readers, const RoleContext& context);
 
+/// Before a writer writes what the supernodes live at a tick read: waits until it matched the
+/// readers of every restarted supernode live then (a new process, which must not miss a sample of
+/// that tick; its predecessor's readers may still be matched until their lease ends, so counts do
+/// not tell). Passes at once without restarts, and for a restart once it has been seen matched.
+class RestartedReaders {
+ public:
+  RestartedReaders(const Participant& participant, const RoleContext& context, const common::FaultPlan& plan)
+      : participant_(participant), context_(context), plan_(plan) {}
+  void waitFor(const WriterBase& writer, std::int32_t tick);
+
+ private:
+  const Participant& participant_;
+  const RoleContext& context_;
+  const common::FaultPlan& plan_;
+  std::set<std::pair<dds_entity_t, std::string>> matched_;
+};
+
+/// Blocks until each writer matched the readers of the role processes named (roleIdentity) beside
+/// it: a restarted process's start barrier, where the counts of waitForDiscovery would also count
+/// the endpoints of dead processes that linger until their lease ends.
+void waitForRoleReaders(const Participant& participant,
+                        const std::vector<std::pair<const WriterBase*, std::vector<std::string>>>& writers,
+                        const RoleContext& context);
+
 /// Blocks until every process of the cluster reported READY (or later) on the status topic.
 void waitForClusterReady(const Participant& participant, const RunTopics& topics, const RoleContext& context,
                          std::chrono::milliseconds timeout);
@@ -271,7 +302,8 @@ namespace wsn::dds {
 
 /// Follows the aggregator's GlobalTrackBatch ticks: the pipeline's end. Sources use it for
 /// back-pressure (at most max_ticks_in_flight ticks ahead); every role waits for the last tick
-/// before leaving so that nothing it wrote is still in flight when its writers are deleted.
+/// before leaving so that nothing it wrote is still in flight when its writers are deleted. A
+/// restarted process follows them from its first tick (RoleContext::first_tick).
 class PipelineProgress {
  public:
   PipelineProgress(const Participant& participant, const RunTopics& topics, const RoleContext& context,

@@ -236,5 +236,44 @@ TEST_CASE("metrics.json has a faults block only when the run had faults", "[faul
   CHECK(without == expected);
 }
 
+TEST_CASE("a restarted supernode's tracks taken back are those the others held the tick before", "[fault_report]") {
+  // Supernode 1 killed at 3, back at 6. At 5 the others hold 10, 11 and 12; from 6 supernode 1
+  // reports 11 at 7 and 10 and 13 at 8 (13 is new: not taken back); supernode 0 keeps 12.
+  FaultReport report(FaultPlan({FaultSpec::kill(FaultRole::kSupernode, 1, 3),
+                                FaultSpec::restart(FaultRole::kSupernode, 1, 6)},
+                               1, 2),
+                     3, 10);
+  for (std::int32_t t = 1; t <= 10; ++t) {
+    std::vector<SupernodeTracks> live;
+    if (t == 2) live = {tracksOf(1, {10, 11})};  // its own, before it died
+    if (t == 5) live = {tracksOf(0, {10, 11, 12})};
+    if (t == 6) live = {tracksOf(0, {10, 11, 12}), tracksOf(1, {})};
+    if (t == 7) live = {tracksOf(0, {10, 12}), tracksOf(1, {11})};
+    if (t >= 8) live = {tracksOf(0, {12}), tracksOf(1, {10, 11, 13})};
+    report.addTick(t, {1, 1, 0}, live, 0);
+  }
+  const Json json = report.json();
+  REQUIRE(json.size() == 2);
+  CHECK(json[1].at("action") == "restart");
+  CHECK(json[1].at("what") == "restart of supernode 1 at tick 6");
+  CHECK(json[1].at("role") == "supernode");
+  CHECK(json[1].at("index") == 1);
+  CHECK(json[1].at("tracks_taken_back") == 2);
+  CHECK(json[1].at("takeback_ticks") == 1);
+  // One window (3 ticks) from the restart on is its "during".
+  CHECK(json[1].at("during").at("first_tick") == 6);
+  CHECK(json[1].at("during").at("last_tick") == 8);
+  CHECK_FALSE(json[1].contains("ticks"));
+
+  // Nothing handed back: no tick of taking back.
+  FaultReport empty(FaultPlan({FaultSpec::kill(FaultRole::kSupernode, 1, 3),
+                               FaultSpec::restart(FaultRole::kSupernode, 1, 6)},
+                              1, 2),
+                    3, 10);
+  for (std::int32_t t = 1; t <= 10; ++t) empty.addTick(t, {1, 1, 0}, {tracksOf(0, {12})}, 0);
+  CHECK(empty.json()[1].at("tracks_taken_back") == 0);
+  CHECK(empty.json()[1].at("takeback_ticks").is_null());
+}
+
 }  // namespace
 }  // namespace wsn::aggregator

@@ -12,10 +12,6 @@
 namespace wsn::common {
 namespace {
 
-
-
-
-
 /// 4 tiles, 3 supernodes: supernode 1 killed at 10, tile 2 paused on 5..7, supernode 2 paused
 /// on 20..23, supernodes 0 and 2 partitioned on 30..31.
 FaultPlan plan() {
@@ -206,6 +202,48 @@ TEST_CASE("a fault describes itself and knows its last tick", "[faults]") {
   CHECK(std::string(faultActionName(FaultAction::kBurstLoss)) == "burst_loss");
   CHECK(std::string(faultRoleName(FaultRole::kNode)) == "node");
   CHECK(std::string(faultRoleName(FaultRole::kSupernode)) == "supernode");
+}
+
+TEST_CASE("a restart ends a kill and names the new process by its first tick", "[faults]") {
+  // Supernode 1 killed at 10, back at 20, killed again at 30, back at 40; supernode 0 never hit.
+  const FaultPlan p({FaultSpec::kill(FaultRole::kSupernode, 1, 10), FaultSpec::restart(FaultRole::kSupernode, 1, 40),
+                     FaultSpec::kill(FaultRole::kSupernode, 1, 30), FaultSpec::restart(FaultRole::kSupernode, 1, 20)},
+                    2, 2);
+  CHECK(p.supernodeLive(1, 9));
+  CHECK_FALSE(p.supernodeLive(1, 10));
+  CHECK_FALSE(p.supernodeLive(1, 19));
+  CHECK(p.supernodeLive(1, 20));
+  CHECK(p.supernodeLive(1, 29));
+  CHECK_FALSE(p.supernodeLive(1, 30));
+  CHECK_FALSE(p.supernodeLive(1, 39));
+  CHECK(p.supernodeLive(1, 40));
+  CHECK(p.supernodeLive(1, 1000));
+  // Back afresh at each restart, dying at each kill.
+  CHECK(p.supernodeReturns(1, 20));
+  CHECK(p.supernodeReturns(1, 40));
+  CHECK_FALSE(p.supernodeReturns(1, 21));
+  CHECK(p.supernodeDies(1, 10));
+  CHECK(p.supernodeDies(1, 30));
+  CHECK(p.restartsAt(20) == std::vector<std::uint32_t>{1});
+  CHECK(p.restartsAt(40) == std::vector<std::uint32_t>{1});
+  CHECK(p.restartsAt(10).empty());
+  CHECK(p.restartsAt(21).empty());
+  // The process live at a tick started at 1, 20 or 40; supernode 0's always at 1.
+  CHECK(p.incarnation(FaultRole::kSupernode, 1, 5) == 1);
+  CHECK(p.incarnation(FaultRole::kSupernode, 1, 20) == 20);
+  CHECK(p.incarnation(FaultRole::kSupernode, 1, 35) == 20);
+  CHECK(p.incarnation(FaultRole::kSupernode, 1, 40) == 40);
+  CHECK(p.incarnation(FaultRole::kSupernode, 0, 40) == 1);
+  CHECK(p.killEnds(FaultSpec::kill(FaultRole::kSupernode, 1, 10)) == 20);
+  CHECK(p.killEnds(FaultSpec::kill(FaultRole::kSupernode, 1, 30)) == 40);
+  CHECK_FALSE(p.killEnds(FaultSpec::kill(FaultRole::kSupernode, 0, 10)));
+  CHECK_FALSE(p.killEnds(FaultSpec::restart(FaultRole::kSupernode, 1, 20)));  // only a kill ends
+  // A restart starts no process fault of its own; the settled ticks skip what the kill took.
+  CHECK_FALSE(p.processFaultAt(FaultRole::kSupernode, 1, 20));
+  CHECK(p.settles(1, 20, 5, 100));
+  CHECK_FALSE(p.settles(1, 26, 5, 100));
+  CHECK(FaultSpec::restart(FaultRole::kSupernode, 1, 20).describe() == "restart of supernode 1 at tick 20");
+  CHECK(FaultSpec::restart(FaultRole::kSupernode, 1, 20).lastTick() == 20);
 }
 
 }  // namespace

@@ -257,5 +257,44 @@ TEST_CASE("an override (--set) changes a fault's value and is checked like the f
   CHECK(message == "--set run.ticks=25: 'faults[3].tick' is 30, after the run's last tick 25 (run.ticks)");
 }
 
+TEST_CASE("a restart brings back a supernode that an earlier kill took", "[scenario][faults][errors]") {
+  const auto s = parse(withFaults("  - {tick: 30, action: restart, role: supernode, index: 1}\n"
+                                  "  - {tick: 10, action: kill, role: supernode, index: 1}\n"
+                                  "  - {tick: 40, action: pause, role: supernode, index: 1, ticks: 5}\n"));
+  REQUIRE(s.faults.size() == 3);
+  CHECK(s.faults[0] == FaultSpec::restart(FaultRole::kSupernode, 1, 30));
+  // Written back with its own keys, and read back equal.
+  CHECK(resolvedScenarioYaml(s).find("  - {tick: 30, action: restart, role: supernode, index: 1}\n") != std::string::npos);
+  CHECK(parse(resolvedScenarioYaml(s)).faults == s.faults);
+  // Nothing to undo: no kill, a kill after it, a kill of another supernode, a second restart.
+  const std::string no_kill =
+      "s.yaml:8: faults[0] (restart of supernode 1 at tick 30) has no kill of supernode 1 before it that it undoes; a "
+      "restart brings back a supernode that an earlier `kill` of the list took (and no restart since)";
+  CHECK(errorOf(withFaults("  - {tick: 30, action: restart, role: supernode, index: 1}\n")) == no_kill);
+  CHECK(errorOf(withFaults("  - {tick: 30, action: restart, role: supernode, index: 1}\n"
+                           "  - {tick: 30, action: kill, role: supernode, index: 1}\n")) == no_kill);
+  CHECK(errorOf(withFaults("  - {tick: 30, action: restart, role: supernode, index: 1}\n"
+                           "  - {tick: 10, action: kill, role: supernode, index: 2}\n")) == no_kill);
+  CHECK_THAT(errorOf(withFaults("  - {tick: 10, action: kill, role: supernode, index: 1}\n"
+                                "  - {tick: 20, action: restart, role: supernode, index: 1}\n"
+                                "  - {tick: 30, action: restart, role: supernode, index: 1}\n")),
+             Contains("s.yaml:10: faults[2] (restart of supernode 1 at tick 30) has no kill of supernode 1 before it"));
+  // Only a supernode restarts; the keys are those of a kill.
+  CHECK(errorOf(withFaults("  - {tick: 10, action: kill, role: node, index: 1}\n"
+                           "  - {tick: 20, action: restart, role: node, index: 1}\n")) ==
+        "s.yaml:9: 'faults[1].role' is node; only a supernode restarts (a node tile's kill is for good, and a pause "
+        "brings a tile back)");
+  CHECK(errorOf(withFaults("  - {tick: 10, action: kill, role: supernode, index: 1}\n"
+                           "  - {tick: 20, action: restart, role: supernode, index: 1, ticks: 3}\n")) ==
+        "s.yaml:9: 'faults[1].ticks' is not a key of a restart fault; it takes role, index");
+  CHECK_THAT(errorOf(withFaults("  - {tick: 20, action: restart, role: supernode, index: 3}\n")),
+             Contains("'faults[0].index' is 3; the run has 3 supernodes, 0 to 2"));
+  // A fault of the supernode while it is dead overlaps its kill; after the restart it does not.
+  CHECK_THAT(errorOf(withFaults("  - {tick: 10, action: kill, role: supernode, index: 1}\n"
+                                "  - {tick: 20, action: restart, role: supernode, index: 1}\n"
+                                "  - {tick: 15, action: pause, role: supernode, index: 1, ticks: 2}\n")),
+             Contains("faults[2] (pause of supernode 1 at tick 15 for 2 ticks) overlaps faults[0]"));
+}
+
 }  // namespace
 }  // namespace wsn::scenario

@@ -163,7 +163,7 @@ TEST_CASE("an empty file or {} gives the paper's defaults", "[scenario]") {
     CHECK(s.run.ticks == 100);
     CHECK(s.run.seed == 1u);
     CHECK(s.run.node_processes == 2);
-    CHECK(s.run.max_ticks_in_flight == 4);
+    CHECK(s.run.max_ticks_in_flight == 3);
   }
 }
 

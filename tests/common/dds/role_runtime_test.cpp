@@ -1,8 +1,10 @@
-// The role runtime's stop and stall handling on one loopback participant: a stop request wakes a
-// waiting role through its guard condition at once, and the stall timeout is the wait's deadline.
+// The role runtime on loopback participants: a stop request wakes a waiting role through its guard
+// condition at once, the stall timeout is the wait's deadline, and a writer waits for the readers
+// of a restarted process by the identity its endpoints carry.
 #include <atomic>
 #include <chrono>
 #include <future>
+#include <optional>
 #include <stop_token>
 #include <string>
 #include <thread>
@@ -158,6 +160,57 @@ TEST_CASE("data arriving postpones the stall deadline", "[dds]") {
   CHECK_NOTHROW(loop.waitUntil([&] { return received >= 5; }, [] { return std::string("samples"); }));
   producer.join();
   loop.unwatch(reader);
+}
+
+TEST_CASE("a writer tells the readers of one role process from another's and a viewer's by identity", "[dds]") {
+  const auto run_id = launcher::newRunId();
+  LoopbackParticipant dds(run_id);  // no identity: a viewer
+  const Participant network(dds.domain.id(), roleIdentity("network", 0, 1));
+  const Participant restarted(dds.domain.id(), roleIdentity("supernode", 2, 60));
+  const RunTopics network_topics(network);
+  const RunTopics restarted_topics(restarted);
+  const RunTopics viewer_topics(dds.participant);
+  std::stop_source stop;
+  RoleContext context = contextFor(dds.domain, stop.get_token());
+  context.stall_timeout = std::chrono::milliseconds(400);
+  Writer<wsn_msg_DeliveryBatch> writer(network, network_topics.delivery_batch, Qos::reliableKeepAll());
+  const Reader<wsn_msg_DeliveryBatch> viewer(dds.participant, viewer_topics.delivery_batch,
+                                             Qos::reliableKeepAll(Endpoint::kViewer));
+  // Only a viewer: no reader of supernode 2's restarted process, and the wait says whose is missing.
+  CHECK_THROWS_WITH(waitForRoleReaders(network, {{&writer, {"supernode 2 from 60"}}}, context),
+                    Catch::Contains("discovery incomplete") &&
+                        Catch::Contains("has not matched the reader of supernode 2 from 60"));
+  // Its reader appears 200 ms into the wait: the wait ends then, well before the timeout.
+  context.stall_timeout = std::chrono::seconds(30);
+  std::optional<Reader<wsn_msg_DeliveryBatch>> reader;
+  std::thread joiner([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    reader.emplace(restarted, restarted_topics.delivery_batch, Qos::reliableKeepAll());
+  });
+  const auto started = Clock::now();
+  const common::FaultPlan plan({common::FaultSpec::kill(common::FaultRole::kSupernode, 2, 40),
+                                common::FaultSpec::restart(common::FaultRole::kSupernode, 2, 60)},
+                               1, 3);
+  RestartedReaders restarted_readers(network, context, plan);
+  restarted_readers.waitFor(writer, 59);  // before the restart: nobody to wait for
+  CHECK(Millis(Clock::now() - started).count() < 150.0);
+  restarted_readers.waitFor(writer, 60);
+  const double waited = Millis(Clock::now() - started).count();
+  joiner.join();
+  CHECK(waited >= 200.0);
+  CHECK(waited < 10000.0);
+  CHECK(writer.matchesReaderOf("supernode 2 from 60"));
+  // The same supernode's first process, or another supernode, is another identity.
+  CHECK_FALSE(writer.matchesReaderOf("supernode 2 from 1"));
+  CHECK_FALSE(writer.matchesReaderOf("supernode 1 from 60"));
+  CHECK(reader->matchesWriterOf("network 0 from 1"));
+  // Role readers count with their identity; the viewer does not.
+  CHECK(writer.matchedRoleReaders() == 1);
+  CHECK(writer.matchedReaders() == 2);
+  // Later ticks of the same process pass at once.
+  const auto again = Clock::now();
+  restarted_readers.waitFor(writer, 61);
+  CHECK(Millis(Clock::now() - again).count() < 150.0);
 }
 
 }  // namespace
