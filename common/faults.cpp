@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "common/config/field_table.hpp"
+#include "common/rng.hpp"
 
 namespace wsn::common {
 
@@ -70,7 +71,9 @@ std::string FaultSpec::describe() const {
   const std::string at = " at tick " + std::to_string(tick);
   const std::string span = " for " + std::to_string(ticks) + " ticks";
   switch (action) {
-    case FaultAction::kKill: return std::string("kill of ") + faultRoleName(role) + " " + std::to_string(index) + at;
+    case FaultAction::kKill:
+      return std::string("kill of ") + faultRoleName(role) + " " + std::to_string(index) + at +
+             (count > 0 ? " (one of " + std::to_string(count) + " drawn by the seed)" : "");
     case FaultAction::kPause:
       return std::string("pause of ") + faultRoleName(role) + " " + std::to_string(index) + at + span;
     case FaultAction::kPartition:
@@ -81,6 +84,18 @@ std::string FaultSpec::describe() const {
       return std::string("restart of ") + faultRoleName(role) + " " + std::to_string(index) + at;
   }
   return "fault" + at;
+}
+
+std::vector<std::int32_t> drawProcesses(std::uint64_t seed, std::size_t item, std::vector<std::int32_t> eligible,
+                                        std::int32_t count) {
+  Stream stream(seed, Purpose::kFaultDraw, item, 0);
+  const auto n = static_cast<std::size_t>(std::clamp<std::int32_t>(count, 0, static_cast<std::int32_t>(eligible.size())));
+  // Partial Fisher-Yates: the first n places hold a uniform draw without replacement.
+  for (std::size_t k = 0; k < n; ++k)
+    std::swap(eligible[k], eligible[k + static_cast<std::size_t>(stream.below(eligible.size() - k))]);
+  eligible.resize(n);
+  std::sort(eligible.begin(), eligible.end());
+  return eligible;
 }
 
 FaultPlan::FaultPlan(std::vector<FaultSpec> faults, std::int32_t tiles, std::int32_t supernodes)

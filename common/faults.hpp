@@ -33,6 +33,9 @@ struct FaultSpec {
   std::int32_t ticks = 0;                  ///< pause, partition, burst_loss: how long it holds
   double pte = 0.0;                        ///< burst_loss: the per-hop failure rate meanwhile
   std::vector<std::int32_t> between;       ///< partition: the two supernodes
+  /// kill: 0 when the scenario names `index`; else the item killed `count` processes drawn from
+  /// the run's seed, and this is one of them (the loader expands the item into `count` kills).
+  std::int32_t count = 0;
   friend bool operator==(const FaultSpec&, const FaultSpec&) = default;
 
   static FaultSpec kill(FaultRole role, std::int32_t index, std::int32_t tick);
@@ -49,6 +52,11 @@ struct FaultSpec {
   /// "kill of supernode 2 at tick 40": how messages and metrics.json name it.
   std::string describe() const;
 };
+
+/// `count` of the indices `eligible`, drawn without replacement from the run's seed (the stream of
+/// the `item`-th fault of the list), ascending: the processes a `kill` with `count` takes.
+std::vector<std::int32_t> drawProcesses(std::uint64_t seed, std::size_t item, std::vector<std::int32_t> eligible,
+                                        std::int32_t count);
 
 /// "kill", "pause", ... and "node", "supernode": the scenario's names.
 const char* faultActionName(FaultAction action);

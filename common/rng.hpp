@@ -33,6 +33,7 @@ enum class Purpose : std::uint64_t {
   kFieldSensorDetection = 21,  ///< per (sensor x 2^32 + target, tick): a field sensor's detection and noise
   kFieldSensorFalseAlarm = 22,  ///< per (sensor, tick): a field sensor's false alarms
   kFieldSensorClass = 23,      ///< per (sensor x 2^32 + target, tick): the class a field sensor declares (ONERA eq. 19)
+  kFaultDraw = 24,             ///< per fault item: the processes a kill with a count takes
 };
 
 /// SplitMix64 finaliser: a bijective 64-bit mix with full avalanche.

@@ -286,7 +286,13 @@ const FieldTable<FaultSpec>& fault() {
                               "tracks); only a supernode restarts"),
                     "`node`, `supernode`", "required by kill, pause and restart"),
           withNotes(integer<C>("index", &C::index, 0, 1e6, "", "kill, pause, restart: which tile or supernode"),
-                    "below run.node_processes or the number of supernodes", "required by kill, pause and restart"),
+                    "below run.node_processes or the number of supernodes",
+                    "required by pause and restart; by kill unless it has `count`"),
+          withNotes(integer<C>("count", &C::count, 0, 1e6, "",
+                               "kill, in place of `index`: how many tiles or supernodes die at once, drawn from "
+                               "run.seed among those no other fault of the list names (0: none, the baseline of "
+                               "a sweep over it)"),
+                    "[0, the processes free to draw from]", "none"),
           withNotes(integer<C>("ticks", &C::ticks, 1, 1e6, "ticks", "pause, partition, burst_loss: how long it holds"),
                     "[1, 10^6]", "required by pause, partition and burst_loss"),
           withNotes(real<C>("pte", &C::pte, kProbability, "", "burst_loss: the per-hop transmission failure rate "

@@ -4,8 +4,11 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -244,6 +247,29 @@ TEST_CASE("a restart ends a kill and names the new process by its first tick", "
   CHECK_FALSE(p.settles(1, 26, 5, 100));
   CHECK(FaultSpec::restart(FaultRole::kSupernode, 1, 20).describe() == "restart of supernode 1 at tick 20");
   CHECK(FaultSpec::restart(FaultRole::kSupernode, 1, 20).lastTick() == 20);
+}
+
+TEST_CASE("processes are drawn without replacement, ascending, the same for the same seed and item", "[faults]") {
+  const std::vector<std::int32_t> eligible{1, 3, 4, 6, 7};
+  const auto a = drawProcesses(7, 2, eligible, 3);
+  CHECK(a == drawProcesses(7, 2, eligible, 3));
+  REQUIRE(a.size() == 3);
+  CHECK(std::is_sorted(a.begin(), a.end()));
+  CHECK(std::adjacent_find(a.begin(), a.end()) == a.end());
+  for (const auto i : a) CHECK(std::find(eligible.begin(), eligible.end(), i) != eligible.end());
+  // All of them, none, and never more than there are.
+  CHECK(drawProcesses(7, 2, eligible, 5) == eligible);
+  CHECK(drawProcesses(7, 2, eligible, 0).empty());
+  CHECK(drawProcesses(7, 2, eligible, 9) == eligible);
+  // One of five over 5000 seeds: each about 1000 times (a binomial sd of 28; 5 sd either way).
+  std::map<std::int32_t, int> times;
+  for (std::uint64_t seed = 1; seed <= 5000; ++seed) ++times[drawProcesses(seed, 0, eligible, 1).at(0)];
+  REQUIRE(times.size() == 5);
+  for (const auto& [index, n] : times) CHECK(std::abs(n - 1000) < 140);
+  // Another item of the same list draws from a stream of its own.
+  int differ = 0;
+  for (std::uint64_t seed = 1; seed <= 50; ++seed) differ += drawProcesses(seed, 0, eligible, 2) != drawProcesses(seed, 1, eligible, 2);
+  CHECK(differ > 25);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // each item's own keys only, and changed by --set like any other value.
 #include <catch2/catch.hpp>
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -98,7 +99,7 @@ TEST_CASE("the resolved scenario writes each fault with its action's keys only a
 
 TEST_CASE("a fault item needs the keys of its action and refuses the others", "[scenario][faults][errors]") {
   CHECK(errorOf(withFaults("  - {tick: 10, action: kill, role: supernode}\n")) ==
-        "s.yaml:8: 'faults[0]' (kill) needs 'index' (which process dies)");
+        "s.yaml:8: 'faults[0]' (kill) needs 'index' (which process dies; or `count` in place of `index`, drawn by the seed)");
   CHECK(errorOf(withFaults("  - {tick: 10, action: pause, role: node, index: 1}\n")) ==
         "s.yaml:8: 'faults[0]' (pause) needs 'ticks' (which process stops, and for how long)");
   CHECK(errorOf(withFaults("  - {tick: 10, action: partition, ticks: 2}\n")) ==
@@ -111,7 +112,8 @@ TEST_CASE("a fault item needs the keys of its action and refuses the others", "[
                            "  - tick: 12\n"
                            "    action: kill\n"
                            "    index: 0\n")) ==
-        "s.yaml:9: 'faults[1]' (kill) needs 'role' (which process dies)");
+        "s.yaml:9: 'faults[1]' (kill) needs 'role' (which process dies; or `count` in place of `index`, drawn by the "
+        "seed)");
 
   // A key of another action, on its own line.
   CHECK(errorOf(withFaults("  - {tick: 10, action: kill, role: supernode, index: 1, ticks: 3}\n")) ==
@@ -294,6 +296,59 @@ TEST_CASE("a restart brings back a supernode that an earlier kill took", "[scena
                                 "  - {tick: 20, action: restart, role: supernode, index: 1}\n"
                                 "  - {tick: 15, action: pause, role: supernode, index: 1, ticks: 2}\n")),
              Contains("faults[2] (pause of supernode 1 at tick 15 for 2 ticks) overlaps faults[0]"));
+}
+
+TEST_CASE("a kill with a count takes that many processes drawn from the seed among those no other item names",
+          "[scenario][faults]") {
+  // Supernode 0 is paused by another item: the two drawn are among 1 and 2, so they are 1 and 2.
+  const auto both = parse(withFaults("  - {tick: 10, action: pause, role: supernode, index: 0, ticks: 3}\n"
+                                     "  - {tick: 20, action: kill, role: supernode, count: 2}\n"));
+  REQUIRE(both.faults.size() == 3);
+  CHECK(both.faults[1].index == 1);
+  CHECK(both.faults[2].index == 2);
+  CHECK(both.faults[1].count == 2);
+  CHECK(both.faults[1].describe() == "kill of supernode 1 at tick 20 (one of 2 drawn by the seed)");
+  // One of three: the same for the same seed, and every supernode drawn by some seed of 1..30.
+  std::set<std::int32_t> drawn;
+  for (int seed = 1; seed <= 30; ++seed) {
+    const std::string text = withFaults("  - {tick: 20, action: kill, role: supernode, count: 1}\n");
+    const std::vector<ScenarioOverride> with_seed{parseOverride("run.seed=" + std::to_string(seed))};
+    const auto a = applyOverrides(text, "s.yaml", with_seed);
+    const auto b = applyOverrides(text, "s.yaml", with_seed);
+    REQUIRE(a.faults.size() == 1);
+    CHECK(a.faults == b.faults);
+    drawn.insert(a.faults[0].index);
+  }
+  CHECK(drawn == std::set<std::int32_t>{0, 1, 2});
+  // Written back as the item it came from, with what the seed drew, and read back equal.
+  const std::string resolved = resolvedScenarioYaml(both);
+  CHECK_THAT(resolved, Contains("  - {tick: 20, action: kill, role: supernode, count: 2}  # drawn from run.seed: "
+                                "supernode 1, 2\n"));
+  CHECK(parse(resolved).faults == both.faults);
+  // Count 0 kills nothing: the baseline of a sweep over it.
+  CHECK(parse(withFaults("  - {tick: 20, action: kill, role: supernode, count: 0}\n")).faults.empty());
+  // Tiles are drawn among run.node_processes.
+  const auto tiles = parse(withFaults("  - {tick: 20, action: kill, role: node, count: 2}\n"));
+  REQUIRE(tiles.faults.size() == 2);
+  CHECK(tiles.faults[0].index == 0);
+  CHECK(tiles.faults[1].index == 1);
+}
+
+TEST_CASE("a kill's count must leave processes to draw and a live supernode, and replaces index", "[scenario][faults][errors]") {
+  CHECK(errorOf(withFaults("  - {tick: 10, action: kill, role: supernode, index: 0}\n"
+                           "  - {tick: 20, action: kill, role: supernode, count: 3}\n")) ==
+        "s.yaml:9: 'faults[1].count' is 3; only 2 supernodes are free of the list's other faults to draw from");
+  CHECK_THAT(errorOf(withFaults("  - {tick: 20, action: kill, role: supernode, count: 3}\n")),
+             Contains("s.yaml:8: faults[0] (kill of supernode ") && Contains("leaves no live supernode at tick 20"));
+  CHECK(errorOf(withFaults("  - {tick: 20, action: kill, role: supernode, index: 1, count: 1}\n")) ==
+        "s.yaml:8: 'faults[0]' has both 'index' and 'count'; a kill names its process (`index`) or has `count` of them "
+        "drawn by the seed");
+  CHECK(errorOf(withFaults("  - {tick: 20, action: pause, role: supernode, index: 0, count: 1, ticks: 2}\n")) ==
+        "s.yaml:8: 'faults[0].count' is not a key of a pause fault; it takes role, index, ticks");
+  // A later item's message names its own item, whatever the draw expanded before it.
+  CHECK_THAT(errorOf(withFaults("  - {tick: 5, action: kill, role: node, count: 2}\n"
+                                "  - {tick: 30, action: restart, role: supernode, index: 1}\n")),
+             Contains("s.yaml:9: faults[1] (restart of supernode 1 at tick 30) has no kill"));
 }
 
 }  // namespace
