@@ -125,14 +125,34 @@ void RoleLoop::waitUntilTime(Clock::time_point deadline) {
   }
 }
 
-void waitForDiscovery(const Participant& participant, const std::vector<std::pair<const WriterBase*, int>>& writers,
-                      const std::vector<std::pair<const ReaderBase*, int>>& readers, const RoleContext& context) {
+namespace {
+
+/// Blocks until `missing()` says nothing is missing; matched-status changes of `endpoints` and a
+/// stop request wake it, and it rechecks every kDiscoveryRecheck. Throws RoleAborted with what is
+/// still missing at the stall timeout.
+void waitUntilMatched(const Participant& participant, const std::vector<dds_entity_t>& endpoints,
+                      const RoleContext& context, const std::function<std::string()>& missing) {
   WaitSet waitset(participant);
   const StopCondition stop(participant, context.stop);
   waitset.attach(stop.handle(), kStopToken);
-  for (const auto& [writer, expected] : writers) waitset.attach(writer->handle(), 0);
-  for (const auto& [reader, expected] : readers) waitset.attach(reader->handle(), 0);
-  auto missing = [&]() {
+  for (const auto endpoint : endpoints) waitset.attach(endpoint, 0);
+  const auto deadline = Clock::now() + context.stall_timeout;
+  while (!missing().empty()) {
+    throwIfStopped(context);
+    if (Clock::now() > deadline)
+      throw RoleAborted(context.role + " " + std::to_string(context.index) + ": discovery incomplete:" + missing());
+    waitset.wait(std::min(kDiscoveryRecheck, until(deadline)));
+  }
+}
+
+}  // namespace
+
+void waitForDiscovery(const Participant& participant, const std::vector<std::pair<const WriterBase*, int>>& writers,
+                      const std::vector<std::pair<const ReaderBase*, int>>& readers, const RoleContext& context) {
+  std::vector<dds_entity_t> endpoints;
+  for (const auto& [writer, expected] : writers) endpoints.push_back(writer->handle());
+  for (const auto& [reader, expected] : readers) endpoints.push_back(reader->handle());
+  waitUntilMatched(participant, endpoints, context, [&]() {
     std::ostringstream out;
     for (const auto& [writer, expected] : writers)
       if (const auto matched = writer->matchedRoleReaders(); matched < expected)
@@ -141,14 +161,7 @@ void waitForDiscovery(const Participant& participant, const std::vector<std::pai
       if (reader->matchedWriters() < expected)
         out << " reader " << reader->handle() << " has " << reader->matchedWriters() << "/" << expected << " writers;";
     return out.str();
-  };
-  const auto deadline = Clock::now() + context.stall_timeout;
-  while (!missing().empty()) {
-    throwIfStopped(context);
-    if (Clock::now() > deadline)
-      throw RoleAborted(context.role + " " + std::to_string(context.index) + ": discovery incomplete:" + missing());
-    waitset.wait(std::min(kDiscoveryRecheck, until(deadline)));  // matched-status changes wake it too
-  }
+  });
 }
 
 std::string roleIdentity(const std::string& role, std::uint32_t index, std::int32_t first_tick) {
@@ -158,25 +171,16 @@ std::string roleIdentity(const std::string& role, std::uint32_t index, std::int3
 void waitForRoleReaders(const Participant& participant,
                         const std::vector<std::pair<const WriterBase*, std::vector<std::string>>>& writers,
                         const RoleContext& context) {
-  WaitSet waitset(participant);
-  const StopCondition stop(participant, context.stop);
-  waitset.attach(stop.handle(), kStopToken);
-  for (const auto& [writer, identities] : writers) waitset.attach(writer->handle(), 0);
-  auto missing = [&]() {
+  std::vector<dds_entity_t> endpoints;
+  for (const auto& [writer, identities] : writers) endpoints.push_back(writer->handle());
+  waitUntilMatched(participant, endpoints, context, [&]() {
     std::string out;
     for (const auto& [writer, identities] : writers)
       for (const auto& identity : identities)
         if (!writer->matchesReaderOf(identity))
           out += " writer " + std::to_string(writer->handle()) + " has not matched the reader of " + identity + ";";
     return out;
-  };
-  const auto deadline = Clock::now() + context.stall_timeout;
-  while (!missing().empty()) {
-    throwIfStopped(context);
-    if (Clock::now() > deadline)
-      throw RoleAborted(context.role + " " + std::to_string(context.index) + ": discovery incomplete:" + missing());
-    waitset.wait(std::min(kDiscoveryRecheck, until(deadline)));  // matched-status changes wake it too
-  }
+  });
 }
 
 void RestartedReaders::waitFor(const WriterBase& writer, std::int32_t tick) {
