@@ -253,14 +253,10 @@ ClusterResult runProcesses(const ClusterOptions& options) {
   const common::FaultPlan plan(options.scenario.faults, options.scenario.run.node_processes,
                                static_cast<std::int32_t>(options.scenario.supernodes.size()));
   FaultSignals fault_signals(plan, options.scenario.run.ticks);
-  // The scenario's restarts: the slot, and the tick its new process starts at, in tick order.
-  std::vector<std::pair<std::size_t, std::int32_t>> restarts;
-  for (const auto& f : plan.faults())
-    if (f.action == common::FaultAction::kRestart)
-      for (std::size_t i = 0; i < slots.size(); ++i)
-        if (slots[i].role == "supernode" && slots[i].index == static_cast<std::uint32_t>(f.index)) restarts.emplace_back(i, f.tick);
-  std::sort(restarts.begin(), restarts.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
-  std::set<std::size_t> killed_by_fault;  // slots whose process the scenario's faults killed
+  std::vector<std::size_t> supernode_slots;
+  for (std::size_t i = 0; i < slots.size(); ++i)
+    if (slots[i].role == "supernode") supernode_slots.push_back(i);  // in index order
+  RestartSchedule restarts(plan, supernode_slots, options.scenario.run.max_ticks_in_flight);
   auto stopAll = [&](int signal_number) {
     fault_signals.continueAll();
     for (const auto& [pid, slot] : running) ::kill(pid, signal_number);
@@ -284,7 +280,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
       if (fault && outcome.signal == SIGKILL) {
         outcome.exit_code = 0;  // the death the scenario asked for
         outcome.message = "killed by SIGKILL as the scenario's faults asked (" + *fault + ")";
-        killed_by_fault.insert(slot_index);
+        restarts.killed(slot_index);
       } else if (outcome.signal == SIGKILL && g_interrupt_signal.load() == 0 && result.failure.empty() &&
                  hand_losses.survivable(slots[slot_index].role, slots[slot_index].index)) {
         // A deployment loses nodes and supernodes: the run goes on without this one.
@@ -324,22 +320,12 @@ ClusterResult runProcesses(const ClusterOptions& options) {
       for (const std::size_t lost : lost_now)
         observer.announceLost(slots[lost].role, slots[lost].index, result.outcomes[lost].message);
       lost_now.clear();
-      // A restart: a new process once the killed one is gone and the sources may be at most
-      // max_ticks_in_flight ticks from its first tick; the producers of what it reads wait for it
-      // (dds::RestartedReaders), so when it joins changes nothing but the wall time.
-      for (auto it = restarts.begin(); it != restarts.end();) {
-        const auto [slot, first_tick] = *it;
-        if (killed_by_fault.count(slot) == 0 || tick < first_tick - 1 - options.scenario.run.max_ticks_in_flight) {
-          ++it;
-          continue;
-        }
-        killed_by_fault.erase(slot);
+      for (const auto& [slot, first_tick] : restarts.due(tick)) {
         auto& outcome = result.outcomes[slot];
         outcome.message += ", restarted at tick " + std::to_string(first_tick);
         outcome.log_path = options.run_dir + "/logs/" + slots[slot].role + "-" + std::to_string(slots[slot].index) +
                            "-from-" + std::to_string(first_tick) + ".log";
         running[spawn(slots[slot], options, outcome.log_path, first_tick)] = slot;
-        it = restarts.erase(it);
       }
       if (!failures.empty() && result.failure.empty()) result.failure = failures.front();
       if (g_interrupt_signal.load() != 0) markInterrupted(result);

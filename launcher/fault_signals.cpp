@@ -43,6 +43,31 @@ void FaultSignals::continueAll() {
   paused_until_.clear();
 }
 
+RestartSchedule::RestartSchedule(const common::FaultPlan& plan, const std::vector<std::size_t>& supernode_slots,
+                                 std::int32_t max_ticks_in_flight)
+    : in_flight_(max_ticks_in_flight) {
+  for (const auto& f : plan.faults())
+    if (f.action == common::FaultAction::kRestart && f.index >= 0 &&
+        static_cast<std::size_t>(f.index) < supernode_slots.size())
+      pending_.emplace_back(supernode_slots[static_cast<std::size_t>(f.index)], f.tick);
+  std::sort(pending_.begin(), pending_.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+}
+
+std::vector<std::pair<std::size_t, std::int32_t>> RestartSchedule::due(std::int32_t tick) {
+  std::vector<std::pair<std::size_t, std::int32_t>> out;
+  for (auto it = pending_.begin(); it != pending_.end();) {
+    const auto [slot, first_tick] = *it;
+    if (killed_.count(slot) == 0 || tick < first_tick - 1 - in_flight_) {
+      ++it;
+      continue;
+    }
+    killed_.erase(slot);
+    out.emplace_back(slot, first_tick);
+    it = pending_.erase(it);
+  }
+  return out;
+}
+
 HandLosses::HandLosses(const common::Scenario& scenario)
     : plan_(scenario.faults, scenario.run.node_processes, static_cast<std::int32_t>(scenario.supernodes.size())),
       supernodes_(static_cast<std::int32_t>(scenario.supernodes.size())),

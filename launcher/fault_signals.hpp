@@ -7,11 +7,13 @@
 
 #include <sys/types.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "common/faults.hpp"
 #include "common/scenario_config.hpp"
@@ -39,6 +41,27 @@ class FaultSignals {
   std::int32_t run_ticks_;
   std::map<pid_t, std::string> killed_;                 ///< pid -> the fault
   std::map<pid_t, std::int32_t> paused_until_;          ///< pid -> the pause's last tick
+};
+
+/// The scenario's restarts as the launcher starts them: a new process for a supernode slot once the
+/// faults killed its old one and the sources may be within max_ticks_in_flight ticks of the
+/// restart's tick. When it starts changes only the wall time: the producers of what it reads wait
+/// for its readers (dds::RestartedReaders).
+class RestartSchedule {
+ public:
+  /// `supernode_slots[j]`: the launcher's slot of supernode j.
+  RestartSchedule(const common::FaultPlan& plan, const std::vector<std::size_t>& supernode_slots,
+                  std::int32_t max_ticks_in_flight);
+  /// The scenario's faults killed the process of `slot`.
+  void killed(std::size_t slot) { killed_.insert(slot); }
+  /// The slots to start again now that the aggregator finished `tick`, each with its first tick;
+  /// each restart is returned once.
+  std::vector<std::pair<std::size_t, std::int32_t>> due(std::int32_t tick);
+
+ private:
+  std::vector<std::pair<std::size_t, std::int32_t>> pending_;  ///< (slot, first tick), by tick
+  std::set<std::size_t> killed_;
+  std::int32_t in_flight_;
 };
 
 /// Which processes the cluster can lose by hand (SIGKILL outside the scenario's faults) and go on:

@@ -98,6 +98,22 @@ void publishTick(dds::Writer<wsn_msg_TrackBatch>& track_writer, dds::Writer<wsn_
   handoff_writer.write(handoff_sample);
 }
 
+/// A restarted supernode's start barrier: its writers must reach the live processes, not the dead
+/// ones whose endpoints linger until their lease ends, so it waits for their readers by name; its
+/// producers wait for its own readers (RestartedReaders).
+void waitForPeersOfRestart(const dds::Participant& participant, const dds::RoleContext& context,
+                           const common::FaultPlan& plan, const dds::WriterBase& handoff_writer,
+                           const dds::WriterBase& track_writer) {
+  const std::int32_t first = context.first_tick;
+  std::vector<std::string> peers;
+  for (const auto j : plan.liveSupernodeIndices(first))
+    if (j != context.index)
+      peers.push_back(dds::roleIdentity(
+          "supernode", j, plan.incarnation(common::FaultRole::kSupernode, static_cast<std::int32_t>(j), first)));
+  dds::waitForRoleReaders(participant,
+                          {{&handoff_writer, peers}, {&track_writer, {dds::roleIdentity("aggregator", 0, 1)}}}, context);
+}
+
 }  // namespace
 
 void runSupernodeRole(const dds::RoleContext& context) {
@@ -159,21 +175,12 @@ void runSupernodeRole(const dds::RoleContext& context) {
         plan.loseUnscheduled(role, index, handoffs.firstMissing(static_cast<std::uint32_t>(index), t - 1));
     });
     const int s = context.shape.supernodes;
-    if (first == 1) {
+    if (first == 1)
       waitForDiscovery(participant, {{&handoff_writer, s}, {&track_writer, 1}},
                        {{&delivery_reader, 1}, {&handoff_reader, s}, {&rehome_reader, 1}, {&progress.reader(), 1}},
                        context);
-    } else {
-      // Restarted: its writers must reach the live processes, not the dead ones whose endpoints
-      // linger until their lease ends; its producers wait for its readers (RestartedReaders).
-      std::vector<std::string> peers;
-      for (const auto j : plan.liveSupernodeIndices(first))
-        if (j != self)
-          peers.push_back(roleIdentity("supernode", j,
-                                       plan.incarnation(common::FaultRole::kSupernode, static_cast<std::int32_t>(j), first)));
-      waitForRoleReaders(participant, {{&handoff_writer, peers}, {&track_writer, {roleIdentity("aggregator", 0, 1)}}},
-                         context);
-    }
+    else
+      waitForPeersOfRestart(participant, context, plan, handoff_writer, track_writer);
     status.ready();
 
     const std::int32_t ticks = scenario.run.ticks;

@@ -1,5 +1,6 @@
-// Which processes the launcher lets the cluster lose by hand (launcher/fault_signals.hpp), and how
-// it tells a stopped child apart (launcher/stopped_processes.hpp), on a child process of its own.
+// Which processes the launcher lets the cluster lose by hand and when it starts a restarted one
+// (launcher/fault_signals.hpp), and how it tells a stopped child apart
+// (launcher/stopped_processes.hpp), on a child process of its own.
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -39,6 +40,27 @@ TEST_CASE("a supernode the scenario kills does not count as the one left", "[lau
   scenario.faults = {common::FaultSpec::kill(common::FaultRole::kSupernode, 1, 10)};
   HandLosses losses(scenario);
   CHECK_FALSE(losses.survivable("supernode", 0));
+}
+
+TEST_CASE("a restart is due once its supernode was killed and the sources near its tick, once", "[launcher][faults]") {
+  using common::FaultRole;
+  using common::FaultSpec;
+  // Supernode 1 (slot 5) killed at 10, back at 20, killed at 30, back at 40; max 3 ticks in flight.
+  const common::FaultPlan plan({FaultSpec::kill(FaultRole::kSupernode, 1, 10), FaultSpec::restart(FaultRole::kSupernode, 1, 40),
+                                FaultSpec::kill(FaultRole::kSupernode, 1, 30), FaultSpec::restart(FaultRole::kSupernode, 1, 20)},
+                               2, 2);
+  RestartSchedule schedule(plan, {4, 5}, 3);
+  CHECK(schedule.due(30).empty());  // not killed yet: nothing to start, whatever the tick
+  schedule.killed(5);
+  CHECK(schedule.due(15).empty());  // the sources may reach tick 19 from 16 on
+  const auto first = schedule.due(16);
+  REQUIRE(first.size() == 1);
+  CHECK(first[0] == std::pair<std::size_t, std::int32_t>{5, 20});
+  CHECK(schedule.due(17).empty());  // once
+  schedule.killed(5);  // the second kill
+  CHECK(schedule.due(35).empty());
+  CHECK(schedule.due(36) == std::vector<std::pair<std::size_t, std::int32_t>>{{5, 40}});
+  CHECK(schedule.due(100).empty());
 }
 
 TEST_CASE("a child stopped for a while is named with how long, a running one is not", "[launcher][faults]") {
