@@ -130,8 +130,13 @@ std::int32_t WriterBase::matchedReaders() const {
 std::int32_t WriterBase::matchedRoleReaders() const {
   std::int32_t roles = 0;
   for (const auto reader : matchedHandles(handle(), dds_get_matched_subscriptions, "dds_get_matched_subscriptions")) {
-    const auto data = endpointData(dds_get_matched_subscription_data(handle(), reader));
-    if (data && isRoleEndpoint(data->qos)) ++roles;
+    auto known = role_reader_.find(reader);
+    if (known == role_reader_.end()) {
+      const auto data = endpointData(dds_get_matched_subscription_data(handle(), reader));
+      if (!data) continue;  // unmatched since the list was taken: neither counted nor remembered
+      known = role_reader_.emplace(reader, isRoleEndpoint(data->qos)).first;
+    }
+    if (known->second) ++roles;
   }
   return roles;
 }

@@ -154,9 +154,11 @@ void waitForDiscovery(const Participant& participant, const std::vector<std::pai
   for (const auto& [reader, expected] : readers) endpoints.push_back(reader->handle());
   waitUntilMatched(participant, endpoints, context, [&]() {
     std::ostringstream out;
-    for (const auto& [writer, expected] : writers)
-      if (const auto matched = writer->matchedRoleReaders(); matched < expected)
-        out << " writer " << writer->handle() << " has " << matched << "/" << expected << " readers;";
+    for (const auto& [writer, expected] : writers) {
+      // Readers of any kind first: a cheap status, and a role count can only be lower.
+      const auto matched = writer->matchedReaders() < expected ? writer->matchedReaders() : writer->matchedRoleReaders();
+      if (matched < expected) out << " writer " << writer->handle() << " has " << matched << "/" << expected << " readers;";
+    }
     for (const auto& [reader, expected] : readers)
       if (reader->matchedWriters() < expected)
         out << " reader " << reader->handle() << " has " << reader->matchedWriters() << "/" << expected << " writers;";
