@@ -20,7 +20,7 @@ void FaultReport::addTick(std::int32_t t, const FaultTickScores& scores, const s
   handoffs_lost_by_tick_.resize(by_tick_.size(), 0);
   handoffs_lost_by_tick_[static_cast<std::size_t>(t - 1)] = handoffs_lost_partition;
   for (const auto& f : plan_.faults()) {
-    if (f.action != common::FaultAction::kRestart) continue;
+    if (f.action != common::FaultAction::kRestart || t < f.tick - 1) continue;
     const auto back = static_cast<std::uint32_t>(f.index);
     auto& take_back = take_backs_[{back, f.tick}];
     for (const auto& supernode : live)

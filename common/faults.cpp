@@ -8,44 +8,52 @@
 
 namespace wsn::common {
 
-FaultSpec FaultSpec::kill(FaultRole role, std::int32_t index, std::int32_t tick) {
+namespace {
+
+/// A fault of `action` at `tick`, its other keys at their defaults.
+FaultSpec faultAt(FaultAction action, std::int32_t tick) {
   FaultSpec f;
   f.tick = tick;
-  f.action = FaultAction::kKill;
+  f.action = action;
+  return f;
+}
+
+/// A fault of `action` on process `role` `index` at `tick`.
+FaultSpec processFault(FaultAction action, FaultRole role, std::int32_t index, std::int32_t tick) {
+  FaultSpec f = faultAt(action, tick);
   f.role = role;
   f.index = index;
   return f;
 }
 
+}  // namespace
+
+FaultSpec FaultSpec::kill(FaultRole role, std::int32_t index, std::int32_t tick) {
+  return processFault(FaultAction::kKill, role, index, tick);
+}
+
 FaultSpec FaultSpec::pause(FaultRole role, std::int32_t index, std::int32_t tick, std::int32_t ticks) {
-  FaultSpec f = kill(role, index, tick);
-  f.action = FaultAction::kPause;
+  FaultSpec f = processFault(FaultAction::kPause, role, index, tick);
   f.ticks = ticks;
   return f;
 }
 
 FaultSpec FaultSpec::partition(std::int32_t a, std::int32_t b, std::int32_t tick, std::int32_t ticks) {
-  FaultSpec f;
-  f.tick = tick;
-  f.action = FaultAction::kPartition;
+  FaultSpec f = faultAt(FaultAction::kPartition, tick);
   f.between = {a, b};
   f.ticks = ticks;
   return f;
 }
 
 FaultSpec FaultSpec::burstLoss(double pte, std::int32_t tick, std::int32_t ticks) {
-  FaultSpec f;
-  f.tick = tick;
-  f.action = FaultAction::kBurstLoss;
+  FaultSpec f = faultAt(FaultAction::kBurstLoss, tick);
   f.pte = pte;
   f.ticks = ticks;
   return f;
 }
 
 FaultSpec FaultSpec::restart(FaultRole role, std::int32_t index, std::int32_t tick) {
-  FaultSpec f = kill(role, index, tick);
-  f.action = FaultAction::kRestart;
-  return f;
+  return processFault(FaultAction::kRestart, role, index, tick);
 }
 
 std::int32_t FaultSpec::lastTick() const {
@@ -99,39 +107,37 @@ std::vector<std::int32_t> drawProcesses(std::uint64_t seed, std::size_t item, st
 }
 
 FaultPlan::FaultPlan(std::vector<FaultSpec> faults, std::int32_t tiles, std::int32_t supernodes)
-    : faults_(std::move(faults)), tiles_(tiles), supernodes_(supernodes) {}
+    : faults_(std::move(faults)), tiles_(tiles), supernodes_(supernodes) {
+  // Once, not on every liveness query: the last tick each kill or pause holds (a kill until its
+  // process's next restart).
+  for (const auto& f : faults_) {
+    const auto back = f.action == FaultAction::kKill ? restartAfter(f.role, f.index, f.tick) : std::nullopt;
+    last_tick_.push_back(back ? *back - 1 : f.lastTick());
+    has_restarts_ = has_restarts_ || f.action == FaultAction::kRestart;
+  }
+}
 
-namespace {
-
-/// The first restart of `role` `index` after `tick`.
-std::optional<std::int32_t> restartAfter(const std::vector<FaultSpec>& faults, FaultRole role, std::int32_t index,
-                                         std::int32_t tick) {
+std::optional<std::int32_t> FaultPlan::restartAfter(FaultRole role, std::int32_t index, std::int32_t tick) const {
   std::optional<std::int32_t> first;
-  for (const auto& f : faults)
+  for (const auto& f : faults_)
     if (f.action == FaultAction::kRestart && f.role == role && f.index == index && f.tick > tick)
       first = std::min(first.value_or(f.tick), f.tick);
   return first;
 }
 
-bool liveUnder(const std::vector<FaultSpec>& faults, FaultRole role, std::int32_t index, std::int32_t tick) {
-  for (const auto& f : faults) {
-    if (!f.stopsProcess() || f.role != role || f.index != index) continue;
-    std::int32_t last = f.lastTick();
-    if (f.action == FaultAction::kKill)
-      if (const auto back = restartAfter(faults, role, index, f.tick)) last = *back - 1;
-    if (tick >= f.tick && tick <= last) return false;
+bool FaultPlan::scheduledLive(FaultRole role, std::int32_t index, std::int32_t tick) const {
+  for (std::size_t k = 0; k < faults_.size(); ++k) {
+    const auto& f = faults_[k];
+    if (f.stopsProcess() && f.role == role && f.index == index && tick >= f.tick && tick <= last_tick_[k]) return false;
   }
   return true;
 }
 
-}  // namespace
-
-bool FaultPlan::scheduledLive(FaultRole role, std::int32_t index, std::int32_t tick) const {
-  return liveUnder(faults_, role, index, tick);
-}
-
 bool FaultPlan::live(FaultRole role, std::int32_t index, std::int32_t tick) const {
-  return liveUnder(faults_, role, index, tick) && liveUnder(lost_, role, index, tick);
+  if (!scheduledLive(role, index, tick)) return false;
+  for (const auto& f : lost_)  // lost by hand: for good
+    if (f.role == role && f.index == index && tick >= f.tick) return false;
+  return true;
 }
 
 void FaultPlan::loseUnscheduled(FaultRole role, std::int32_t index, std::int32_t from_tick) {
@@ -236,7 +242,7 @@ std::int32_t FaultPlan::incarnation(FaultRole role, std::int32_t index, std::int
 
 std::optional<std::int32_t> FaultPlan::killEnds(const FaultSpec& kill) const {
   if (kill.action != FaultAction::kKill) return std::nullopt;
-  return restartAfter(faults_, kill.role, kill.index, kill.tick);
+  return restartAfter(kill.role, kill.index, kill.tick);
 }
 
 }  // namespace wsn::common

@@ -117,6 +117,10 @@ class FaultPlan {
   std::int32_t incarnation(FaultRole role, std::int32_t index, std::int32_t tick) const;
   /// The first tick a kill no longer holds: its process's next restart, if any.
   std::optional<std::int32_t> killEnds(const FaultSpec& kill) const;
+  /// The tick of the first restart of `role` `index` after `tick`, if any.
+  std::optional<std::int32_t> restartAfter(FaultRole role, std::int32_t index, std::int32_t tick) const;
+  /// Whether the scenario restarts any process.
+  bool hasRestarts() const { return has_restarts_; }
 
   friend bool operator==(const FaultPlan&, const FaultPlan&) = default;
 
@@ -124,6 +128,8 @@ class FaultPlan {
   bool live(FaultRole role, std::int32_t index, std::int32_t tick) const;
   bool scheduledLive(FaultRole role, std::int32_t index, std::int32_t tick) const;
   std::vector<FaultSpec> faults_;
+  std::vector<std::int32_t> last_tick_;  ///< per fault: the last tick a kill or pause holds
+  bool has_restarts_ = false;
   std::vector<FaultSpec> lost_;
   std::int32_t tiles_ = 0;
   std::int32_t supernodes_ = 0;

@@ -392,14 +392,18 @@ ClusterResult runThreads(const ClusterOptions& options) {
               roleRunners().at(slots[i].role)(contexts[i]);
               break;
             } catch (const dds::ScheduledDeath& death) {
-              const auto back = plan.killEnds(common::FaultSpec::kill(common::FaultRole::kSupernode,
-                                                                      static_cast<std::int32_t>(slots[i].index),
-                                                                      contexts[i].first_tick));
+              // Only a supernode restarts; 0: no restart after this death.
+              const std::int32_t back =
+                  slots[i].role == "supernode"
+                      ? plan.restartAfter(common::FaultRole::kSupernode, static_cast<std::int32_t>(slots[i].index),
+                                          contexts[i].first_tick)
+                            .value_or(0)
+                      : 0;
               std::lock_guard lock(mutex);
               result.outcomes[i].message = std::string("ended as the scenario's faults asked (") + death.what() + ")";
-              if (slots[i].role != "supernode" || !back) break;
-              result.outcomes[i].message += ", restarted at tick " + std::to_string(*back);
-              contexts[i].first_tick = *back;
+              if (back == 0) break;
+              result.outcomes[i].message += ", restarted at tick " + std::to_string(back);
+              contexts[i].first_tick = back;
             }
           }
         } catch (const std::exception& error) {

@@ -1,5 +1,6 @@
 #include "common/dds/entity.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <memory>
 #include <optional>
@@ -25,15 +26,18 @@ std::optional<std::string> userData(const dds_qos_t* qos) {
 }
 
 /// The marker alone, or followed by a space and the owner's identity.
-bool isRoleEndpoint(const dds_qos_t* qos) {
-  const auto data = userData(qos);
+bool isRoleData(std::string_view data) {
   const std::string_view marker(kRoleMarker, sizeof kRoleMarker - 1);
-  return data && data->starts_with(marker) && (data->size() == marker.size() || (*data)[marker.size()] == ' ');
+  return data.starts_with(marker) && (data.size() == marker.size() || data[marker.size()] == ' ');
 }
 
-bool ownedBy(const dds_qos_t* qos, const std::string& identity) {
-  return userData(qos) == std::string(kRoleMarker) + " " + identity;
+bool isRoleEndpoint(const dds_qos_t* qos) {
+  const auto data = userData(qos);
+  return data && isRoleData(*data);
 }
+
+/// The user data of the endpoints of the role process named `identity`.
+std::string ownerData(const std::string& identity) { return std::string(kRoleMarker) + " " + identity; }
 
 /// `qos` with the participant's identity after the role marker, for a role endpoint of a
 /// participant that has one; otherwise nothing (use `qos` as it is).
@@ -41,7 +45,7 @@ std::optional<Qos> withIdentity(const Participant& participant, const Qos& qos) 
   if (participant.identity().empty() || !isRoleEndpoint(qos.get())) return std::nullopt;
   Qos copy;
   check(dds_copy_qos(copy.get(), qos.get()), "dds_copy_qos");
-  const std::string data = std::string(kRoleMarker) + " " + participant.identity();
+  const std::string data = ownerData(participant.identity());
   dds_qset_userdata(copy.get(), data.data(), data.size());
   return copy;
 }
@@ -127,26 +131,29 @@ std::int32_t WriterBase::matchedReaders() const {
   return static_cast<std::int32_t>(status.current_count);
 }
 
-std::int32_t WriterBase::matchedRoleReaders() const {
-  std::int32_t roles = 0;
+std::vector<const std::string*> WriterBase::matchedReaderData() const {
+  std::vector<const std::string*> out;
   for (const auto reader : matchedHandles(handle(), dds_get_matched_subscriptions, "dds_get_matched_subscriptions")) {
-    auto known = role_reader_.find(reader);
-    if (known == role_reader_.end()) {
+    auto known = reader_data_.find(reader);
+    if (known == reader_data_.end()) {
       const auto data = endpointData(dds_get_matched_subscription_data(handle(), reader));
       if (!data) continue;  // unmatched since the list was taken: neither counted nor remembered
-      known = role_reader_.emplace(reader, isRoleEndpoint(data->qos)).first;
+      known = reader_data_.emplace(reader, userData(data->qos).value_or("")).first;
     }
-    if (known->second) ++roles;
+    out.push_back(&known->second);
   }
-  return roles;
+  return out;
+}
+
+std::int32_t WriterBase::matchedRoleReaders() const {
+  const auto readers = matchedReaderData();
+  return static_cast<std::int32_t>(std::count_if(readers.begin(), readers.end(), [](const std::string* d) { return isRoleData(*d); }));
 }
 
 bool WriterBase::matchesReaderOf(const std::string& identity) const {
-  for (const auto reader : matchedHandles(handle(), dds_get_matched_subscriptions, "dds_get_matched_subscriptions")) {
-    const auto data = endpointData(dds_get_matched_subscription_data(handle(), reader));
-    if (data && ownedBy(data->qos, identity)) return true;
-  }
-  return false;
+  const auto readers = matchedReaderData();
+  const std::string owner = ownerData(identity);
+  return std::any_of(readers.begin(), readers.end(), [&](const std::string* d) { return *d == owner; });
 }
 
 void WriterBase::waitForAcknowledgements(std::chrono::milliseconds timeout) const {
@@ -170,9 +177,10 @@ std::int32_t ReaderBase::matchedWriters() const {
 }
 
 bool ReaderBase::matchesWriterOf(const std::string& identity) const {
+  const std::string owner = ownerData(identity);
   for (const auto writer : matchedHandles(handle(), dds_get_matched_publications, "dds_get_matched_publications")) {
     const auto data = endpointData(dds_get_matched_publication_data(handle(), writer));
-    if (data && ownedBy(data->qos, identity)) return true;
+    if (data && userData(data->qos) == owner) return true;
   }
   return false;
 }

@@ -143,9 +143,11 @@ class WriterBase : public Entity {
   WriterBase(const Participant& participant, dds_entity_t topic, const Qos& qos);
 
  private:
-  /// Whether each matched reader seen so far is a role's: its user data never changes, and
-  /// looking it up again on every discovery event made a 70-process start-up quadratic in DDS.
-  mutable std::unordered_map<dds_instance_handle_t, bool> role_reader_;
+  /// The user data of each matched reader (nothing for one that unmatched meanwhile).
+  std::vector<const std::string*> matchedReaderData() const;
+  /// Each matched reader's user data, looked up once: it never changes, and looking it up again
+  /// on every discovery event made a 70-process start-up quadratic in DDS.
+  mutable std::unordered_map<dds_instance_handle_t, std::string> reader_data_;
 };
 
 /// A writer of one sample type (a generated C struct).
