@@ -18,18 +18,18 @@ GospaResult gospaDistance(const std::vector<common::Vec2>& truth, const std::vec
 
   const std::size_t m = truth.size();
   const std::size_t n = tracks.size();
-  // Cut-off costs are all finite, so the solver assigns min(m, n) pairs; which of those pairs
-  // are real matches (d < c) is decided afterwards (see the header).
+  // A pair at d >= c costs no less than its two misses (c^p / 2 each), so GOSPA's matching is
+  // the partial assignment with c^p per unassigned truth.
   std::vector<double> distance(m * n);
   std::vector<double> cost(m * n);
   const double cp = std::pow(c, p);
   for (std::size_t i = 0; i < m; ++i) {
     for (std::size_t j = 0; j < n; ++j) {
       distance[i * n + j] = common::distance(truth[i], tracks[j]);
-      cost[i * n + j] = std::min(cp, std::pow(distance[i * n + j], p));
+      cost[i * n + j] = std::pow(distance[i * n + j], p);
     }
   }
-  const auto assignment = common::solveAssignment(cost, m, n);
+  const auto assignment = common::solveAssignmentWithMissCost(cost, m, n, cp);
 
   GospaResult r;
   for (std::size_t i = 0; i < m; ++i) {

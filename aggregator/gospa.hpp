@@ -9,10 +9,10 @@
 //     d_p^(c,2)(X, Y)^p = min_γ ( Σ_{(i,j)∈γ} ‖x_i − y_j‖^p + (c^p / 2) (|X| − |γ| + |Y| − |γ|) ),
 //   where only pairs with ‖x_i − y_j‖ < c may be in γ. Every unassigned truth is a missed
 //   target, every unassigned track a false target, each costing c^p / 2.
-//   - Computed as the OSPA-style full assignment of min(m, n) pairs on min(d, c)^p
-//     (common/assignment.hpp); an assigned pair with d >= c then costs c^p = c^p/2 + c^p/2 and is
-//     reported as one missed plus one false target. Both readings give the same value; a pair
-//     at exactly d = c is counted as missed + false (a convention: either way costs c^p).
+//   - Computed as that partial assignment: each truth left out costs c^p (its own c^p/2 and
+//     that of the track it leaves over), so pairs with d >= c are never needed and the problem
+//     splits into clusters of nearby truths and tracks (common/assignment.hpp). A pair at
+//     exactly d = c is counted as missed + false (a convention: either way costs c^p).
 //   - The parts are in the units of d^p, so localisation + missed + false = distance^p: this is
 //     the decomposition the paper gives for alpha = 2 (for p = 1 they add up to the distance).
 //   - Both sets empty: 0. No normalisation by the set sizes (unlike OSPA): GOSPA grows with the

@@ -54,13 +54,16 @@ double ospaDistance(const std::vector<Vec2>& x, const std::vector<Vec2>& y, doub
   const std::size_t m = small.size();
   const std::size_t n = large.size();
   if (n == 0) return 0.0;
+  // Pairs cost min(d, c)^p; a pair at the cut-off costs what leaving both out does, so the
+  // matching is the partial assignment with c^p per unassigned element of the smaller set.
+  const double cp = std::pow(c, p);
   std::vector<double> cost(m * n);
   for (std::size_t i = 0; i < m; ++i)
     for (std::size_t j = 0; j < n; ++j) cost[i * n + j] = std::pow(std::min(c, common::distance(small[i], large[j])), p);
-  const auto assignment = common::solveAssignment(cost, m, n);
+  const auto assignment = common::solveAssignmentWithMissCost(cost, m, n, cp);
   double sum = 0.0;
-  for (std::size_t i = 0; i < m; ++i) sum += cost[i * n + static_cast<std::size_t>(assignment[i])];
-  sum += std::pow(c, p) * static_cast<double>(n - m);
+  for (std::size_t i = 0; i < m; ++i) sum += assignment[i] < 0 ? cp : cost[i * n + static_cast<std::size_t>(assignment[i])];
+  sum += cp * static_cast<double>(n - m);
   return std::pow(sum / static_cast<double>(n), 1.0 / p);
 }
 

@@ -2,28 +2,28 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+#include <stdexcept>
 
 namespace wsn::common {
+namespace {
 
-std::vector<int> solveAssignment(const std::vector<double>& cost, std::size_t rows, std::size_t cols) {
+/// Dense solve of one cluster: `cost` is rows x cols, row-major, non-finite entries forbidden;
+/// each row may take a private "unassigned" column at `miss_cost`.
+std::vector<int> solveDense(const std::vector<double>& cost, std::size_t rows, std::size_t cols, double miss_cost) {
   std::vector<int> result(rows, -1);
   if (rows == 0 || cols == 0) return result;
-
-  // Pad to a square matrix in which every row may also take a private "unassigned" column at a
-  // cost above any sum of finite costs, so forbidden pairs are avoided whenever possible and a
-  // row left without a finite partner simply stays unassigned.
-  double finite_sum = 0.0;
+  double finite_sum = std::abs(miss_cost);
   for (double c : cost)
     if (std::isfinite(c)) finite_sum += std::abs(c);
-  const double dummy_cost = 2.0 * finite_sum + 1.0;
-  const double forbidden_cost = 4.0 * finite_sum + 4.0;
+  const double forbidden_cost = 4.0 * finite_sum + 4.0;  // above any sum of allowed costs
   const std::size_t n = rows + cols;  // columns: real ones, then one dummy per row; rows: real, then fillers
   auto at = [&](std::size_t r, std::size_t c) -> double {
     if (r < rows && c < cols) {
       const double v = cost[r * cols + c];
       return std::isfinite(v) ? v : forbidden_cost;
     }
-    if (r < rows) return (c - cols == r) ? dummy_cost : forbidden_cost;  // row's own dummy
+    if (r < rows) return (c - cols == r) ? miss_cost : forbidden_cost;  // row's own dummy
     return 0.0;  // filler rows absorb unused columns for free
   };
 
@@ -75,6 +75,74 @@ std::vector<int> solveAssignment(const std::vector<double>& cost, std::size_t ro
     if (r >= 1 && r <= rows && std::isfinite(cost[(r - 1) * cols + (j - 1)])) result[r - 1] = static_cast<int>(j - 1);
   }
   return result;
+}
+
+/// Splits the problem into the connected clusters of its allowed pairs (`allowed(r, c)`) and
+/// solves each densely; `miss_cost_of(cluster_cost)` gives a cluster's cost of an unassigned row.
+template <typename Allowed, typename MissCost>
+std::vector<int> solveByClusters(const std::vector<double>& cost, std::size_t rows, std::size_t cols,
+                                 Allowed allowed, MissCost miss_cost_of) {
+  std::vector<int> result(rows, -1);
+  if (rows == 0 || cols == 0) return result;
+  // Union-find over rows (0..rows-1) and columns (rows..rows+cols-1).
+  std::vector<std::size_t> parent(rows + cols);
+  std::iota(parent.begin(), parent.end(), std::size_t{0});
+  auto find = [&](std::size_t k) {
+    while (parent[k] != k) k = parent[k] = parent[parent[k]];
+    return k;
+  };
+  for (std::size_t r = 0; r < rows; ++r)
+    for (std::size_t c = 0; c < cols; ++c) {
+      if (!allowed(r, c)) continue;
+      const std::size_t a = find(r);
+      const std::size_t b = find(rows + c);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  // Members of each cluster in their original order; a cluster is named by its smallest member.
+  std::vector<std::vector<std::size_t>> cluster_rows(rows + cols);
+  std::vector<std::vector<std::size_t>> cluster_cols(rows + cols);
+  for (std::size_t r = 0; r < rows; ++r) cluster_rows[find(r)].push_back(r);
+  for (std::size_t c = 0; c < cols; ++c) cluster_cols[find(rows + c)].push_back(c);
+  std::vector<double> local;
+  for (std::size_t k = 0; k < rows + cols; ++k) {
+    const auto& rs = cluster_rows[k];
+    const auto& cs = cluster_cols[k];
+    if (rs.empty() || cs.empty()) continue;
+    local.assign(rs.size() * cs.size(), kForbidden);
+    for (std::size_t i = 0; i < rs.size(); ++i)
+      for (std::size_t j = 0; j < cs.size(); ++j)
+        if (allowed(rs[i], cs[j])) local[i * cs.size() + j] = cost[rs[i] * cols + cs[j]];
+    const auto solution = solveDense(local, rs.size(), cs.size(), miss_cost_of(local));
+    for (std::size_t i = 0; i < rs.size(); ++i)
+      if (solution[i] >= 0) result[rs[i]] = static_cast<int>(cs[static_cast<std::size_t>(solution[i])]);
+  }
+  return result;
+}
+
+}  // namespace
+
+std::vector<int> solveAssignment(const std::vector<double>& cost, std::size_t rows, std::size_t cols) {
+  return solveByClusters(
+      cost, rows, cols, [&](std::size_t r, std::size_t c) { return std::isfinite(cost[r * cols + c]); },
+      [](const std::vector<double>& local) {
+        // Above any sum of the cluster's finite costs: assigning one more row always pays.
+        double finite_sum = 0.0;
+        for (double c : local)
+          if (std::isfinite(c)) finite_sum += std::abs(c);
+        return 2.0 * finite_sum + 1.0;
+      });
+}
+
+std::vector<int> solveAssignmentWithMissCost(const std::vector<double>& cost, std::size_t rows, std::size_t cols,
+                                             double miss_cost) {
+  if (!std::isfinite(miss_cost)) throw std::invalid_argument("solveAssignmentWithMissCost: miss_cost must be finite");
+  return solveByClusters(
+      cost, rows, cols,
+      [&](std::size_t r, std::size_t c) {
+        const double v = cost[r * cols + c];
+        return std::isfinite(v) && v < miss_cost;
+      },
+      [miss_cost](const std::vector<double>&) { return miss_cost; });
 }
 
 }  // namespace wsn::common

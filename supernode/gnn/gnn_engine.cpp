@@ -159,26 +159,12 @@ std::vector<int> GnnEngine::associate(const std::vector<Track>& tracks,
                                       std::span<const common::Observation> slot) const {
   const std::size_t rows = tracks.size();
   const std::size_t cols = slot.size();
-  std::vector<int> assigned(rows, -1);
 
   // Gate: pairs with d^2 <= gate_chi2. S depends only on the track, so it is factorised once per
   // track; the cost d^2 + ln det S is -2 log N(y; Hx, S) up to a constant, so the assignment
-  // maximises the joint likelihood of the gated pairs.
-  struct Pair {
-    std::size_t row;
-    std::size_t col;
-    double cost;
-  };
-  std::vector<Pair> gated;
-  // Union-find over rows (0..rows-1) and columns (rows..rows+cols-1): pairs that share no gate
-  // cannot compete, so each connected cluster is solved on its own — the same optimum as one big
-  // problem, at a fraction of the O(n^3) cost when the scene is sparse.
-  std::vector<std::size_t> parent(rows + cols);
-  for (std::size_t k = 0; k < parent.size(); ++k) parent[k] = k;
-  auto find = [&](std::size_t k) {
-    while (parent[k] != k) k = parent[k] = parent[parent[k]];
-    return k;
-  };
+  // maximises the joint likelihood of the gated pairs. Pairs outside the gate are forbidden, so
+  // the solver splits the scene into clusters that share a gate.
+  std::vector<double> cost(rows * cols, common::kForbidden);
   for (std::size_t i = 0; i < rows; ++i) {
     const common::InnovationCovariance S(model_, tracks[i].state);
     if (!S.positiveDefinite()) continue;
@@ -190,40 +176,10 @@ std::vector<int> GnnEngine::associate(const std::vector<Track>& tracks,
       const common::MeasurementVector nu = common::MeasurementVector(slot[j].x, slot[j].y) - predicted;
       if (nu.squaredNorm() > reach2) continue;
       const double d2 = S.mahalanobisSquared(nu);
-      if (!(d2 <= params_.gate_chi2)) continue;
-      gated.push_back({i, j, d2 + log_det});
-      const std::size_t a = find(i);
-      const std::size_t b = find(rows + j);
-      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+      if (d2 <= params_.gate_chi2) cost[i * cols + j] = d2 + log_det;
     }
   }
-
-  // Clusters in order of their smallest member, rows and columns in their original order.
-  std::vector<std::vector<std::size_t>> cluster_rows(rows + cols);
-  std::vector<std::vector<std::size_t>> cluster_cols(rows + cols);
-  for (std::size_t i = 0; i < rows; ++i) cluster_rows[find(i)].push_back(i);
-  for (std::size_t j = 0; j < cols; ++j) cluster_cols[find(rows + j)].push_back(j);
-  std::vector<std::size_t> local(rows + cols, 0);  // index of a row / column inside its cluster
-  for (std::size_t c = 0; c < rows + cols; ++c) {
-    for (std::size_t k = 0; k < cluster_rows[c].size(); ++k) local[cluster_rows[c][k]] = k;
-    for (std::size_t k = 0; k < cluster_cols[c].size(); ++k) local[rows + cluster_cols[c][k]] = k;
-  }
-  std::vector<std::vector<double>> cluster_cost(rows + cols);
-  for (std::size_t c = 0; c < rows + cols; ++c)
-    if (!cluster_rows[c].empty() && !cluster_cols[c].empty())
-      cluster_cost[c].assign(cluster_rows[c].size() * cluster_cols[c].size(), common::kForbidden);
-  for (const auto& pair : gated) {
-    const std::size_t c = find(pair.row);
-    cluster_cost[c][local[pair.row] * cluster_cols[c].size() + local[rows + pair.col]] = pair.cost;
-  }
-  for (std::size_t c = 0; c < rows + cols; ++c) {
-    if (cluster_cost[c].empty()) continue;
-    const auto solution = common::solveAssignment(cluster_cost[c], cluster_rows[c].size(), cluster_cols[c].size());
-    for (std::size_t k = 0; k < solution.size(); ++k)
-      if (solution[k] >= 0)
-        assigned[cluster_rows[c][k]] = static_cast<int>(cluster_cols[c][static_cast<std::size_t>(solution[k])]);
-  }
-  return assigned;
+  return common::solveAssignment(cost, rows, cols);
 }
 
 void GnnEngine::processTick(std::vector<Track>& tracks, std::int32_t tick,

@@ -3,7 +3,10 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <algorithm>
 #include <cstddef>
+#include <limits>
+#include <utility>
 #include <vector>
 
 #include "common/rng.hpp"
@@ -154,6 +157,94 @@ TEST_CASE("integer costs with ties still give an optimum", "[assignment]") {
     const Outcome best = bruteForce(cost, rows, cols);
     CHECK(got.size == best.size);
     CHECK(got.cost == best.cost);  // sums of small integers are exact
+  }
+}
+
+/// Exhaustive optimum of the partial assignment with `miss` per unassigned row.
+double bruteForceWithMiss(const std::vector<double>& cost, std::size_t rows, std::size_t cols, double miss) {
+  double best = std::numeric_limits<double>::infinity();
+  std::vector<char> used(cols, 0);
+  auto search = [&](auto&& self, std::size_t r, double sum) -> void {
+    if (r == rows) {
+      best = std::min(best, sum);
+      return;
+    }
+    self(self, r + 1, sum + miss);
+    for (std::size_t c = 0; c < cols; ++c) {
+      const double v = cost[r * cols + c];
+      if (used[c] || !std::isfinite(v)) continue;
+      used[c] = 1;
+      self(self, r + 1, sum + v);
+      used[c] = 0;
+    }
+  };
+  search(search, 0, 0.0);
+  return best;
+}
+
+TEST_CASE("a row stays unassigned when every pair costs more than its miss", "[assignment]") {
+  // Row 0 pairs with column 0 (1 < 3); row 1's only pairs cost 4 and 5, above its miss cost 3,
+  // while the lexicographic solver would assign it to column 1.
+  const std::vector<double> cost = {1, 4,  //
+                                    5, 4};
+  CHECK(solveAssignmentWithMissCost(cost, 2, 2, 3.0) == std::vector<int>{0, -1});
+  CHECK(solveAssignment(cost, 2, 2) == std::vector<int>{0, 1});
+  // Two pairs each just under the miss cost lose to one cheap pair: 0 + 3 < 2.9 + 2.9.
+  CHECK(solveAssignmentWithMissCost({2.9, 0,  //
+                                     F, 2.9},
+                                    2, 2, 3.0) == std::vector<int>{1, -1});
+  CHECK_THROWS(solveAssignmentWithMissCost({1}, 1, 1, F));
+}
+
+TEST_CASE("the miss cost solver matches brute force on random problems", "[assignment]") {
+  for (std::uint64_t trial = 0; trial < 400; ++trial) {
+    Stream random(44, Purpose::kTracker, trial, 0);
+    const std::size_t rows = 1 + random.below(5);
+    const std::size_t cols = 1 + random.below(5);
+    const double miss = random.uniform(0.5, 8.0);
+    std::vector<double> cost(rows * cols);
+    for (auto& v : cost) v = random.bernoulli(0.2) ? F : random.uniform(0.0, 10.0);
+    INFO("trial " << trial << ": " << rows << " x " << cols << ", miss " << miss);
+    const auto assignment = solveAssignmentWithMissCost(cost, rows, cols, miss);
+    const Outcome got = outcomeOf(assignment, cost, rows, cols);
+    CHECK(got.cost + miss * static_cast<double>(rows - static_cast<std::size_t>(got.size)) ==
+          Approx(bruteForceWithMiss(cost, rows, cols, miss)).margin(1e-9));
+  }
+}
+
+TEST_CASE("independent clusters are solved as if each were alone", "[assignment]") {
+  // 40 random 3 x 3 blocks on the diagonal of a 120 x 120 problem, everything else forbidden,
+  // rows and columns shuffled: the solution is the blocks' own solutions, put back in place.
+  constexpr std::size_t kBlocks = 40;
+  constexpr std::size_t kSize = 3 * kBlocks;
+  Stream random(45, Purpose::kTracker, 0, 0);
+  std::vector<std::size_t> row_at(kSize), col_at(kSize);
+  for (std::size_t k = 0; k < kSize; ++k) row_at[k] = col_at[k] = k;
+  for (std::size_t k = kSize - 1; k > 0; --k) {
+    std::swap(row_at[k], row_at[random.below(k + 1)]);
+    std::swap(col_at[k], col_at[random.below(k + 1)]);
+  }
+  std::vector<double> cost(kSize * kSize, F);
+  std::vector<std::vector<double>> blocks(kBlocks, std::vector<double>(9));
+  for (std::size_t b = 0; b < kBlocks; ++b)
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t j = 0; j < 3; ++j) {
+        blocks[b][i * 3 + j] = random.bernoulli(0.2) ? F : random.uniform(0.0, 10.0);
+        cost[row_at[3 * b + i] * kSize + col_at[3 * b + j]] = blocks[b][i * 3 + j];
+      }
+  const auto whole = solveAssignment(cost, kSize, kSize);
+  const auto whole_with_miss = solveAssignmentWithMissCost(cost, kSize, kSize, 4.0);
+  for (std::size_t b = 0; b < kBlocks; ++b) {
+    const auto alone = solveAssignment(blocks[b], 3, 3);
+    const auto alone_with_miss = solveAssignmentWithMissCost(blocks[b], 3, 3, 4.0);
+    for (std::size_t i = 0; i < 3; ++i) {
+      INFO("block " << b << ", row " << i);
+      const int expected = alone[i] < 0 ? -1 : static_cast<int>(col_at[3 * b + static_cast<std::size_t>(alone[i])]);
+      const int expected_with_miss =
+          alone_with_miss[i] < 0 ? -1 : static_cast<int>(col_at[3 * b + static_cast<std::size_t>(alone_with_miss[i])]);
+      CHECK(whole[row_at[3 * b + i]] == expected);
+      CHECK(whole_with_miss[row_at[3 * b + i]] == expected_with_miss);
+    }
   }
 }
 
