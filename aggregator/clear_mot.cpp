@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common/assignment.hpp"
+#include "common/near_pairs.hpp"
 #include "common/geometry.hpp"
 #include "common/output.hpp"
 
@@ -69,14 +70,15 @@ ClearMotTick ClearMotAccumulator::add(std::int32_t tick, const std::vector<commo
   for (std::size_t j = 0; j < cols; ++j)
     if (!track_used[j]) free_cols.push_back(j);
   if (!free_rows.empty() && !free_cols.empty()) {
-    std::vector<double> cost(free_rows.size() * free_cols.size());
-    for (std::size_t r = 0; r < free_rows.size(); ++r) {
-      for (std::size_t c = 0; c < free_cols.size(); ++c) {
-        const double d = positionDistance(truth[free_rows[r]], tracks[free_cols[c]]);
-        cost[r * free_cols.size() + c] = d < threshold_ ? d : common::kForbidden;
-      }
-    }
-    const auto assignment = common::solveAssignment(cost, free_rows.size(), free_cols.size());
+    std::vector<common::Vec2> row_at, col_at;
+    for (const std::size_t i : free_rows) row_at.push_back({truth[i].x, truth[i].y});
+    for (const std::size_t j : free_cols) col_at.push_back({tracks[j].x, tracks[j].y});
+    std::vector<common::AssignmentPair> pairs;
+    common::forEachPairWithin(row_at, col_at, threshold_, [&](std::uint32_t r, std::uint32_t c) {
+      const double d = positionDistance(truth[free_rows[r]], tracks[free_cols[c]]);
+      if (d < threshold_) pairs.push_back({r, c, d});
+    });
+    const auto assignment = common::solveSparseAssignment(free_rows.size(), free_cols.size(), pairs);
     for (std::size_t r = 0; r < free_rows.size(); ++r) {
       if (assignment[r] < 0) continue;
       const std::size_t j = free_cols[static_cast<std::size_t>(assignment[r])];

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "common/assignment.hpp"
+#include "common/near_pairs.hpp"
 #include "common/output.hpp"
 
 namespace wsn::aggregator {
@@ -20,24 +21,20 @@ GospaResult gospaDistance(const std::vector<common::Vec2>& truth, const std::vec
   const std::size_t n = tracks.size();
   // A pair at d >= c costs no less than its two misses (c^p / 2 each), so GOSPA's matching is
   // the partial assignment with c^p per unassigned truth.
-  std::vector<double> distance(m * n);
-  std::vector<double> cost(m * n);
   const double cp = std::pow(c, p);
-  for (std::size_t i = 0; i < m; ++i) {
-    for (std::size_t j = 0; j < n; ++j) {
-      distance[i * n + j] = common::distance(truth[i], tracks[j]);
-      cost[i * n + j] = std::pow(distance[i * n + j], p);
-    }
-  }
-  const auto assignment = common::solveAssignmentWithMissCost(cost, m, n, cp);
+  std::vector<common::AssignmentPair> pairs;
+  common::forEachPairWithin(truth, tracks, c, [&](std::uint32_t i, std::uint32_t j) {
+    pairs.push_back({i, j, std::pow(common::distance(truth[i], tracks[j]), p)});
+  });
+  const auto assignment = common::solveSparseAssignmentWithMissCost(m, n, pairs, cp);
 
   GospaResult r;
   for (std::size_t i = 0; i < m; ++i) {
     if (assignment[i] < 0) continue;
-    const std::size_t k = i * n + static_cast<std::size_t>(assignment[i]);
-    if (distance[k] < c) {
+    const double d = common::distance(truth[i], tracks[static_cast<std::size_t>(assignment[i])]);
+    if (d < c) {
       ++r.assigned;
-      r.localisation += std::pow(distance[k], p);
+      r.localisation += std::pow(d, p);
     }
   }
   r.missed_targets = static_cast<std::int64_t>(m) - r.assigned;

@@ -1,6 +1,7 @@
 #include "aggregator/metrics.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -8,6 +9,7 @@
 #include <tuple>
 
 #include "common/assignment.hpp"
+#include "common/near_pairs.hpp"
 #include "common/output.hpp"
 
 namespace wsn::aggregator {
@@ -55,14 +57,15 @@ double ospaDistance(const std::vector<Vec2>& x, const std::vector<Vec2>& y, doub
   const std::size_t n = large.size();
   if (n == 0) return 0.0;
   // Pairs cost min(d, c)^p; a pair at the cut-off costs what leaving both out does, so the
-  // matching is the partial assignment with c^p per unassigned element of the smaller set.
+  // matching is the partial assignment with c^p per unassigned element of the smaller set, and
+  // only the pairs closer than c take part.
   const double cp = std::pow(c, p);
-  std::vector<double> cost(m * n);
-  for (std::size_t i = 0; i < m; ++i)
-    for (std::size_t j = 0; j < n; ++j) cost[i * n + j] = std::pow(std::min(c, common::distance(small[i], large[j])), p);
-  const auto assignment = common::solveAssignmentWithMissCost(cost, m, n, cp);
+  const auto pair_cost = [&](std::size_t i, std::size_t j) { return std::pow(std::min(c, common::distance(small[i], large[j])), p); };
+  std::vector<common::AssignmentPair> pairs;
+  common::forEachPairWithin(small, large, c, [&](std::uint32_t i, std::uint32_t j) { pairs.push_back({i, j, pair_cost(i, j)}); });
+  const auto assignment = common::solveSparseAssignmentWithMissCost(m, n, pairs, cp);
   double sum = 0.0;
-  for (std::size_t i = 0; i < m; ++i) sum += assignment[i] < 0 ? cp : cost[i * n + static_cast<std::size_t>(assignment[i])];
+  for (std::size_t i = 0; i < m; ++i) sum += assignment[i] < 0 ? cp : pair_cost(i, static_cast<std::size_t>(assignment[i]));
   sum += cp * static_cast<double>(n - m);
   return std::pow(sum / static_cast<double>(n), 1.0 / p);
 }
@@ -147,19 +150,23 @@ MetricsSummary MetricsAccumulator::finish() const {
       const auto it = ticks_.find(t + 1);
       if (it != ticks_.end()) after = &it->second;
     }
+    // Each target's and each track's states at t - 1 and t + 1, looked up once rather than per pair.
+    const std::array<const TickRecord*, 2> neighbours{before, after};
+    std::vector<std::array<const TargetState*, 2>> target_near(rows, {nullptr, nullptr});
+    std::vector<std::array<const TrackEstimate*, 2>> track_near(cols, {nullptr, nullptr});
+    for (std::size_t side = 0; side < 2; ++side) {
+      if (neighbours[side] == nullptr) continue;
+      for (std::size_t j = 0; j < rows; ++j) target_near[j][side] = findTarget(neighbours[side]->truth, record.truth[j].id);
+      for (std::size_t i = 0; i < cols; ++i) track_near[i][side] = findTrack(neighbours[side]->tracks, record.tracks[i].track);
+    }
     std::vector<double> cost(rows * cols);
     for (std::size_t j = 0; j < rows; ++j)
       for (std::size_t i = 0; i < cols; ++i) {
-        const TargetState& target = record.truth[j];
-        const TrackEstimate& track = record.tracks[i];
-        double sum = squaredError(target, track);
+        double sum = squaredError(record.truth[j], record.tracks[i]);
         int used = 1;
-        for (const TickRecord* neighbour : {before, after}) {
-          if (neighbour == nullptr) continue;
-          const TargetState* target_s = findTarget(neighbour->truth, target.id);
-          const TrackEstimate* track_s = findTrack(neighbour->tracks, track.track);
-          if (target_s == nullptr || track_s == nullptr) continue;
-          sum += squaredError(*target_s, *track_s);
+        for (std::size_t side = 0; side < 2; ++side) {
+          if (target_near[j][side] == nullptr || track_near[i][side] == nullptr) continue;
+          sum += squaredError(*target_near[j][side], *track_near[i][side]);
           ++used;
         }
         cost[j * cols + i] = sum / static_cast<double>(used);

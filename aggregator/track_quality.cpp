@@ -5,22 +5,22 @@
 #include <stdexcept>
 
 #include "common/assignment.hpp"
+#include "common/near_pairs.hpp"
 #include "common/output.hpp"
 
 namespace wsn::aggregator {
 
 std::vector<int> associateTargetsWithTracks(const std::vector<common::TargetState>& truth,
                                                      const std::vector<common::TrackEstimate>& tracks, double gate) {
-  const std::size_t rows = truth.size();
-  const std::size_t cols = tracks.size();
-  std::vector<double> cost(rows * cols);
-  for (std::size_t i = 0; i < rows; ++i) {
-    for (std::size_t j = 0; j < cols; ++j) {
-      const double d = std::hypot(tracks[j].x - truth[i].x, tracks[j].y - truth[i].y);
-      cost[i * cols + j] = d <= gate ? d : common::kForbidden;
-    }
-  }
-  return common::solveAssignment(cost, rows, cols);
+  std::vector<common::Vec2> truth_at, track_at;
+  for (const auto& target : truth) truth_at.push_back({target.x, target.y});
+  for (const auto& track : tracks) track_at.push_back({track.x, track.y});
+  std::vector<common::AssignmentPair> pairs;
+  common::forEachPairWithin(truth_at, track_at, gate, [&](std::uint32_t i, std::uint32_t j) {
+    const double d = std::hypot(tracks[j].x - truth[i].x, tracks[j].y - truth[i].y);
+    if (d <= gate) pairs.push_back({i, j, d});
+  });
+  return common::solveSparseAssignment(truth.size(), tracks.size(), pairs);
 }
 
 TrackQualityAccumulator::TrackQualityAccumulator(double association_gate) : gate_(association_gate) {

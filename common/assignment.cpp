@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 
 namespace wsn::common {
 namespace {
@@ -99,12 +100,12 @@ std::vector<int> solveComplete(const std::vector<double>& cost, std::size_t rows
   return result;
 }
 
-/// Splits the problem into the connected clusters of its allowed pairs (`allowed(r, c)`) and
-/// solves each densely; `miss_cost_of(cluster_cost)` gives a cluster's cost of an unassigned row,
-/// and without `allow_misses` the most rows are assigned.
-template <typename Allowed, typename MissCost>
-std::vector<int> solveByClusters(const std::vector<double>& cost, std::size_t rows, std::size_t cols, bool allow_misses,
-                                 Allowed allowed, MissCost miss_cost_of) {
+/// Splits the problem into the connected clusters of its allowed pairs and solves each densely;
+/// `miss_cost_of(cluster_cost)` gives a cluster's cost of an unassigned row, and without
+/// `allow_misses` the most rows are assigned. Non-finite pairs are left out.
+template <typename MissCost>
+std::vector<int> solveByClusters(std::size_t rows, std::size_t cols, std::span<const AssignmentPair> pairs,
+                                 bool allow_misses, MissCost miss_cost_of) {
   std::vector<int> result(rows, -1);
   if (rows == 0 || cols == 0) return result;
   // Union-find over rows (0..rows-1) and columns (rows..rows+cols-1).
@@ -114,60 +115,108 @@ std::vector<int> solveByClusters(const std::vector<double>& cost, std::size_t ro
     while (parent[k] != k) k = parent[k] = parent[parent[k]];
     return k;
   };
-  for (std::size_t r = 0; r < rows; ++r)
-    for (std::size_t c = 0; c < cols; ++c) {
-      if (!allowed(r, c)) continue;
-      const std::size_t a = find(r);
-      const std::size_t b = find(rows + c);
-      if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
+  for (const auto& pair : pairs) {
+    if (pair.row >= rows || pair.col >= cols)
+      throw std::invalid_argument("assignment: pair (" + std::to_string(pair.row) + ", " + std::to_string(pair.col) +
+                                  ") outside a " + std::to_string(rows) + " x " + std::to_string(cols) + " problem");
+    if (!std::isfinite(pair.cost)) continue;
+    const std::size_t a = find(pair.row);
+    const std::size_t b = find(rows + pair.col);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
   // Members of each cluster in their original order; a cluster is named by its smallest member.
-  std::vector<std::vector<std::size_t>> cluster_rows(rows + cols);
-  std::vector<std::vector<std::size_t>> cluster_cols(rows + cols);
-  for (std::size_t r = 0; r < rows; ++r) cluster_rows[find(r)].push_back(r);
-  for (std::size_t c = 0; c < cols; ++c) cluster_cols[find(rows + c)].push_back(c);
-  std::vector<double> local;
+  std::vector<std::uint32_t> cluster_of(rows + cols);
+  std::vector<std::uint32_t> position(rows + cols);  // index of a row / column inside its cluster
+  std::vector<std::vector<std::size_t>> cluster_rows, cluster_cols;
+  std::vector<std::uint32_t> cluster_named(rows + cols, std::numeric_limits<std::uint32_t>::max());
   for (std::size_t k = 0; k < rows + cols; ++k) {
-    const auto& rs = cluster_rows[k];
-    const auto& cs = cluster_cols[k];
+    const std::size_t root = find(k);
+    if (cluster_named[root] == std::numeric_limits<std::uint32_t>::max()) {
+      cluster_named[root] = static_cast<std::uint32_t>(cluster_rows.size());
+      cluster_rows.emplace_back();
+      cluster_cols.emplace_back();
+    }
+    const std::uint32_t c = cluster_of[k] = cluster_named[root];
+    auto& members = k < rows ? cluster_rows[c] : cluster_cols[c];
+    position[k] = static_cast<std::uint32_t>(members.size());
+    members.push_back(k < rows ? k : k - rows);
+  }
+  std::vector<std::vector<double>> local(cluster_rows.size());
+  for (std::size_t c = 0; c < cluster_rows.size(); ++c)
+    if (!cluster_rows[c].empty() && !cluster_cols[c].empty())
+      local[c].assign(cluster_rows[c].size() * cluster_cols[c].size(), kForbidden);
+  for (const auto& pair : pairs) {
+    if (!std::isfinite(pair.cost)) continue;
+    const std::uint32_t c = cluster_of[pair.row];
+    double& entry = local[c][position[pair.row] * cluster_cols[c].size() + position[rows + pair.col]];
+    entry = std::isfinite(entry) ? std::min(entry, pair.cost) : pair.cost;
+  }
+  for (std::size_t c = 0; c < cluster_rows.size(); ++c) {
+    const auto& rs = cluster_rows[c];
+    const auto& cs = cluster_cols[c];
     if (rs.empty() || cs.empty()) continue;
-    local.assign(rs.size() * cs.size(), kForbidden);
-    for (std::size_t i = 0; i < rs.size(); ++i)
-      for (std::size_t j = 0; j < cs.size(); ++j)
-        if (allowed(rs[i], cs[j])) local[i * cs.size() + j] = cost[rs[i] * cols + cs[j]];
-    const bool complete = std::all_of(local.begin(), local.end(), [](double v) { return std::isfinite(v); });
-    const auto solution = complete && !allow_misses ? solveComplete(local, rs.size(), cs.size())
-                                                    : solveDense(local, rs.size(), cs.size(), miss_cost_of(local));
+    const bool complete = std::all_of(local[c].begin(), local[c].end(), [](double v) { return std::isfinite(v); });
+    const auto solution = complete && !allow_misses ? solveComplete(local[c], rs.size(), cs.size())
+                                                    : solveDense(local[c], rs.size(), cs.size(), miss_cost_of(local[c]));
     for (std::size_t i = 0; i < rs.size(); ++i)
       if (solution[i] >= 0) result[rs[i]] = static_cast<int>(cs[static_cast<std::size_t>(solution[i])]);
   }
   return result;
 }
 
+/// Above any sum of a cluster's finite costs: assigning one more row always pays.
+double lexicographicMissCost(const std::vector<double>& local) {
+  double finite_sum = 0.0;
+  for (double c : local)
+    if (std::isfinite(c)) finite_sum += std::abs(c);
+  return 2.0 * finite_sum + 1.0;
+}
+
+/// The allowed pairs of a row-major matrix (those `keep` accepts).
+template <typename Keep>
+std::vector<AssignmentPair> pairsOf(const std::vector<double>& cost, std::size_t rows, std::size_t cols, Keep keep) {
+  if (cost.size() != rows * cols)
+    throw std::invalid_argument("assignment: a cost matrix of " + std::to_string(cost.size()) + " entries for " +
+                                std::to_string(rows) + " x " + std::to_string(cols));
+  std::vector<AssignmentPair> pairs;
+  for (std::size_t r = 0; r < rows; ++r)
+    for (std::size_t c = 0; c < cols; ++c)
+      if (keep(cost[r * cols + c]))
+        pairs.push_back({static_cast<std::uint32_t>(r), static_cast<std::uint32_t>(c), cost[r * cols + c]});
+  return pairs;
+}
+
+/// Pairs that can take part in a solution with misses at `miss_cost`.
+std::vector<AssignmentPair> cheaperThan(std::span<const AssignmentPair> pairs, double miss_cost) {
+  if (!std::isfinite(miss_cost)) throw std::invalid_argument("assignment: the miss cost must be finite");
+  std::vector<AssignmentPair> kept;
+  for (const auto& pair : pairs)
+    if (std::isfinite(pair.cost) && pair.cost < miss_cost) kept.push_back(pair);
+  return kept;
+}
+
 }  // namespace
 
 std::vector<int> solveAssignment(const std::vector<double>& cost, std::size_t rows, std::size_t cols) {
-  return solveByClusters(
-      cost, rows, cols, false, [&](std::size_t r, std::size_t c) { return std::isfinite(cost[r * cols + c]); },
-      [](const std::vector<double>& local) {
-        // Above any sum of the cluster's finite costs: assigning one more row always pays.
-        double finite_sum = 0.0;
-        for (double c : local)
-          if (std::isfinite(c)) finite_sum += std::abs(c);
-        return 2.0 * finite_sum + 1.0;
-      });
+  const auto pairs = pairsOf(cost, rows, cols, [](double v) { return std::isfinite(v); });
+  return solveByClusters(rows, cols, pairs, false, lexicographicMissCost);
 }
 
 std::vector<int> solveAssignmentWithMissCost(const std::vector<double>& cost, std::size_t rows, std::size_t cols,
                                              double miss_cost) {
-  if (!std::isfinite(miss_cost)) throw std::invalid_argument("solveAssignmentWithMissCost: miss_cost must be finite");
-  return solveByClusters(
-      cost, rows, cols, true,
-      [&](std::size_t r, std::size_t c) {
-        const double v = cost[r * cols + c];
-        return std::isfinite(v) && v < miss_cost;
-      },
-      [miss_cost](const std::vector<double>&) { return miss_cost; });
+  if (!std::isfinite(miss_cost)) throw std::invalid_argument("assignment: the miss cost must be finite");
+  const auto pairs = pairsOf(cost, rows, cols, [miss_cost](double v) { return std::isfinite(v) && v < miss_cost; });
+  return solveByClusters(rows, cols, pairs, true, [miss_cost](const std::vector<double>&) { return miss_cost; });
+}
+
+std::vector<int> solveSparseAssignment(std::size_t rows, std::size_t cols, std::span<const AssignmentPair> pairs) {
+  return solveByClusters(rows, cols, pairs, false, lexicographicMissCost);
+}
+
+std::vector<int> solveSparseAssignmentWithMissCost(std::size_t rows, std::size_t cols,
+                                                   std::span<const AssignmentPair> pairs, double miss_cost) {
+  const auto kept = cheaperThan(pairs, miss_cost);
+  return solveByClusters(rows, cols, kept, true, [miss_cost](const std::vector<double>&) { return miss_cost; });
 }
 
 }  // namespace wsn::common

@@ -3,7 +3,9 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 namespace wsn::common {
@@ -30,5 +32,21 @@ std::vector<int> solveAssignment(const std::vector<double>& cost, std::size_t ro
 /// the problem splits into clusters as above. Returns, for each row, its column or -1.
 std::vector<int> solveAssignmentWithMissCost(const std::vector<double>& cost, std::size_t rows, std::size_t cols,
                                              double miss_cost);
+
+/// An allowed pair of a sparse problem: row, column and the cost of assigning them.
+struct AssignmentPair {
+  std::uint32_t row = 0;
+  std::uint32_t col = 0;
+  double cost = 0.0;
+};
+
+/// solveAssignment() on a problem given by its allowed pairs (every other pair forbidden), for
+/// problems too large for a matrix: a city's truths against its tracks. Pairs may come in any
+/// order; a repeated pair keeps its cheapest cost.
+std::vector<int> solveSparseAssignment(std::size_t rows, std::size_t cols, std::span<const AssignmentPair> pairs);
+
+/// solveAssignmentWithMissCost() on a problem given by its allowed pairs.
+std::vector<int> solveSparseAssignmentWithMissCost(std::size_t rows, std::size_t cols,
+                                                   std::span<const AssignmentPair> pairs, double miss_cost);
 
 }  // namespace wsn::common

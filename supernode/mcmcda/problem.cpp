@@ -109,17 +109,39 @@ Problem::Problem(const ModelParams& params, std::vector<ProblemObservation> obse
   log_birth_ = std::log(p.birth_density);
   log_false_alarm_ = std::log(p.false_alarm_density);
 
+  buildSuccessors();
+}
+
+void Problem::buildSuccessors() {
   // Candidate successors (Oh: an observation at t + d within d * v-bar of one at t, d <= d-bar),
-  // built once per problem so that no move searches for them.
+  // built once per problem so that no move searches for them. Each tick's observations are
+  // sorted by x, so the candidates of i at t + d are found by two binary searches for the strip
+  // |x - x_i| <= d * v-bar instead of a scan of the whole tick: the aggregator's window over a
+  // city holds thousands of elements per tick, of which a handful are in reach.
   const std::int32_t n = size();
-  const std::int32_t dbar = p.max_gap;
+  const std::int32_t dbar = params_.max_gap;
   succ_start_.assign(static_cast<std::size_t>(n) * static_cast<std::size_t>(dbar) + 1, 0);
-  std::int32_t first_later = 0;  // first index with a tick > tick(i)
+  if (n == 0) return;
+  const std::int32_t first_tick = tick(0);
+  const auto span = static_cast<std::size_t>(tick(n - 1) - first_tick) + 1;
+  std::vector<std::vector<std::pair<double, std::int32_t>>> by_x(span);  // per tick: (x, index)
+  for (std::int32_t j = 0; j < n; ++j) by_x[static_cast<std::size_t>(tick(j) - first_tick)].push_back({observation(j).x, j});
+  for (auto& slice : by_x) std::sort(slice.begin(), slice.end());
+  std::vector<std::int32_t> found;
   for (std::int32_t i = 0; i < n; ++i) {
-    while (first_later < n && tick(first_later) <= tick(i)) ++first_later;
+    const double x = observation(i).x;
     for (std::int32_t d = 1; d <= dbar; ++d) {
-      for (std::int32_t j = first_later; j < n && tick(j) <= tick(i) + d; ++j)
-        if (tick(j) == tick(i) + d && linked(i, j)) succ_.push_back(j);
+      const auto at = static_cast<std::size_t>(tick(i) + d - first_tick);
+      if (at < span) {
+        const auto& slice = by_x[at];
+        const double reach = params_.max_speed * d;
+        auto it = std::lower_bound(slice.begin(), slice.end(), std::pair<double, std::int32_t>{x - reach, -1});
+        found.clear();
+        for (; it != slice.end() && it->first <= x + reach; ++it)
+          if (linked(i, it->second)) found.push_back(it->second);
+        std::sort(found.begin(), found.end());  // index order, as the moves expect
+        succ_.insert(succ_.end(), found.begin(), found.end());
+      }
       succ_start_[static_cast<std::size_t>(i * dbar + d)] = static_cast<std::int32_t>(succ_.size());
     }
   }

@@ -146,6 +146,7 @@ class Problem {
   ModelParams params_;
   std::vector<ProblemObservation> observations_;
   std::int32_t last_tick_;
+  void buildSuccessors();
   // Candidate lists in CSR form: successors of i at gap d are
   // succ_[succ_start_[i * dbar + d - 1] .. succ_start_[i * dbar + d]).
   std::vector<std::int32_t> succ_start_;

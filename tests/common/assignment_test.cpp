@@ -248,5 +248,30 @@ TEST_CASE("independent clusters are solved as if each were alone", "[assignment]
   }
 }
 
+TEST_CASE("a sparse problem gives the solution of its matrix", "[assignment]") {
+  for (std::uint64_t trial = 0; trial < 200; ++trial) {
+    Stream random(47, Purpose::kTracker, trial, 0);
+    const std::size_t rows = 1 + random.below(6);
+    const std::size_t cols = 1 + random.below(6);
+    std::vector<double> cost(rows * cols);
+    std::vector<AssignmentPair> pairs;
+    for (std::size_t r = 0; r < rows; ++r)
+      for (std::size_t c = 0; c < cols; ++c) {
+        cost[r * cols + c] = random.bernoulli(0.4) ? F : random.uniform(0.0, 10.0);
+        if (!std::isfinite(cost[r * cols + c])) continue;
+        pairs.push_back({static_cast<std::uint32_t>(r), static_cast<std::uint32_t>(c), cost[r * cols + c]});
+        // A repeat of the pair at a higher cost: the cheapest stands.
+        if (random.bernoulli(0.2)) pairs.push_back({static_cast<std::uint32_t>(r), static_cast<std::uint32_t>(c), 20.0});
+      }
+    for (std::size_t k = pairs.size(); k > 1; --k) std::swap(pairs[k - 1], pairs[random.below(k)]);
+    INFO("trial " << trial);
+    CHECK(solveSparseAssignment(rows, cols, pairs) == solveAssignment(cost, rows, cols));
+    CHECK(solveSparseAssignmentWithMissCost(rows, cols, pairs, 5.0) == solveAssignmentWithMissCost(cost, rows, cols, 5.0));
+  }
+  CHECK_THROWS_WITH(solveSparseAssignment(2, 2, std::vector<AssignmentPair>{{0, 2, 1.0}}),
+                    Catch::Contains("pair (0, 2) outside a 2 x 2 problem"));
+  CHECK_THROWS_WITH(solveAssignment({1, 2, 3}, 2, 2), Catch::Contains("3 entries for 2 x 2"));
+}
+
 }  // namespace
 }  // namespace wsn::common
