@@ -21,7 +21,11 @@ void runNetworkRole(const dds::RoleContext& context) {
     Router router(routerConfig(scenario), topologies.full());
 
     Reader<wsn_msg_ReportBatch> report_reader(participant, topics.report_batch, Qos::reliableKeepAll());
-    Writer<wsn_msg_DeliveryBatch> delivery_writer(participant, topics.delivery_batch, Qos::reliableKeepAll());
+    // One delivery writer per supernode, in that supernode's partition.
+    std::vector<Writer<wsn_msg_DeliveryBatch>> delivery_writers;
+    for (std::uint32_t j = 0; j < static_cast<std::uint32_t>(context.shape.supernodes); ++j)
+      delivery_writers.emplace_back(participant, topics.delivery_batch,
+                                    Qos::reliableKeepAll().inPartition(topic_names::supernodePartition(j)));
     RoleLoop loop(participant, context);
     PipelineProgress progress(participant, topics, context, loop);
     RestartedReaders restarted(participant, context, plan);
@@ -46,8 +50,9 @@ void runNetworkRole(const dds::RoleContext& context) {
         router.loseSupernode(static_cast<std::uint32_t>(index), t);
       }
     });
-    waitForDiscovery(participant, {{&delivery_writer, context.shape.supernodes}},
-                     {{&report_reader, context.shape.tiles}, {&progress.reader(), 1}}, context);
+    std::vector<std::pair<const WriterBase*, int>> writers;
+    for (const auto& writer : delivery_writers) writers.push_back({&writer, 1});
+    waitForDiscovery(participant, writers, {{&report_reader, context.shape.tiles}, {&progress.reader(), 1}}, context);
     status.ready();
 
     common::CsvFile observations(context.run_dir + "/observations.csv", kObservationsHeader);
@@ -74,16 +79,16 @@ void runNetworkRole(const dds::RoleContext& context) {
       for (const auto& fate : router.submit(t, reports)) observations.row(observationRow(fate));
       router.forgetFatesBefore(t + 1);
 
-      restarted.waitFor(delivery_writer, t);
       for (std::uint32_t j = 0; j < static_cast<std::uint32_t>(context.shape.supernodes); ++j) {
         if (!live[j]) continue;  // its deliveries were counted lost when they were routed
+        restarted.waitFor(delivery_writers[j], t, j);
         auto due = encode(router.deliveriesDue(t, j));
         wsn_msg_DeliveryBatch sample{};
         sample.run_id = context.run_id;
         sample.supernode = j;
         sample.tick = t;
         sample.observations = sequenceView<dds_sequence_wsn_msg_Observation>(due.items);
-        delivery_writer.write(sample);
+        delivery_writers[j].write(sample);
       }
     }
     observations.close();

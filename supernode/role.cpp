@@ -127,7 +127,8 @@ void runSupernodeRole(const dds::RoleContext& context) {
     auto tracker = std::make_unique<SupernodeTracker>(supernodeConfig(scenario, self), context.first_tick);
     LateOrphans late_orphans;
 
-    Reader<wsn_msg_DeliveryBatch> delivery_reader(participant, topics.delivery_batch, Qos::reliableKeepAll());
+    Reader<wsn_msg_DeliveryBatch> delivery_reader(participant, topics.delivery_batch,
+                                                  Qos::reliableKeepAll().inPartition(topic_names::supernodePartition(self)));
     Reader<wsn_msg_HandoffBatch> handoff_reader(participant, topics.handoff_batch, Qos::reliableKeepAll());
     Reader<wsn_msg_HandoffBatch> rehome_reader(participant, topics.rehome_batch, Qos::reliableKeepAll());
     Writer<wsn_msg_HandoffBatch> handoff_writer(participant, topics.handoff_batch, Qos::reliableKeepAll());

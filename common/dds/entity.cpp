@@ -91,6 +91,11 @@ Qos Qos::reliableKeepAll(Endpoint owner) {
   return q;
 }
 
+Qos&& Qos::inPartition(const std::string& name) && {
+  dds_qset_partition1(qos_, name.c_str());
+  return std::move(*this);
+}
+
 Qos Qos::lastValueTransientLocal(Endpoint owner) {
   Qos q;
   markOwner(q, owner);

@@ -78,6 +78,10 @@ class Qos {
   /// Reliable, KEEP_LAST 1 per instance, TRANSIENT_LOCAL: process status for late joiners.
   static Qos lastValueTransientLocal(Endpoint owner = Endpoint::kRole);
 
+  /// Puts the endpoint in DDS partition `name`: it matches only endpoints of the same topic in
+  /// that partition, so samples meant for one process are sent to that process alone.
+  Qos&& inPartition(const std::string& name) &&;
+
  private:
   dds_qos_t* qos_;
 };

@@ -34,6 +34,10 @@ inline constexpr const char* kRehomeBatch = "wsn_rehome_batch";
 inline constexpr const char* kGlobalTrackBatch = "wsn_global_track_batch";
 inline constexpr const char* kTickMetrics = "wsn_tick_metrics";
 inline constexpr const char* kProcessStatus = "wsn_process_status";
+/// The partition of what one supernode alone reads (its deliveries): the network model writes
+/// each supernode's batches into its partition, so they cross the wire to that supernode only
+/// rather than to all of them (64 x 64 samples a tick at 64 supernodes).
+inline std::string supernodePartition(std::uint32_t supernode) { return "supernode-" + std::to_string(supernode); }
 }  // namespace topic_names
 
 /// The one binding of each IDL sample type to its generated descriptor: Topic<S>, Writer<S> and
@@ -277,11 +281,14 @@ class RestartedReaders {
   RestartedReaders(const Participant& participant, const RoleContext& context, const common::FaultPlan& plan)
       : participant_(participant), context_(context), plan_(plan) {}
   void waitFor(const WriterBase& writer, std::int32_t tick);
+  /// The same for a writer that only supernode `reader` reads (its partition's).
+  void waitFor(const WriterBase& writer, std::int32_t tick, std::uint32_t reader);
 
  private:
   const Participant& participant_;
   const RoleContext& context_;
   const common::FaultPlan& plan_;
+  void waitForAny(const WriterBase& writer, std::int32_t tick, std::optional<std::uint32_t> only);
   std::set<std::pair<dds_entity_t, std::string>> matched_;
 };
 

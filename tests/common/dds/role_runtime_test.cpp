@@ -213,5 +213,40 @@ TEST_CASE("a writer tells the readers of one role process from another's and a v
   CHECK(Millis(Clock::now() - again).count() < 150.0);
 }
 
+TEST_CASE("a delivery writer in one supernode's partition reaches that supernode's reader only", "[dds]") {
+  const auto run_id = launcher::newRunId();
+  LoopbackParticipant dds(run_id);
+  const Participant network(dds.domain.id(), roleIdentity("network", 0, 1));
+  const Participant supernode1(dds.domain.id(), roleIdentity("supernode", 1, 1));
+  const Participant supernode2(dds.domain.id(), roleIdentity("supernode", 2, 1));
+  const RunTopics network_topics(network), topics1(supernode1), topics2(supernode2);
+  Writer<wsn_msg_DeliveryBatch> to1(network, network_topics.delivery_batch,
+                                    Qos::reliableKeepAll().inPartition(topic_names::supernodePartition(1)));
+  Reader<wsn_msg_DeliveryBatch> reader1(supernode1, topics1.delivery_batch,
+                                        Qos::reliableKeepAll().inPartition(topic_names::supernodePartition(1)));
+  Reader<wsn_msg_DeliveryBatch> reader2(supernode2, topics2.delivery_batch,
+                                        Qos::reliableKeepAll().inPartition(topic_names::supernodePartition(2)));
+  std::stop_source stop;
+  const RoleContext context = contextFor(dds.domain, stop.get_token());
+  waitForRoleReaders(network, {{&to1, {"supernode 1 from 1"}}}, context);
+  wsn_msg_DeliveryBatch sample{};
+  sample.run_id = run_id;
+  sample.supernode = 1;
+  sample.tick = 7;
+  to1.write(sample);
+  std::size_t received = 0;
+  const auto deadline = Clock::now() + std::chrono::seconds(10);
+  while (received == 0 && Clock::now() < deadline) {
+    received += reader1.take([&](const wsn_msg_DeliveryBatch& batch) { CHECK(batch.tick == 7); });
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  CHECK(received == 1);
+  // Supernode 2's reader in its own partition never matched the writer, and got nothing.
+  CHECK(to1.matchedReaders() == 1);
+  CHECK_FALSE(to1.matchesReaderOf("supernode 2 from 1"));
+  CHECK(reader2.matchedWriters() == 0);
+  CHECK(reader2.take([](const wsn_msg_DeliveryBatch&) {}) == 0);
+}
+
 }  // namespace
 }  // namespace wsn::dds
