@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include "common/dds/codec.hpp"
@@ -39,7 +40,8 @@ std::vector<common::TrackHandoff> incomingAt(std::int32_t t, std::uint32_t self,
 
 /// The last tracks of supernodes lost by hand, which the aggregator sends once it saw them go: taken
 /// at the next step after they arrive, but for those the lost supernode handed on itself at its
-/// last tick (every supernode receives every handoff batch, so each knows them).
+/// last tick. Its neighbours received that batch, and an orphan goes to a neighbour: the nearest
+/// other supernode to a point of a group always borders it (common/voronoi.hpp).
 class LateOrphans {
  public:
   /// Keeps the ids each sender handed on in its latest batch.
@@ -66,12 +68,35 @@ class LateOrphans {
   std::vector<std::pair<std::uint32_t, std::vector<common::TrackHandoff>>> pending_;
 };
 
+/// Handoffs travel between bordering groups only (common/voronoi.hpp): a supernode reads those
+/// written into its own partition and writes its own into its neighbours', so a batch crosses the
+/// wire to the few supernodes that border it instead of to all of them. No neighbours: no writer.
+struct HandoffLinks {
+  HandoffLinks(const dds::Participant& participant, const dds::RunTopics& topics, std::uint32_t self,
+               std::vector<std::uint32_t> bordering)
+      : neighbours(std::move(bordering)),
+        reader(participant, topics.handoff_batch,
+               dds::Qos::reliableKeepAll().inPartition(dds::topic_names::handoffPartition(self))) {
+    std::vector<std::string> partitions;
+    for (const auto j : neighbours) partitions.push_back(dds::topic_names::handoffPartition(j));
+    if (!neighbours.empty())
+      writer.emplace(participant, topics.handoff_batch, dds::Qos::reliableKeepAll().inPartitions(partitions));
+  }
+  bool borders(std::uint32_t j) const { return std::find(neighbours.begin(), neighbours.end(), j) != neighbours.end(); }
+  dds::Writer<wsn_msg_HandoffBatch>* writerOrNull() { return writer ? &*writer : nullptr; }
+
+  const std::vector<std::uint32_t> neighbours;
+  dds::Reader<wsn_msg_HandoffBatch> reader;
+  std::optional<dds::Writer<wsn_msg_HandoffBatch>> writer;
+};
+
 /// Tick t's tracks (with the settled ticks and the running counts), then its handoffs, once the
-/// handoff writer matched every supernode that restarts at t + 1 (the tracks first: the aggregator
-/// must finish t for the restarted supernode's predecessor to be gone).
-void publishTick(dds::Writer<wsn_msg_TrackBatch>& track_writer, dds::Writer<wsn_msg_HandoffBatch>& handoff_writer,
-                 dds::RestartedReaders& restarted, std::uint64_t run_id, std::uint32_t self,
-                 const SupernodeTracker::TickOutput& output, std::uint64_t handoffs_lost_partition) {
+/// handoff writer matched every neighbour that restarts at t + 1 (the tracks first: the aggregator
+/// must finish t for the restarted supernode's predecessor to be gone). Without neighbours there
+/// is no handoff writer and nothing to hand off.
+void publishTick(dds::Writer<wsn_msg_TrackBatch>& track_writer, dds::Writer<wsn_msg_HandoffBatch>* handoff_writer,
+                 const std::vector<std::uint32_t>& neighbours, dds::RestartedReaders& restarted, std::uint64_t run_id,
+                 std::uint32_t self, const SupernodeTracker::TickOutput& output, std::uint64_t handoffs_lost_partition) {
   using namespace wsn::dds;
   auto tracks = encode(output.tracks);
   auto settled = encodeSettled(output.settled.first, output.settled.by_tick);
@@ -88,30 +113,45 @@ void publishTick(dds::Writer<wsn_msg_TrackBatch>& track_writer, dds::Writer<wsn_
   track_sample.settled = sequenceView<dds_sequence_wsn_msg_SettledTrack>(settled.items);
   track_writer.write(track_sample);
 
-  restarted.waitFor(handoff_writer, output.tick + 1);
+  if (handoff_writer == nullptr) return;
+  restarted.waitFor(*handoff_writer, output.tick + 1, neighbours);
   auto outgoing = encode(output.handoffs);
   wsn_msg_HandoffBatch handoff_sample{};
   handoff_sample.run_id = run_id;
   handoff_sample.from_supernode = self;
   handoff_sample.tick = output.tick;
   handoff_sample.handoffs = sequenceView<dds_sequence_wsn_msg_TrackHandoff>(outgoing.items);
-  handoff_writer.write(handoff_sample);
+  handoff_writer->write(handoff_sample);
 }
 
 /// A restarted supernode's start barrier: its writers must reach the live processes, not the dead
 /// ones whose endpoints linger until their lease ends, so it waits for their readers by name; its
 /// producers wait for its own readers (RestartedReaders).
 void waitForPeersOfRestart(const dds::Participant& participant, const dds::RoleContext& context,
-                           const common::FaultPlan& plan, const dds::WriterBase& handoff_writer,
-                           const dds::WriterBase& track_writer) {
+                           const common::FaultPlan& plan, HandoffLinks& links, const dds::WriterBase& track_writer) {
   const std::int32_t first = context.first_tick;
   std::vector<std::string> peers;
   for (const auto j : plan.liveSupernodeIndices(first))
-    if (j != context.index)
+    if (links.borders(j))
       peers.push_back(dds::roleIdentity(
           "supernode", j, plan.incarnation(common::FaultRole::kSupernode, static_cast<std::int32_t>(j), first)));
-  dds::waitForRoleReaders(participant,
-                          {{&handoff_writer, peers}, {&track_writer, {dds::roleIdentity("aggregator", 0, 1)}}}, context);
+  std::vector<std::pair<const dds::WriterBase*, std::vector<std::string>>> writers{
+      {&track_writer, {dds::roleIdentity("aggregator", 0, 1)}}};
+  if (links.writer) writers.push_back({&*links.writer, peers});
+  dds::waitForRoleReaders(participant, writers, context);
+}
+
+/// The start barrier: at tick 1 every endpoint's peers by count; a restarted process's by name.
+void waitForPeers(const dds::Participant& participant, const dds::RoleContext& context, const common::FaultPlan& plan,
+                  HandoffLinks& links, const dds::WriterBase& track_writer,
+                  const std::vector<std::pair<const dds::ReaderBase*, int>>& readers) {
+  if (context.first_tick != 1) return waitForPeersOfRestart(participant, context, plan, links, track_writer);
+  const int n = static_cast<int>(links.neighbours.size());
+  std::vector<std::pair<const dds::WriterBase*, int>> writers{{&track_writer, 1}};
+  if (links.writer) writers.push_back({&*links.writer, n});
+  auto all_readers = readers;
+  all_readers.push_back({&links.reader, n});
+  dds::waitForDiscovery(participant, writers, all_readers, context);
 }
 
 }  // namespace
@@ -129,9 +169,8 @@ void runSupernodeRole(const dds::RoleContext& context) {
 
     Reader<wsn_msg_DeliveryBatch> delivery_reader(participant, topics.delivery_batch,
                                                   Qos::reliableKeepAll().inPartition(topic_names::supernodePartition(self)));
-    Reader<wsn_msg_HandoffBatch> handoff_reader(participant, topics.handoff_batch, Qos::reliableKeepAll());
+    HandoffLinks links(participant, topics, self, tracker->neighbours());
     Reader<wsn_msg_HandoffBatch> rehome_reader(participant, topics.rehome_batch, Qos::reliableKeepAll());
-    Writer<wsn_msg_HandoffBatch> handoff_writer(participant, topics.handoff_batch, Qos::reliableKeepAll());
     Writer<wsn_msg_TrackBatch> track_writer(participant, topics.track_batch, Qos::reliableKeepAll());
     RoleLoop loop(participant, context);
     PipelineProgress progress(participant, topics, context, loop);
@@ -152,9 +191,9 @@ void runSupernodeRole(const dds::RoleContext& context) {
         deliveries.put(batch.tick, 0, decode(batch.observations, batch.tick));
       });
     });
-    loop.watch(handoff_reader, [&] {
-      handoff_reader.take([&](const wsn_msg_HandoffBatch& batch) {
-        if (batch.run_id != context.run_id || batch.from_supernode == self || batch.from_supernode >= supernodes ||
+    loop.watch(links.reader, [&] {
+      links.reader.take([&](const wsn_msg_HandoffBatch& batch) {
+        if (batch.run_id != context.run_id || !links.borders(batch.from_supernode) || batch.from_supernode >= supernodes ||
             !plan.supernodeLive(static_cast<std::int32_t>(batch.from_supernode), batch.tick))
           return;
         handoffs.put(batch.tick, batch.from_supernode, decode(batch.handoffs));
@@ -169,19 +208,16 @@ void runSupernodeRole(const dds::RoleContext& context) {
           late_orphans.add(batch.from_supernode, decode(batch.handoffs));
       });
     });
-    // Another supernode killed by hand: its handoffs stop at the first tick that did not come.
+    // A neighbour killed by hand: its handoffs stop at the first tick that did not come. Another
+    // supernode's loss changes nothing here (it never sends to this one), so its tick is now.
     std::int32_t t = first;
     LostProcesses lost(participant, topics, context, loop, [&](common::FaultRole role, std::int32_t index) {
-      if (role == common::FaultRole::kSupernode)
-        plan.loseUnscheduled(role, index, handoffs.firstMissing(static_cast<std::uint32_t>(index), t - 1));
+      if (role != common::FaultRole::kSupernode) return;
+      const auto j = static_cast<std::uint32_t>(index);
+      plan.loseUnscheduled(role, index, links.borders(j) ? handoffs.firstMissing(j, t - 1) : t);
     });
-    const int s = context.shape.supernodes;
-    if (first == 1)
-      waitForDiscovery(participant, {{&handoff_writer, s}, {&track_writer, 1}},
-                       {{&delivery_reader, 1}, {&handoff_reader, s}, {&rehome_reader, 1}, {&progress.reader(), 1}},
-                       context);
-    else
-      waitForPeersOfRestart(participant, context, plan, handoff_writer, track_writer);
+    waitForPeers(participant, context, plan, links, track_writer,
+                 {{&delivery_reader, 1}, {&rehome_reader, 1}, {&progress.reader(), 1}});
     status.ready();
 
     const std::int32_t ticks = scenario.run.ticks;
@@ -195,12 +231,12 @@ void runSupernodeRole(const dds::RoleContext& context) {
         if (t < ticks) tracker = std::make_unique<SupernodeTracker>(supernodeConfig(scenario, self), t + 1);
         continue;
       }
-      // The handoffs of t - 1 come from every supernode live then (a loss announced meanwhile changes
-      // which), the orphans of a scheduled death from the aggregator.
+      // The handoffs of t - 1 come from every neighbour live then (a loss announced meanwhile
+      // changes which), the orphans of a scheduled death from the aggregator.
       const auto others = [&] {
-        std::size_t n = 0;
-        for (const auto j : plan.liveSupernodeIndices(t - 1)) n += j != self ? 1 : 0;
-        return n;
+        std::size_t count = 0;
+        for (const auto j : plan.liveSupernodeIndices(t - 1)) count += links.borders(j) ? 1 : 0;
+        return count;
       };
       const std::size_t dying = plan.dyingAt(t).size();
       loop.waitUntil(
@@ -210,7 +246,7 @@ void runSupernodeRole(const dds::RoleContext& context) {
           [&] {
             std::vector<std::uint32_t> senders;
             for (const auto j : plan.liveSupernodeIndices(t - 1))
-              if (j != self) senders.push_back(j);
+              if (links.borders(j)) senders.push_back(j);
             return "deliveries of tick " + std::to_string(t) + (deliveries.count(t) == 1 ? " (in)" : " (missing)") +
                    ", the handoffs of tick " + std::to_string(t - 1) + " from " +
                    (t == 1 ? std::string("none") : handoffs.missing(t - 1, senders, "supernode")) +
@@ -230,7 +266,8 @@ void runSupernodeRole(const dds::RoleContext& context) {
         for (auto& tick_tracks : rest.by_tick) output.settled.by_tick.push_back(std::move(tick_tracks));
       }
 
-      publishTick(track_writer, handoff_writer, restarted, context.run_id, self, output, handoffs_lost_partition);
+      publishTick(track_writer, links.writerOrNull(), links.neighbours, restarted, context.run_id, self, output,
+                  handoffs_lost_partition);
     }
     progress.waitForCompleted(ticks);
     status.done(ticks);

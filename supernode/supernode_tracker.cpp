@@ -1,10 +1,13 @@
 #include "supernode/supernode_tracker.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <tuple>
 #include <utility>
+
+#include "common/voronoi.hpp"
 
 namespace wsn::supernode {
 namespace {
@@ -31,6 +34,7 @@ SupernodeTracker::SupernodeTracker(SupernodeConfig config)
   if (index_ >= std::max<std::size_t>(1, supernodes_.size()))
     throw std::invalid_argument("supernode index " + std::to_string(index_) + " out of range: the scenario has " +
                                 std::to_string(supernodes_.size()) + " supernodes");
+  if (!supernodes_.empty()) neighbours_ = common::voronoiNeighbours(supernodes_, config.engine.region)[index_];
   engine_ = makeEngine(config.engine);
   engine_spec_ = engineRegistry().find(config.engine.engine);  // makeEngine found it
   accepted_kinds_ = acceptedKindMask(*engine_spec_);
@@ -68,9 +72,9 @@ SupernodeTracker::TickOutput SupernodeTracker::step(std::int32_t tick, std::span
   out.tick = tick;
   out.tracks = engine_->confirmedTracks();
   // Oh §VI: a track whose predicted next state lies in another supernode's tracking group is
-  // passed to that supernode.
+  // passed to that supernode, or towards it (ownerOf).
   for (const auto& prediction : engine_->predictions()) {  // sorted by id
-    const std::uint32_t owner = nearestLiveSupernode(supernodes_, live_, prediction.next_position);
+    const std::uint32_t owner = ownerOf(prediction.next_position);
     if (owner != index_) {
       keepSettledOf(prediction.track, tick);
       out.handoffs.push_back(engine_->release(prediction.track, owner));
@@ -86,6 +90,26 @@ SupernodeTracker::TickOutput SupernodeTracker::step(std::int32_t tick, std::span
   settled_through_ = std::max(settled_through_, leaving);
   while (!live_history_.empty() && live_history_.front().first <= settled_through_) live_history_.pop_front();
   return out;
+}
+
+std::uint32_t SupernodeTracker::ownerOf(common::Vec2 position) const {
+  // A track that leaps past the neighbouring groups in one tick goes to the neighbour nearest to
+  // it, which hands it on at its next step; each hop brings it nearer, so it never comes back.
+  // A group's nearest other supernode always borders it, so a track that leaves a group for the
+  // next one goes where the network model routes that group's reports.
+  std::uint32_t best = index_;
+  if (supernodes_.empty()) return best;
+  const auto is_live = [&](std::uint32_t j) { return live_.empty() || (j < live_.size() && live_[j]); };
+  double best_d2 = is_live(index_) ? common::squaredDistance(supernodes_[index_], position) : INFINITY;
+  for (const std::uint32_t j : neighbours_) {
+    if (!is_live(j)) continue;
+    const double d2 = common::squaredDistance(supernodes_[j], position);
+    if (d2 < best_d2 || (d2 == best_d2 && j < best)) {
+      best = j;
+      best_d2 = d2;
+    }
+  }
+  return best;
 }
 
 bool SupernodeTracker::tracks(common::TrackId track) const {

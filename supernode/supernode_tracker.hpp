@@ -67,6 +67,8 @@ class SupernodeTracker {
   /// Which supernodes own a tracking group at the next tick (faults); a track predicted into
   /// the group of a dead one goes to the nearest live one. All of them until set.
   void setLiveSupernodes(std::vector<bool> live) { live_ = std::move(live); }
+  /// The supernodes whose groups border this one's, ascending: the only receivers of its handoffs.
+  const std::vector<std::uint32_t>& neighbours() const { return neighbours_; }
 
   /// Processes tick `tick`: slides the window, files the delivered observations into their slots,
   /// adopts the incoming handoffs, steps the engine and releases the tracks predicted to enter
@@ -88,7 +90,13 @@ class SupernodeTracker {
 
  private:
   std::vector<common::Vec2> supernodes_;
+  /// The supernodes whose groups border this one's (common/voronoi.hpp): the only ones a handoff
+  /// goes to, since handoffs travel between neighbouring groups only.
+  std::vector<std::uint32_t> neighbours_;
   std::vector<bool> live_;  ///< empty: every supernode
+  /// Oh §VI's receiver of a track predicted at `position`: the nearest live supernode among this
+  /// one and its neighbours.
+  std::uint32_t ownerOf(common::Vec2 position) const;
   std::uint32_t index_;
   ObservationWindow window_;
   std::unique_ptr<Engine> engine_;

@@ -96,6 +96,13 @@ Qos&& Qos::inPartition(const std::string& name) && {
   return std::move(*this);
 }
 
+Qos&& Qos::inPartitions(const std::vector<std::string>& names) && {
+  std::vector<const char*> pointers;
+  for (const auto& name : names) pointers.push_back(name.c_str());
+  dds_qset_partition(qos_, static_cast<std::uint32_t>(pointers.size()), pointers.data());
+  return std::move(*this);
+}
+
 Qos Qos::lastValueTransientLocal(Endpoint owner) {
   Qos q;
   markOwner(q, owner);

@@ -81,6 +81,8 @@ class Qos {
   /// Puts the endpoint in DDS partition `name`: it matches only endpoints of the same topic in
   /// that partition, so samples meant for one process are sent to that process alone.
   Qos&& inPartition(const std::string& name) &&;
+  /// The same with several partitions: the endpoint matches those of any of them.
+  Qos&& inPartitions(const std::vector<std::string>& names) &&;
 
  private:
   dds_qos_t* qos_;

@@ -185,17 +185,24 @@ void waitForRoleReaders(const Participant& participant,
   });
 }
 
-void RestartedReaders::waitFor(const WriterBase& writer, std::int32_t tick) { waitForAny(writer, tick, std::nullopt); }
-
-void RestartedReaders::waitFor(const WriterBase& writer, std::int32_t tick, std::uint32_t reader) {
-  waitForAny(writer, tick, reader);
+void RestartedReaders::waitFor(const WriterBase& writer, std::int32_t tick) {
+  waitForAny(writer, tick, [](std::uint32_t) { return true; });
 }
 
-void RestartedReaders::waitForAny(const WriterBase& writer, std::int32_t tick, std::optional<std::uint32_t> only) {
+void RestartedReaders::waitFor(const WriterBase& writer, std::int32_t tick, std::uint32_t reader) {
+  waitForAny(writer, tick, [reader](std::uint32_t j) { return j == reader; });
+}
+
+void RestartedReaders::waitFor(const WriterBase& writer, std::int32_t tick, const std::vector<std::uint32_t>& readers) {
+  waitForAny(writer, tick, [&](std::uint32_t j) { return std::find(readers.begin(), readers.end(), j) != readers.end(); });
+}
+
+void RestartedReaders::waitForAny(const WriterBase& writer, std::int32_t tick,
+                                  const std::function<bool(std::uint32_t)>& reads) {
   if (!plan_.hasRestarts()) return;  // every tick of every run without restarts
   std::vector<std::string> identities;
   for (const auto j : plan_.liveSupernodeIndices(tick)) {
-    if (only && j != *only) continue;
+    if (!reads(j)) continue;
     const std::int32_t first = plan_.incarnation(common::FaultRole::kSupernode, static_cast<std::int32_t>(j), tick);
     if (first <= 1) continue;
     auto identity = roleIdentity("supernode", j, first);

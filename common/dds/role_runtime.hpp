@@ -38,6 +38,9 @@ inline constexpr const char* kProcessStatus = "wsn_process_status";
 /// each supernode's batches into its partition, so they cross the wire to that supernode only
 /// rather than to all of them (64 x 64 samples a tick at 64 supernodes).
 inline std::string supernodePartition(std::uint32_t supernode) { return "supernode-" + std::to_string(supernode); }
+/// The partition of the handoffs addressed to one supernode: its reader's; a supernode's writer
+/// is in those of its neighbours, so a handoff batch reaches the bordering groups only.
+inline std::string handoffPartition(std::uint32_t supernode) { return "handoffs-to-" + std::to_string(supernode); }
 }  // namespace topic_names
 
 /// The one binding of each IDL sample type to its generated descriptor: Topic<S>, Writer<S> and
@@ -283,12 +286,14 @@ class RestartedReaders {
   void waitFor(const WriterBase& writer, std::int32_t tick);
   /// The same for a writer that only supernode `reader` reads (its partition's).
   void waitFor(const WriterBase& writer, std::int32_t tick, std::uint32_t reader);
+  /// The same for a writer that only the supernodes `readers` read (their partitions').
+  void waitFor(const WriterBase& writer, std::int32_t tick, const std::vector<std::uint32_t>& readers);
 
  private:
   const Participant& participant_;
   const RoleContext& context_;
   const common::FaultPlan& plan_;
-  void waitForAny(const WriterBase& writer, std::int32_t tick, std::optional<std::uint32_t> only);
+  void waitForAny(const WriterBase& writer, std::int32_t tick, const std::function<bool(std::uint32_t)>& reads);
   std::set<std::pair<dds_entity_t, std::string>> matched_;
 };
 
