@@ -196,6 +196,11 @@ std::string tailOf(const std::string& path, std::size_t lines) {
   return out.str();
 }
 
+/// Records when the aggregator was first seen past tick 1.
+void noteFirstTick(ClusterResult& result, std::int32_t tick, Clock::time_point started) {
+  if (tick >= 1 && result.first_tick_s == 0.0) result.first_tick_s = std::chrono::duration<double>(Clock::now() - started).count();
+}
+
 /// Starts the process of `slot`; `first_tick` above 1 starts the one a `restart` brings back.
 pid_t spawn(const RoleSlot& slot, const ClusterOptions& options, const std::string& log_path, std::int32_t first_tick = 1) {
   const std::string program = options.bin_dir + "/wsntrack-" + slot.role;
@@ -309,6 +314,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
     while (!running.empty() && result.failure.empty()) {
       // 50 ms: a process lost by hand is announced within that (plus its tick in flight).
       observer.poll(std::chrono::milliseconds(50), tick, failures, faulted);
+      noteFirstTick(result, tick, started);
       for (const auto& f : faulted)
         for (const auto& [pid, slot] : running)
           if (slots[slot].role == f.role && slots[slot].index == f.index) fault_signals.announced(pid, f.role, f.index, f.tick);
@@ -424,6 +430,7 @@ ClusterResult runThreads(const ClusterOptions& options) {
     std::optional<Clock::time_point> stop_seen;
     while (finished.load() < slots.size()) {
       observer.poll(std::chrono::milliseconds(200), tick, failures, faulted);
+      noteFirstTick(result, tick, started);
       // A role thread still in set-up (a topology or truth of 10^7 items being built) cannot see
       // the stop request, and a thread cannot be killed: after the same grace a process gets
       // between SIGTERM and SIGKILL, the run is given up with the process (see abandon).

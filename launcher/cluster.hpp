@@ -49,6 +49,9 @@ struct ClusterResult {
   bool ok = false;
   std::vector<RoleOutcome> outcomes;
   double wall_s = 0.0;  ///< from start of the first process to the exit of the last
+  /// From the start of the first process until the launcher saw the aggregator finish tick 1:
+  /// the start-up (set-up, discovery) plus one tick through the pipeline. 0 when it never did.
+  double first_tick_s = 0.0;
   /// In-process mode: peak resident set of this whole process (every role thread and the
   /// launcher together); 0 in multi-process mode, where each outcome carries its own.
   long in_process_peak_rss_kb = 0;

@@ -121,6 +121,7 @@ std::string runSummary(const std::string& run_dir, const RunFigures& f, const Cl
   if (f.reports_lost_dead_supernode) row(out, "lost to dead supernodes", show(f.reports_lost_dead_supernode, 0));
   for (const auto& fault : f.faults) row(out, "fault", fault);
   row(out, "dropped (older than ws)", show(f.dropped_stale, 0));
+  if (result.first_tick_s > 0.0) row(out, "start-up (to tick 1)", show(result.first_tick_s, 3) + " s");
   row(out, "wall time (tick loop)", show(f.wall_s, 3) + " s");
   row(out, "ticks/s (tick loop)", show(f.ticks_per_s, 1));
   row(out, "wall time (all)", show(result.wall_s, 3) + " s");

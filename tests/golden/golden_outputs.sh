@@ -6,7 +6,7 @@
 #   golden_outputs.sh BIN_DIR SOURCE_DIR WORK_DIR check  [SCENARIO_NAME...]   compare with the recorded sums
 #   golden_outputs.sh BIN_DIR SOURCE_DIR WORK_DIR record [SCENARIO_NAME...]   rewrite the recorded sums
 #
-# Without names, every scenarios/*.yaml; with names (ctest runs one scenario per test, so -j
+# Without names, every scenarios/*.yaml but the scale_* benchmarks; with names (ctest runs one scenario per test, so -j
 # spreads them), only those, and `record` replaces only their lines of the manifest.
 #
 # The engines and associations come from `wsntrack components --names`, not from this script, so
@@ -29,7 +29,11 @@ manifest=$source_dir/tests/golden/outputs.sha256
 wsntrack=$bin_dir/wsntrack
 if (($#)); then names=("$@"); else
   names=()
-  for scenario in "$source_dir"/scenarios/*.yaml; do names+=("$(basename "$scenario" .yaml)"); done
+  # The scale_* benchmark scenarios are no golden cases (tests/golden/CMakeLists.txt says why).
+  for scenario in "$source_dir"/scenarios/*.yaml; do
+    name=$(basename "$scenario" .yaml)
+    [[ $name == scale_* ]] || names+=("$name")
+  done
 fi
 rm -rf "$work" && mkdir -p "$work"
 actual=$work/outputs.sha256

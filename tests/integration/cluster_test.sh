@@ -91,6 +91,21 @@ case "$case_name" in
     grep -q '"eps_k"' "$PWD/mp2/metrics.json" || fail "metrics.json lacks eps_k"
     grep -q '"wall_s"' "$PWD/mp2/metrics.json" || fail "metrics.json lacks wall_s"
     no_leftovers ;;
+  scale)
+    # The 10^5-sensor benchmark scenario for 12 ticks: 16 supernodes on a 4 x 4 grid, where a corner
+    # group borders 3 others and handoffs go to neighbours only. Multi-process and in-process give
+    # the same outputs; scale_1e4 and scale_1e6 validate (scale_1e7's validation builds the radio
+    # graph of 10^7 sensors, a minute: docs/PERFORMANCE.md has its run).
+    scenario="$src/scenarios/scale_1e5.yaml"
+    run_ok "$PWD/mp" --ticks 12
+    run_ok "$PWD/ip" --ticks 12 --nodes 2 --in-process
+    same_outputs "$PWD/mp" "$PWD/ip"
+    [ "$(wc -l <"$PWD/mp/tracks_supernode.csv")" -gt 100 ] || fail "suspiciously few supernode track rows"
+    grep -q "start-up (to tick 1)" "$PWD/mp.stdout" || fail "the summary lacks the start-up time"
+    for name in scale_1e4 scale_1e6; do
+      "$wsntrack" validate "$src/scenarios/$name.yaml" >/dev/null 2>&1 || fail "scenarios/$name.yaml does not validate"
+    done
+    no_leftovers ;;
   provenance)
     # --version names version, commit and Cyclone DDS; run.json and metrics.json carry the same
     # provenance: that build, the exact command line, a UTC time, the host and the scenario's sha256.

@@ -25,6 +25,7 @@ ClusterResult processes() {
   ClusterResult result;
   result.ok = true;
   result.wall_s = 4.5;
+  result.first_tick_s = 1.25;
   result.outcomes = {{"node 0", 0, "", "", 10240}, {"aggregator 0", 0, "", "", 20480 + 512}};
   return result;
 }
@@ -79,6 +80,7 @@ TEST_CASE("the summary of a multi-process run lists figures and each process's m
         "  reports delayed           449\n"
         "  reports unreachable       12\n"
         "  dropped (older than ws)   3\n"
+        "  start-up (to tick 1)      1.250 s\n"
         "  wall time (tick loop)     1.235 s\n"
         "  ticks/s (tick loop)       80.0\n"
         "  wall time (all)           4.500 s\n"
@@ -89,12 +91,14 @@ TEST_CASE("the summary of a multi-process run lists figures and each process's m
 TEST_CASE("the summary of an in-process run without figures says n/a", "[launcher][run_summary]") {
   auto result = processes();
   result.in_process_peak_rss_kb = 3 * 1024;
+  result.first_tick_s = 0.0;  // the aggregator never finished tick 1
   PlotOutcome skipped;
   skipped.message = "matplotlib is not available";
   const auto text = runSummary("d", RunFigures{}, result, true, skipped);
   CHECK(text.find("  mode                      in-process (threads over DDS)\n") != std::string::npos);
   CHECK(text.find("  eps_K  (Oh eq. 9)         n/a\n") != std::string::npos);
   CHECK(text.find("  wall time (tick loop)     n/a s\n") != std::string::npos);
+  CHECK(text.find("start-up") == std::string::npos);
   CHECK(text.find("  peak RSS (whole process)  3.0 MiB\n") != std::string::npos);
   CHECK(text.find("per process") == std::string::npos);
   CHECK(text.find("  plots                     none: matplotlib is not available\n") != std::string::npos);
