@@ -40,6 +40,8 @@ endif()
 # Plots (plot_run.py) need matplotlib, the run loader numpy, both PyYAML, a sweep spec's confidence
 # intervals SciPy; a run works without them.
 set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3-matplotlib, python3-numpy, python3-yaml, python3-scipy")
+# A sweep over a Dask cluster (sweep.py --scheduler) needs Dask's distributed.
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "python3-distributed")
 
 # A source package of the repository, should anyone make one, without build trees and runs.
 set(CPACK_SOURCE_GENERATOR TGZ)

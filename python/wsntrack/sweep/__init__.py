@@ -2,7 +2,9 @@
 engine, seed), every run in results.csv and a markdown table of the means over the seeds.
 
   spec_main  the spec form, `sweep.py SPEC.yaml`: spec (reading), runner (running, resuming),
-             summary (results.csv, summary.csv with Student's t intervals, table.md), plots
+             task (one run, wherever it goes), executors (this machine's threads, or a Dask cluster
+             with --scheduler; on_worker: what a Dask worker runs), summary (results.csv,
+             summary.csv with Student's t intervals, table.md), plots
   flags      the flag form, `sweep.py --scenario FILE ...`: standard library only
   metrics    what a run's metric is read from; common: what both forms share
 """

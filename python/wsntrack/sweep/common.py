@@ -95,6 +95,7 @@ class SweepRun:
         self.log_file = None
         self.started = None
         self.attempts = 0
+        self.reason = None  # why a run failed without an exit status of wsntrack's (the spec form)
 
     @property
     def run_dir(self):

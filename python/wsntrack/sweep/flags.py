@@ -259,6 +259,9 @@ def parse_args(argv):
     parser.add_argument("--in-process", action="store_true",
                         help="run each cluster's roles as threads of one process (wsntrack run --in-process); "
                         "the results are the same")
+    parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                        help="not in this form: the spec form (sweep.py SPEC.yaml --scheduler ADDRESS) runs a sweep "
+                        "on a Dask cluster")
     return parser.parse_args(argv)
 
 
@@ -274,6 +277,9 @@ def _checked(args):
     fixed = [split_key_value(t, "--set") for t in args.fixed]
     if args.jobs < 1:
         raise UsageError("--jobs must be at least 1")
+    if args.scheduler:
+        raise UsageError("--scheduler: the flag form runs on this machine only; write the sweep as a spec "
+                         "(sweep.py SPEC.yaml --help) to run it on a Dask cluster")
     if not os.access(args.wsntrack, os.X_OK):
         raise UsageError(f"--wsntrack: {args.wsntrack} is not an executable (build first: cmake --build build)")
     if not args.scenario.is_file():

@@ -13,9 +13,11 @@ from pathlib import Path
 
 from .common import REPO, UsageError, make_runs, parse_seeds, plural, run_command, seeds_text, short_names, split_key_value
 from .plots import draw_plots
-from .runner import check_with_wsntrack, reusable, run_spec_runs, sha256_of
+from .executors import DaskExecutor, LocalExecutor, require_distributed
+from .runner import check_with_wsntrack, reusable, run_spec_runs
 from .spec import SpecError, load_spec
 from .summary import spec_table, summarise, write_spec_results, write_summary
+from .task import sha256_of
 
 SPEC_DESCRIPTION = """\
 Runs the sweep a spec file describes (sweeps/*.yaml), in parallel, and resumes it when run again.
@@ -45,9 +47,10 @@ of that value fail (a warning says so first).
 
 Each run is `wsntrack run SCENARIO --seed S --out DIR/runs/NAME --overwrite --quiet --no-plot
 --set tracker.engine=E [--set KEY=VALUE of set] [--set KEY=V of the grid point] [--in-process]`,
-with absolute paths; -j runs at a time (default: the number of cores), with progress, failures and
-an ETA on stderr. A run that lost its DDS ports to a cluster started at the same moment (Cyclone's
-"failed to create unicast sockets") is started again, up to 3 times. A finished run leaves
+with absolute paths; -j runs at a time (default: the number of cores), or on a Dask cluster with
+--scheduler (below), with progress, failures and an ETA on stderr. A run that lost its DDS ports
+to a cluster started at the same moment (Cyclone's "failed to create unicast sockets") is started
+again, up to 3 times. A finished run leaves
 DIR/runs/NAME/sweep_run.json: its command, the scenario file's SHA-256 and the SHA-256 of its
 metrics.json. Run again with the same DIR, the sweep skips
 every run whose record matches the run it would start and whose metrics.json is complete and
@@ -75,6 +78,20 @@ Outputs in DIR:
 --seeds and --set change the spec's seeds and fixed values for this invocation (e.g. a quick
 look with --seeds 1 --set run.ticks=20); they count as a change of the sweep in the same DIR.
 
+On a Dask cluster (--scheduler ADDRESS, Debian's python3-distributed): each run is a task that a
+worker runs as above, started by `dask worker` processes as many at a time as they have threads
+(--nthreads); none of -j. ADDRESS is the scheduler's (tcp://HOST:8786), or the file `dask scheduler
+--scheduler-file FILE` wrote. The workers write the run directories into DIR themselves: the
+wsntrack executable, the scenario, this tool's tree and DIR must be at the same paths on the client
+and on every worker (a shared filesystem), which the sweep checks on each worker before anything
+runs. The metrics come back to the client, which writes results.csv, summary.csv, table.md and
+plots as above, in the order of the runs, not of their completion: summary.csv is the same as on
+this machine. A worker that dies has its runs started again on another (its wsntrack is sent
+SIGTERM; the run starts again once it has ended); a run that fails is failed, as on this machine.
+Resuming works across both: the same DIR skips the finished runs whichever ran them. SIGINT or
+SIGTERM stops the runs in progress on the workers too. An unreachable scheduler (within Dask's
+connect timeout, distributed.comm.timeouts.connect) or no worker within 60 s: exit status 2.
+
 Exit status: 0 when every run succeeded, 1 when any failed, 2 for a usage or spec error,
 128 + the signal number when stopped by SIGINT or SIGTERM.
 """
@@ -83,6 +100,7 @@ SPEC_EPILOG = """\
 examples:
   tools/sweep.py sweeps/oh_fig7_pte.yaml --out runs/fig7
   tools/sweep.py sweeps/oh_fig7_pte.yaml --out runs/fig7-quick --seeds 1-2 --set run.ticks=20 -j 2
+  tools/sweep.py sweeps/oh_fig7_pte.yaml --out /shared/runs/fig7 --scheduler tcp://node01:8786
 """
 
 # What a run's command depends on: a change of these in the same DIR needs --force.
@@ -133,13 +151,18 @@ def parse_spec_args(argv):
     """The spec form's command line."""
     parser = argparse.ArgumentParser(
         prog="sweep.py", description=SPEC_DESCRIPTION, epilog=SPEC_EPILOG,
-        usage="%(prog)s SPEC.yaml [--out DIR] [-j N] [--force] [--seeds SEEDS] [--set KEY=VALUE]... [--wsntrack PATH]",
+        usage="%(prog)s SPEC.yaml [--out DIR] [-j N | --scheduler ADDRESS] [--force] [--seeds SEEDS] [--set KEY=VALUE]... "
+              "[--wsntrack PATH]",
         formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("spec", type=Path, help="the sweep spec (YAML), e.g. sweeps/oh_fig7_pte.yaml")
     parser.add_argument("--out", type=Path, default=None,
                         help="sweep directory (default: runs/<spec name>); the same DIR again resumes the sweep")
     parser.add_argument("-j", "--jobs", type=int, default=None,
                         help="runs at a time (default: the number of cores, here %d)" % (os.cpu_count() or 1))
+    parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                        help="run the runs on the Dask cluster whose scheduler is at ADDRESS (tcp://HOST:8786, or a "
+                        "--scheduler-file of dask scheduler) instead of on this machine; every path, DIR included, "
+                        "must be the same on every worker (a shared filesystem). Needs python3-distributed")
     parser.add_argument("--force", action="store_true",
                         help="go on in a DIR made by a different sweep (keeping the runs whose command is unchanged)")
     parser.add_argument("--seeds", default=None, help="instead of the spec's seeds: 1-5, 1,3,7 or 1-3,10")
@@ -154,6 +177,11 @@ def _read_spec(args):
     """The spec with the command line's --seeds and --set applied; UsageError or SpecError."""
     if args.jobs is not None and args.jobs < 1:
         raise UsageError("-j/--jobs must be at least 1")
+    if args.jobs is not None and args.scheduler:
+        raise UsageError("-j and --scheduler: on a cluster the workers' threads (dask worker --nthreads) decide "
+                         "how many runs go at once")
+    if args.scheduler:
+        require_distributed()  # before anything runs, like SciPy below
     if not args.spec.is_file():
         raise UsageError(f"{args.spec}: no such spec file")
     spec = load_spec(args.spec)
@@ -243,25 +271,22 @@ def _write_outputs(out, spec, points, names, runs, stopped):
         print(f"sweep.py: {len(failed)} of {len(runs)} runs failed (not counted in summary.csv; run the same "
               "command again to retry them):", file=sys.stderr)
         for run in failed:
-            print(f"  {run.label}: exit {run.exit_code}, log {run.log}", file=sys.stderr)
+            print(f"  {run.label}: {run.reason or f'exit {run.exit_code}'}, log {run.log}", file=sys.stderr)
     print(f"sweep.py: {out / 'results.csv'}, {out / 'summary.csv'}"
           f"{f', {len(plots)} plots in ' + str(out / 'plots') if plots else ''}", file=sys.stderr)
     return 1 if failed else 0
 
 
-def spec_main(argv):
-    """sweep.py SPEC.yaml ...: returns the exit status (0, 1 when a run failed, 2 for a usage or
-    spec error, 128 + the signal that stopped it)."""
-    args = parse_spec_args(argv)
-    try:
-        spec, wsntrack, out, scenario_sha, description, warnings = _prepare(args)
-    except (UsageError, SpecError) as error:
-        print(f"sweep.py: {error}" if isinstance(error, UsageError) else str(error), file=sys.stderr)
-        return 2
-    for warning in warnings:
-        print(warning, file=sys.stderr)
+def _executor(args, spec, wsntrack, out):
+    """Where the runs go: this machine's cores (-j), or the Dask cluster of --scheduler (connected, and
+    its workers checked to see the paths); UsageError."""
+    if not args.scheduler:
+        return LocalExecutor(args.jobs or os.cpu_count() or 1)
+    return DaskExecutor(args.scheduler, [(wsntrack, "x"), (spec.scenario, "r")], out)
 
-    jobs = args.jobs or os.cpu_count() or 1
+
+def _sweep(argv, spec, wsntrack, out, scenario_sha, description, executor):
+    """Runs what is not complete from an earlier invocation and writes the outputs; the exit status."""
     names = short_names([k for k, *_ in spec.grid])
     points = [list(p) for p in itertools.product(*[[(k, v) for v in values] for k, values, *_ in spec.grid])]
     runs = make_runs(points, spec.engines, spec.seeds, names, out, spec.metrics)
@@ -276,7 +301,25 @@ def spec_main(argv):
     print(f"sweep.py: {plural(len(runs), 'run')} ({plural(len(points), 'grid point')} x "
           f"{plural(len(spec.engines), 'engine')} x {plural(len(spec.seeds), 'seed')}) into {out}: "
           f"{len(runs) - len(to_run)} complete from an earlier invocation, " +
-          (f"{len(to_run)} to run, {min(jobs, len(to_run))} at a time" if to_run else "nothing to run"),
+          (f"{len(to_run)} to run, {executor.where(len(to_run))}" if to_run else "nothing to run"),
           file=sys.stderr, flush=True)
-    stopped = run_spec_runs(to_run, jobs, scenario_sha, spec.metrics)
+    stopped = run_spec_runs(to_run, executor, scenario_sha, spec.metrics)
     return _write_outputs(out, spec, points, names, runs, stopped)
+
+
+def spec_main(argv):
+    """sweep.py SPEC.yaml ...: returns the exit status (0, 1 when a run failed, 2 for a usage or
+    spec error, 128 + the signal that stopped it)."""
+    args = parse_spec_args(argv)
+    try:
+        spec, wsntrack, out, scenario_sha, description, warnings = _prepare(args)
+        for warning in warnings:
+            print(warning, file=sys.stderr)
+        executor = _executor(args, spec, wsntrack, out)
+    except (UsageError, SpecError) as error:
+        print(f"sweep.py: {error}" if isinstance(error, UsageError) else str(error), file=sys.stderr)
+        return 2
+    try:
+        return _sweep(argv, spec, wsntrack, out, scenario_sha, description, executor)
+    finally:
+        executor.close()
