@@ -174,6 +174,41 @@ TEST_CASE("a handoff addressed to another supernode is ignored and counted", "[t
   CHECK(tracker.misaddressedHandoffs() == 1);
 }
 
+TEST_CASE("a track that leaps past the neighbouring groups goes one group nearer per tick", "[tracker]") {
+  // Five groups in a row: each borders only the next ones, so supernode 0 can hand to 1 alone.
+  auto s = test::gnnScenario();
+  s.supernodes = {{10.0, 50.0}, {30.0, 50.0}, {50.0, 50.0}, {70.0, 50.0}, {90.0, 50.0}};
+  auto first = test::trackerFor(s, 0);
+  CHECK(first.neighbours() == std::vector<std::uint32_t>{1});
+  CHECK(test::trackerFor(s, 2).neighbours() == std::vector<std::uint32_t>{1, 3});
+  // A confirmed track at x = 15 moving 30 a tick: its next positions lie two and more groups on.
+  common::TrackHandoff h;
+  h.track = common::track_id::birth(0, 1, 1);
+  h.to_supernode = 0;
+  h.last_tick = 1;
+  h.state = {15.0, 50.0, 30.0, 0.0};
+  h.hits = 5;
+  h.confirmed = true;
+  for (int i = 0; i < 4; ++i) h.covariance[static_cast<std::size_t>(i * 5)] = 0.01;
+  std::uint32_t holder = 0;
+  auto tracker = std::move(first);
+  // Two hops (the coasting track then runs out of misses).
+  for (std::int32_t t = 2; t <= 3; ++t) {
+    INFO("tick " << t << ", held by supernode " << holder);
+    const auto out = tracker.step(t, {}, std::vector{h});
+    REQUIRE(out.handoffs.size() == 1);
+    const auto& next = out.handoffs[0];
+    const common::Vec2 predicted{next.state[0] + next.state[2], next.state[1] + next.state[3]};
+    // The nearest supernode of all is further on than a neighbour: the track goes to the neighbour
+    // nearest to it, the next group on.
+    CHECK(nearestSupernode(s.supernodes, predicted) > holder + 1);
+    CHECK(next.to_supernode == holder + 1);
+    holder = next.to_supernode;
+    h = next;
+    tracker = test::trackerFor(s, holder);
+  }
+}
+
 }  // namespace
 }  // namespace wsn::supernode
 
