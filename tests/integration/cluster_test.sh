@@ -102,6 +102,22 @@ case "$case_name" in
     same_outputs "$PWD/mp" "$PWD/ip"
     [ "$(wc -l <"$PWD/mp/tracks_supernode.csv")" -gt 100 ] || fail "suspiciously few supernode track rows"
     grep -q "start-up (to tick 1)" "$PWD/mp.stdout" || fail "the summary lacks the start-up time"
+    # Faults where not every supernode borders every other: two neighbours killed (their groups
+    # re-homed among their neighbours), a partition, one back by restart, a pause on the edge.
+    { sed 's/^name: scale_1e5$/name: scale_1e5_faults/' "$scenario"; cat <<'FAULTS'
+faults:
+  - {tick: 5, action: kill, role: supernode, index: 5}
+  - {tick: 6, action: kill, role: supernode, index: 6}
+  - {tick: 8, action: partition, between: [[supernode, 9], [supernode, 10]], ticks: 3}
+  - {tick: 10, action: restart, role: supernode, index: 5}
+  - {tick: 11, action: pause, role: supernode, index: 0, ticks: 2}
+FAULTS
+    } >"$PWD/faults.yaml"
+    scenario="$PWD/faults.yaml"
+    run_ok "$PWD/mpf" --ticks 16
+    run_ok "$PWD/ipf" --ticks 16 --nodes 2 --in-process
+    same_outputs "$PWD/mpf" "$PWD/ipf"
+    grep -q "restart of supernode 5 at tick 10: 1 tracks taken back" "$PWD/mpf.stdout" || { cat "$PWD/mpf.stdout" >&2; fail "the restart took no track back"; }
     for name in scale_1e4 scale_1e6; do
       "$wsntrack" validate "$src/scenarios/$name.yaml" >/dev/null 2>&1 || fail "scenarios/$name.yaml does not validate"
     done
