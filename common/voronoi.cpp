@@ -21,25 +21,6 @@ std::vector<Vec2> clip(const std::vector<Vec2>& polygon, Vec2 a, double b) {
   return out;
 }
 
-double segmentDistance(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 ab = b - a;
-  const double length2 = ab.x * ab.x + ab.y * ab.y;
-  const double s = length2 > 0.0 ? std::clamp(((p.x - a.x) * ab.x + (p.y - a.y) * ab.y) / length2, 0.0, 1.0) : 0.0;
-  return distance(p, a + s * ab);
-}
-
-/// Distance between two convex polygons with disjoint interiors: a vertex of one to an edge of the other.
-double polygonDistance(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
-  double best = INFINITY;
-  for (int pass = 0; pass < 2; ++pass) {
-    const auto& from = pass == 0 ? a : b;
-    const auto& to = pass == 0 ? b : a;
-    for (const Vec2 p : from)
-      for (std::size_t k = 0; k < to.size(); ++k) best = std::min(best, segmentDistance(p, to[k], to[(k + 1) % to.size()]));
-  }
-  return best;
-}
-
 }  // namespace
 
 std::vector<Vec2> voronoiCell(const std::vector<Vec2>& sites, const Rect& region, std::uint32_t i) {
@@ -55,21 +36,33 @@ std::vector<Vec2> voronoiCell(const std::vector<Vec2>& sites, const Rect& region
   return cell;
 }
 
-std::vector<std::vector<std::uint32_t>> voronoiNeighbours(const std::vector<Vec2>& sites, const Rect& region) {
-  const auto n = static_cast<std::uint32_t>(sites.size());
-  std::vector<std::vector<Vec2>> cells(n);
-  for (std::uint32_t i = 0; i < n; ++i) cells[i] = voronoiCell(sites, region, i);
+std::vector<std::uint32_t> voronoiNeighboursOf(const std::vector<Vec2>& sites, const Rect& region, std::uint32_t i) {
+  // On cell i, |p - s_j|^2 - |p - s_i|^2 is linear in p and never negative, and it is zero where
+  // the cells meet: cell j touches cell i iff it is zero (within the tolerance, as a distance to
+  // the bisector) at a vertex of cell i. One clip per site, not a cell per site.
+  const auto cell = voronoiCell(sites, region, i);
+  std::vector<std::uint32_t> out;
+  if (cell.empty()) return out;
   const double tolerance = 1e-9 * (std::hypot(region.width(), region.height()) + 1.0);
-  std::vector<std::vector<std::uint32_t>> neighbours(n);
-  for (std::uint32_t i = 0; i < n; ++i)
-    for (std::uint32_t j = i + 1; j < n; ++j) {
-      if (cells[i].empty() || cells[j].empty()) continue;
-      if (sites[i] == sites[j] || polygonDistance(cells[i], cells[j]) <= tolerance) {
-        neighbours[i].push_back(j);
-        neighbours[j].push_back(i);
-      }
+  for (std::uint32_t j = 0; j < sites.size(); ++j) {
+    if (j == i) continue;
+    const double separation = distance(sites[i], sites[j]);
+    if (separation == 0.0) {  // twins share one cell
+      out.push_back(j);
+      continue;
     }
-  for (auto& list : neighbours) std::sort(list.begin(), list.end());
+    for (const Vec2 v : cell)
+      if ((squaredDistance(v, sites[j]) - squaredDistance(v, sites[i])) / (2.0 * separation) <= tolerance) {
+        out.push_back(j);
+        break;
+      }
+  }
+  return out;
+}
+
+std::vector<std::vector<std::uint32_t>> voronoiNeighbours(const std::vector<Vec2>& sites, const Rect& region) {
+  std::vector<std::vector<std::uint32_t>> neighbours(sites.size());
+  for (std::uint32_t i = 0; i < sites.size(); ++i) neighbours[i] = voronoiNeighboursOf(sites, region, i);
   return neighbours;
 }
 

@@ -14,9 +14,12 @@ namespace wsn::common {
 /// point). Sites at the same position share one cell.
 std::vector<Vec2> voronoiCell(const std::vector<Vec2>& sites, const Rect& region, std::uint32_t i);
 
-/// For each site, the other sites whose cells touch its own (a shared edge or a single corner,
-/// within 1e-9 of the region's diagonal), ascending: the Delaunay graph of the sites, clipped to
-/// the region. Symmetric. O(n^2) clips and O(n^2) polygon distances: milliseconds at 1,000 sites.
+/// The other sites whose cells touch site i's (a shared edge or a single corner, within 1e-9 of the
+/// region's diagonal), ascending: i's edges of the Delaunay graph of the sites, clipped to the
+/// region. Empty when i's cell misses the region. O(n) clips and O(n) vertex tests.
+std::vector<std::uint32_t> voronoiNeighboursOf(const std::vector<Vec2>& sites, const Rect& region, std::uint32_t i);
+
+/// voronoiNeighboursOf() of every site (symmetric).
 std::vector<std::vector<std::uint32_t>> voronoiNeighbours(const std::vector<Vec2>& sites, const Rect& region);
 
 }  // namespace wsn::common

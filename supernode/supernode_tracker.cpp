@@ -34,7 +34,7 @@ SupernodeTracker::SupernodeTracker(SupernodeConfig config)
   if (index_ >= std::max<std::size_t>(1, supernodes_.size()))
     throw std::invalid_argument("supernode index " + std::to_string(index_) + " out of range: the scenario has " +
                                 std::to_string(supernodes_.size()) + " supernodes");
-  if (!supernodes_.empty()) neighbours_ = common::voronoiNeighbours(supernodes_, config.engine.region)[index_];
+  if (!supernodes_.empty()) neighbours_ = common::voronoiNeighboursOf(supernodes_, config.engine.region, index_);
   engine_ = makeEngine(config.engine);
   engine_spec_ = engineRegistry().find(config.engine.engine);  // makeEngine found it
   accepted_kinds_ = acceptedKindMask(*engine_spec_);
