@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <csignal>
@@ -25,6 +26,7 @@
 #include "common/dds/cyclone_config.hpp"
 #include "common/faults.hpp"
 #include "common/dds/entity.hpp"
+#include "common/dds/process_main.hpp"
 #include "common/dds/role_runtime.hpp"
 #include "launcher/fault_signals.hpp"
 #include "launcher/stopped_processes.hpp"
@@ -54,21 +56,29 @@ void markInterrupted(ClusterResult& result) {
                    " before the last tick; the run directory is incomplete";
 }
 
-/// One role instance of the cluster and its participant index.
+/// One role instance of the cluster, its host and its participant index there.
 struct RoleSlot {
   std::string role;
   std::uint32_t index = 0;
+  std::size_t host = 0;  ///< into HostPlan::hosts(); 0, the launcher's, on a single-host run
   int participant_index = 0;
   std::string name() const { return role + " " + std::to_string(index); }
 };
 
-std::vector<RoleSlot> clusterSlots(const common::Scenario& scenario) {
+/// Every process of the cluster, numbered per host; `next_index[h]` ends as host h's count.
+std::vector<RoleSlot> clusterSlots(const common::Scenario& scenario, const HostPlan& hosts,
+                                   std::vector<int>* next_index = nullptr) {
   std::vector<RoleSlot> slots;
-  int participant = 0;
-  for (std::int32_t i = 0; i < scenario.run.node_processes; ++i) slots.push_back({"node", static_cast<std::uint32_t>(i), participant++});
-  slots.push_back({"network", 0, participant++});
-  for (std::size_t j = 0; j < scenario.supernodes.size(); ++j) slots.push_back({"supernode", static_cast<std::uint32_t>(j), participant++});
-  slots.push_back({"aggregator", 0, participant++});
+  std::vector<int> next(std::max<std::size_t>(hosts.hosts().size(), 1), 0);
+  const auto add = [&](const std::string& role, std::uint32_t index) {
+    const std::size_t host = hosts.hostOf(role, index);
+    slots.push_back({role, index, host, next[host]++});
+  };
+  for (std::int32_t i = 0; i < scenario.run.node_processes; ++i) add("node", static_cast<std::uint32_t>(i));
+  add("network", 0);
+  for (std::size_t j = 0; j < scenario.supernodes.size(); ++j) add("supernode", static_cast<std::uint32_t>(j));
+  add("aggregator", 0);
+  if (next_index != nullptr) *next_index = next;
   return slots;
 }
 
@@ -129,8 +139,10 @@ class StatusObserver {
  public:
   StatusObserver(const ClusterOptions& options, int participant_index)
       : domain_(static_cast<dds_domainid_t>(options.identity.domain),
-                dds::cycloneConfigFor(dds::cycloneConfigTemplate(options.identity.run_id,
-                                                                 participantCount(options.scenario, options.in_process)),
+                dds::cycloneConfigFor(dds::cycloneConfigTemplate(
+                                          options.identity.run_id,
+                                          participantCount(options.scenario, options.in_process, options.hosts),
+                                          cycloneNetworkOf(options.hosts, 0)),
                                       participant_index)),
         participant_(domain_.id()),
         topics_(participant_),
@@ -201,8 +213,21 @@ void noteFirstTick(ClusterResult& result, std::int32_t tick, Clock::time_point s
   if (tick >= 1 && result.first_tick_s == 0.0) result.first_tick_s = std::chrono::duration<double>(Clock::now() - started).count();
 }
 
+/// The Cyclone configuration template of the processes on host `host` of a run over several hosts.
+std::string hostConfigPath(const ClusterOptions& options, std::size_t host) {
+  return options.run_dir + "/cyclonedds-" + options.hosts.hosts().at(host).name + ".xml";
+}
+
+/// A started role process. A process on another host holds the read end of a pipe as its standard
+/// input (its lifeline, --stdin-lifeline): `lifeline` is the write end, which the launcher keeps open
+/// while the process runs and which the kernel closes when the launcher dies.
+struct Spawned {
+  pid_t pid = -1;
+  int lifeline = -1;
+};
+
 /// Starts the process of `slot`; `first_tick` above 1 starts the one a `restart` brings back.
-pid_t spawn(const RoleSlot& slot, const ClusterOptions& options, const std::string& log_path, std::int32_t first_tick = 1) {
+Spawned spawn(const RoleSlot& slot, const ClusterOptions& options, const std::string& log_path, std::int32_t first_tick = 1) {
   const std::string program = options.bin_dir + "/wsntrack-" + slot.role;
   std::vector<std::string> args = {program,
                                    "--run-dir", options.run_dir,
@@ -220,9 +245,28 @@ pid_t spawn(const RoleSlot& slot, const ClusterOptions& options, const std::stri
     args.push_back("--first-tick");
     args.push_back(std::to_string(first_tick));
   }
+  const bool remote = options.hosts.startsRemotely(slot.role, slot.index);
+  int lifeline[2] = {-1, -1};
+  if (remote) {
+    // The launcher cannot signal a process behind ssh: the role enacts the scenario's faults itself
+    // and ends when its standard input does.
+    for (const char* flag : {"--faults-in-role", "--stdin-lifeline"}) args.push_back(flag);
+    args.push_back("--cyclone-config");
+    args.push_back(hostConfigPath(options, slot.host));
+    const auto& start = options.hosts.hosts().at(slot.host).start;
+    args.insert(args.begin(), start.begin(), start.end());
+    if (::pipe2(lifeline, O_CLOEXEC) != 0) throw std::runtime_error(std::string("pipe failed: ") + std::strerror(errno));
+  } else if (options.hosts.multiHost()) {
+    args.push_back("--cyclone-config");
+    args.push_back(options.run_dir + "/cyclonedds.xml");
+  }
   const pid_t launcher = ::getpid();
   const pid_t pid = ::fork();
-  if (pid < 0) throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
+  if (pid < 0) {
+    for (const int fd : lifeline)
+      if (fd >= 0) ::close(fd);
+    throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
+  }
   if (pid == 0) {
     // A role must not outlive its launcher (killed with -9, say): the kernel sends SIGTERM when
     // the parent dies; the getppid check closes the race of a parent that died before prctl.
@@ -234,34 +278,86 @@ pid_t spawn(const RoleSlot& slot, const ClusterOptions& options, const std::stri
       ::dup2(fd, 2);
       ::close(fd);
     }
+    if (remote) ::dup2(lifeline[0], 0);  // dup2 clears close-on-exec on the copy
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
-    ::execv(program.c_str(), argv.data());
-    std::fprintf(stderr, "cannot execute %s: %s\n", program.c_str(), std::strerror(errno));
+    // A start command (ssh, ip netns exec) is looked up on PATH; a role's program is a path.
+    ::execvp(argv[0], argv.data());
+    std::fprintf(stderr, "cannot execute %s: %s\n", argv[0], std::strerror(errno));
     ::_exit(127);
   }
-  return pid;
+  if (remote) ::close(lifeline[0]);
+  return {pid, lifeline[1]};
 }
+
+/// The outcome of every slot before it ran: its name, host and log.
+std::vector<RoleOutcome> initialOutcomes(const std::vector<RoleSlot>& slots, const ClusterOptions& options) {
+  std::vector<RoleOutcome> outcomes(slots.size());
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    outcomes[i].name = slots[i].name();
+    if (options.hosts.multiHost()) outcomes[i].host = options.hosts.hosts()[slots[i].host].name;
+    outcomes[i].log_path = options.run_dir + "/logs/" + slots[i].role + "-" + std::to_string(slots[i].index) + ".log";
+  }
+  return outcomes;
+}
+
+/// The slots of the supernodes, in index order.
+std::vector<std::size_t> supernodeSlots(const std::vector<RoleSlot>& slots) {
+  std::vector<std::size_t> supernode_slots;
+  for (std::size_t i = 0; i < slots.size(); ++i)
+    if (slots[i].role == "supernode") supernode_slots.push_back(i);
+  return supernode_slots;
+}
+
+/// The role processes the launcher started and has not reaped yet, with the lifelines of those on
+/// other hosts (closed once reaped).
+class RunningProcesses {
+ public:
+  RunningProcesses(const std::vector<RoleSlot>& slots, const ClusterOptions& options) : slots_(slots), options_(options) {}
+  void start(std::size_t slot, const std::string& log_path, std::int32_t first_tick) {
+    const Spawned spawned = spawn(slots_[slot], options_, log_path, first_tick);
+    slot_of_[spawned.pid] = slot;
+    if (spawned.lifeline >= 0) lifelines_[spawned.pid] = spawned.lifeline;
+  }
+  /// The slot of `pid` if it is one of ours, which it then no longer is.
+  std::optional<std::size_t> reaped(pid_t pid) {
+    const auto it = slot_of_.find(pid);
+    if (it == slot_of_.end()) return std::nullopt;
+    const std::size_t slot = it->second;
+    slot_of_.erase(it);
+    if (const auto lifeline = lifelines_.find(pid); lifeline != lifelines_.end()) {
+      ::close(lifeline->second);
+      lifelines_.erase(lifeline);
+    }
+    return slot;
+  }
+  const std::map<pid_t, std::size_t>& bySlot() const { return slot_of_; }
+  bool empty() const { return slot_of_.empty(); }
+
+ private:
+  const std::vector<RoleSlot>& slots_;
+  const ClusterOptions& options_;
+  std::map<pid_t, std::size_t> slot_of_;
+  std::map<pid_t, int> lifelines_;  ///< pid -> write end of its standard input (other hosts)
+};
 
 ClusterResult runProcesses(const ClusterOptions& options) {
   ClusterResult result;
-  const auto slots = clusterSlots(options.scenario);
+  std::vector<int> launcher_host_count;
+  const auto slots = clusterSlots(options.scenario, options.hosts, &launcher_host_count);
   const auto started = Clock::now();
-  std::map<pid_t, std::size_t> running;  // pid -> slot
-  result.outcomes.resize(slots.size());
-  for (std::size_t i = 0; i < slots.size(); ++i) {
-    result.outcomes[i].name = slots[i].name();
-    result.outcomes[i].log_path = options.run_dir + "/logs/" + slots[i].role + "-" + std::to_string(slots[i].index) + ".log";
-  }
+  RunningProcesses processes(slots, options);
+  const auto& running = processes.bySlot();  // pid -> slot
+  // A role on another host enacts its faults itself (--faults-in-role) and ends with status
+  // kExitScheduledDeath where the scenario kills it.
+  const auto remote = [&](std::size_t slot) { return options.hosts.startsRemotely(slots[slot].role, slots[slot].index); };
+  result.outcomes = initialOutcomes(slots, options);
   StoppedProcesses stopped(Clock::now());
   const common::FaultPlan plan(options.scenario.faults, options.scenario.run.node_processes,
                                static_cast<std::int32_t>(options.scenario.supernodes.size()));
   FaultSignals fault_signals(plan, options.scenario.run.ticks);
-  std::vector<std::size_t> supernode_slots;
-  for (std::size_t i = 0; i < slots.size(); ++i)
-    if (slots[i].role == "supernode") supernode_slots.push_back(i);  // in index order
-  RestartSchedule restarts(plan, supernode_slots, options.scenario.run.max_ticks_in_flight);
+  RestartSchedule restarts(plan, supernodeSlots(slots), options.scenario.run.max_ticks_in_flight);
   auto stopAll = [&](int signal_number) {
     fault_signals.continueAll();
     for (const auto& [pid, slot] : running) ::kill(pid, signal_number);
@@ -273,18 +369,21 @@ ClusterResult runProcesses(const ClusterOptions& options) {
     struct rusage usage {};
     pid_t pid;
     while ((pid = ::wait4(-1, &status, block ? 0 : WNOHANG, &usage)) > 0) {
-      const auto it = running.find(pid);
-      if (it == running.end()) continue;
-      const std::size_t slot_index = it->second;
+      const auto reaped = processes.reaped(pid);
+      if (!reaped) continue;
+      const std::size_t slot_index = *reaped;
       auto& outcome = result.outcomes[slot_index];
       outcome.peak_rss_kb = usage.ru_maxrss;  // Linux reports kilobytes
       outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
       outcome.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
-      running.erase(it);
       const auto fault = fault_signals.killedByFault(pid);
       if (fault && outcome.signal == SIGKILL) {
         outcome.exit_code = 0;  // the death the scenario asked for
         outcome.message = "killed by SIGKILL as the scenario's faults asked (" + *fault + ")";
+        restarts.killed(slot_index);
+      } else if (remote(slot_index) && outcome.exit_code == dds::kExitScheduledDeath) {
+        outcome.exit_code = 0;
+        outcome.message = "ended where the scenario's faults kill it";
         restarts.killed(slot_index);
       } else if (outcome.signal == SIGKILL && g_interrupt_signal.load() == 0 && result.failure.empty() &&
                  hand_losses.survivable(slots[slot_index].role, slots[slot_index].index)) {
@@ -303,9 +402,9 @@ ClusterResult runProcesses(const ClusterOptions& options) {
   };
 
   try {
-    // The observer takes the last participant index, after every role process.
-    StatusObserver observer(options, static_cast<int>(slots.size()));
-    for (std::size_t i = 0; i < slots.size(); ++i) running[spawn(slots[i], options, result.outcomes[i].log_path)] = i;
+    // The observer takes the last participant index of the launcher's host, after its role processes.
+    StatusObserver observer(options, launcher_host_count.front());
+    for (std::size_t i = 0; i < slots.size(); ++i) processes.start(i, result.outcomes[i].log_path, 1);
 
     ProgressDisplay progress(options.scenario.run.ticks, options.show_progress);
     std::int32_t tick = 0;
@@ -317,7 +416,8 @@ ClusterResult runProcesses(const ClusterOptions& options) {
       noteFirstTick(result, tick, started);
       for (const auto& f : faulted)
         for (const auto& [pid, slot] : running)
-          if (slots[slot].role == f.role && slots[slot].index == f.index) fault_signals.announced(pid, f.role, f.index, f.tick);
+          if (slots[slot].role == f.role && slots[slot].index == f.index && !remote(slot))
+            fault_signals.announced(pid, f.role, f.index, f.tick);
       faulted.clear();
       fault_signals.progressed(tick);
       for (const auto& [pid, slot] : running) stopped.sample(pid, slots[slot].name(), fault_signals.pausing(pid));
@@ -331,7 +431,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
         outcome.message += ", restarted at tick " + std::to_string(first_tick);
         outcome.log_path = options.run_dir + "/logs/" + slots[slot].role + "-" + std::to_string(slots[slot].index) +
                            "-from-" + std::to_string(first_tick) + ".log";
-        running[spawn(slots[slot], options, outcome.log_path, first_tick)] = slot;
+        processes.start(slot, outcome.log_path, first_tick);
       }
       if (!failures.empty() && result.failure.empty()) result.failure = failures.front();
       if (g_interrupt_signal.load() != 0) markInterrupted(result);
@@ -365,7 +465,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
 
 ClusterResult runThreads(const ClusterOptions& options) {
   ClusterResult result;
-  const auto slots = clusterSlots(options.scenario);
+  const auto slots = clusterSlots(options.scenario, options.hosts);
   const auto started = Clock::now();
   // The first failure stops every role thread: their waits wake at once on the request.
   std::stop_source stop;
@@ -473,9 +573,19 @@ int runExitStatus(const ClusterResult& result) {
   return result.interrupted_by != 0 ? 128 + result.interrupted_by : 1;
 }
 
-int participantCount(const common::Scenario& scenario, bool in_process) {
+int participantCount(const common::Scenario& scenario, bool in_process, const HostPlan& hosts) {
   if (in_process) return 1;
-  return static_cast<int>(clusterSlots(scenario).size()) + 1;
+  std::vector<int> per_host;
+  clusterSlots(scenario, hosts, &per_host);
+  per_host.front() += 1;  // the launcher's observer
+  return *std::max_element(per_host.begin(), per_host.end());
+}
+
+int launcherHostParticipants(const common::Scenario& scenario, bool in_process, const HostPlan& hosts) {
+  if (in_process) return 1;
+  std::vector<int> per_host;
+  clusterSlots(scenario, hosts, &per_host);
+  return per_host.front() + 1;
 }
 
 void installInterruptHandlers() {
@@ -488,12 +598,12 @@ int interruptSignal() { return g_interrupt_signal.load(); }
 RunDescription describeRun(const ClusterOptions& options) {
   RunDescription description;
   description.identity = options.identity;
-  description.participants = participantCount(options.scenario, options.in_process);
-  description.first_viewer_index = description.participants;
+  description.participants = participantCount(options.scenario, options.in_process, options.hosts);
+  description.first_viewer_index = launcherHostParticipants(options.scenario, options.in_process, options.hosts);
   description.viewer_slots = dds::kViewerSlots;
   description.scenario = options.scenario.name;
   description.ticks = options.scenario.run.ticks;
-  description.processes = static_cast<std::int32_t>(clusterSlots(options.scenario).size());
+  description.processes = static_cast<std::int32_t>(clusterSlots(options.scenario, options.hosts).size());
   description.tick_interval_s = options.tick_interval_s;
   description.in_process = options.in_process;
   description.launcher_pid = ::getpid();

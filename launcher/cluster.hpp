@@ -10,6 +10,7 @@
 
 #include "common/dds/cyclone_config.hpp"
 #include "common/scenario_config.hpp"
+#include "launcher/hosts.hpp"
 #include "launcher/run_description.hpp"
 
 namespace wsn::launcher {
@@ -21,6 +22,7 @@ struct ClusterOptions {
   RunIdentity identity;
   common::Scenario scenario;  ///< resolved, overrides applied
   bool in_process = false;
+  HostPlan hosts;  ///< --hosts: where each process runs; empty: all on this host, on loopback
   std::string bin_dir;  ///< where the wsntrack-<role> executables are
   std::chrono::seconds timeout{1800};  ///< counted from `started`
   /// When the launcher started: --timeout bounds the whole command, set-up included.
@@ -41,8 +43,11 @@ struct RoleOutcome {
   int exit_code = 0;     ///< 0 success; for processes killed by a signal, 128 + signal
   std::string message;   ///< why it failed, when known
   std::string log_path;  ///< multi-process mode: its stdout/stderr
-  long peak_rss_kb = 0;  ///< multi-process mode: the process's peak resident set (wait4)
+  long peak_rss_kb = 0;  ///< multi-process mode: the process's peak resident set (wait4): on another
+                         ///< host, that of the process its start command made here (ssh; ip netns
+                         ///< exec becomes the role itself)
   int signal = 0;        ///< multi-process mode: the signal that killed the process, 0 when it exited
+  std::string host;      ///< the host it ran on, on a run over several hosts (--hosts); else empty
 };
 
 struct ClusterResult {
@@ -85,7 +90,12 @@ inline constexpr int kMaxParticipants = 119;
 static_assert(2 * (kMaxParticipants + dds::kViewerSlots + 1) + 11 < 250 + 10,
               "viewer slots would reach the next domain's unicast ports");
 
-/// Number of Cyclone participants of a run: every process plus the launcher's observer.
-int participantCount(const common::Scenario& scenario, bool in_process);
+/// Number of Cyclone participants of a run: every process plus the launcher's observer; on a run
+/// over several hosts, the most on any one host (participant indices and ports count per host).
+int participantCount(const common::Scenario& scenario, bool in_process, const HostPlan& hosts = {});
+
+/// Participants on the launcher's own host (its observer included): live viewers there take the
+/// indices after them.
+int launcherHostParticipants(const common::Scenario& scenario, bool in_process, const HostPlan& hosts = {});
 
 }  // namespace wsn::launcher

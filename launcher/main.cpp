@@ -238,6 +238,14 @@ int commandRun(const std::vector<std::string>& command_line) {
     return 2;
   }
 
+  if (!args.hosts_file.empty()) {
+    try {
+      cluster.hosts = launcher::loadHostPlan(args.hosts_file, scenario);
+    } catch (const std::exception& error) {
+      std::cerr << "wsntrack run: " << error.what() << "\n";
+      return 2;
+    }
+  }
   cluster.scenario = scenario;
   cluster.in_process = args.in_process;
   cluster.show_progress = !args.quiet;
@@ -253,9 +261,12 @@ int commandRun(const std::vector<std::string>& command_line) {
   const launcher::InstallLayout install = launcher::locateInstall(executableDirectory());
   cluster.bin_dir = install.requireRoleDir();
   cluster.run_dir = args.out_dir.empty() ? launcher::defaultRunDirectory(scenario) : args.out_dir;
+  // Another host's processes start wherever its start command leaves them (ssh: the home directory).
+  if (cluster.hosts.multiHost()) cluster.run_dir = std::filesystem::absolute(cluster.run_dir).lexically_normal().string();
   guard.phase("preparing the run directory");
   try {
-    cluster.identity = launcher::claimRunDirectory(cluster.run_dir, scenario, cluster.in_process, args.overwrite);
+    cluster.identity =
+        launcher::claimRunDirectory(cluster.run_dir, scenario, cluster.in_process, args.overwrite, cluster.hosts);
     {
       const std::lock_guard lock(guard.runJsonMutex());
       launcher::writeRunDescription(cluster.run_dir, launcher::describeRun(cluster));
@@ -263,14 +274,14 @@ int commandRun(const std::vector<std::string>& command_line) {
     guard.runDirectory(cluster.run_dir);
     guard.phase("writing the run's inputs");
     launcher::writeRunInputs(cluster.run_dir, scenario, cluster.identity,
-                             launcher::participantCount(scenario, cluster.in_process));
+                             launcher::participantCount(scenario, cluster.in_process, cluster.hosts), cluster.hosts);
   } catch (const std::exception& error) {
     if (guard.hasRunDirectory()) markRunOrWarn(cluster.run_dir, launcher::kRunFailed, error.what());
     std::cerr << "wsntrack run: " << error.what() << "\n";
     return 1;
   }
 
-  std::cerr << launcher::runStartLine(scenario, cluster.identity.domain, cluster.in_process);
+  std::cerr << launcher::runStartLine(scenario, cluster.identity.domain, cluster.in_process, cluster.hosts);
   // Started before the cluster so that python and matplotlib load while it runs.
   std::optional<launcher::PlotJob> plot_job;
   if (args.plot) plot_job.emplace(install.plot_script, cluster.run_dir, args.plot_format);

@@ -14,11 +14,12 @@ namespace po = boost::program_options;
 constexpr const char* kRunUsage =
     "Usage: wsntrack run SCENARIO [--seed N] [--out DIR [--overwrite]] [--nodes N] [--ticks T]\n"
     "                    [--set KEY=VALUE]... [--in-process] [--timeout S] [--stall-timeout S]\n"
-    "                    [--tick-interval S]\n"
+    "                    [--tick-interval S] [--hosts FILE]\n"
     "                    [--quiet] [--no-plot] [--plot-format png|svg]\n\n"
     "Starts every process of the cluster on this host — sensor-node tiles, the network\n"
     "model, one supernode per tracking group and the aggregator — over Cyclone DDS on\n"
-    "loopback, shows progress, and prints a summary. Outputs (run directory):\n"
+    "loopback (or, with --hosts, over the hosts a file lists, by unicast between their\n"
+    "addresses), shows progress, and prints a summary. Outputs (run directory):\n"
     "  scenario.yaml  truth.csv  observations.csv  tracks_supernode.csv  tracks.csv\n"
     "  tracks_settled.csv  network.json  metrics.json  logs/<role>-<index>.log\n"
     "  sensors.csv (random layout)\n"
@@ -49,6 +50,10 @@ po::options_description runOptions(RunArguments& a) {
       "ticks", po::value<std::string>(), "number of ticks T; overrides run.ticks")(
       "set", po::value(&a.sets)->value_name("KEY=VALUE"), kSetHelp)(
       "in-process", "run every role as a thread of this process (still over DDS)")(
+      "hosts", po::value(&a.hosts_file)->value_name("FILE"),
+      "spread the processes over the hosts FILE lists (YAML: each host's name, address, start command "
+      "and roles; docs/MULTIHOST.md); the run directory and the wsntrack executables must be at the same "
+      "paths on every host")(
       "timeout", po::value(&a.timeout_s)->default_value(1800), "stop everything after this many seconds")(
       "stall-timeout", po::value(&a.stall_timeout_s)->default_value(60),
       "a role gives up after this many seconds without input (a peer died), or without its peers at start")(
@@ -111,6 +116,8 @@ std::optional<std::string> checkRunOptions(const RunArguments& a) {
       why << name << " must be in (0, 604800] seconds, got " << value;
       return why.str();
     }
+  if (!a.hosts_file.empty() && a.in_process)
+    return "--hosts spreads the run's processes over hosts; --in-process keeps them in one: give one of them";
   if (a.plot_format != "png" && a.plot_format != "svg") return "--plot-format must be png or svg, got '" + a.plot_format + "'";
   const double interval = a.tick_interval_s;
   if (!std::isfinite(interval) || interval < 0 || interval > 3600 || interval >= a.stall_timeout_s) {

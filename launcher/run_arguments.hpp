@@ -26,6 +26,7 @@ struct RunArguments {
   std::optional<std::string> nodes;  ///< --nodes, as typed
   std::optional<std::string> ticks;  ///< --ticks, as typed
   bool in_process = false;
+  std::string hosts_file;  ///< --hosts: spread the processes over the hosts it lists
   double timeout_s = 1800;
   double stall_timeout_s = 60;
   double tick_interval_s = 0;

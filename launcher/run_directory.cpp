@@ -183,9 +183,13 @@ void createRunDirectory(const std::string& path, bool overwrite) {
 }
 
 void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario, const RunIdentity& identity,
-                    int participants) {
+                    int participants, const HostPlan& hosts) {
   common::writeTextFile(run_dir + "/scenario.yaml", scenario::resolvedScenarioYaml(scenario));
-  common::writeTextFile(run_dir + "/cyclonedds.xml", dds::cycloneConfigTemplate(identity.run_id, participants));
+  common::writeTextFile(run_dir + "/cyclonedds.xml",
+                        dds::cycloneConfigTemplate(identity.run_id, participants, cycloneNetworkOf(hosts, 0)));
+  for (std::size_t h = 1; h < hosts.hosts().size(); ++h)
+    common::writeTextFile(run_dir + "/cyclonedds-" + hosts.hosts()[h].name + ".xml",
+                          dds::cycloneConfigTemplate(identity.run_id, participants, cycloneNetworkOf(hosts, h)));
 
   const common::Truth truth(truthConfig(scenario));
   common::CsvFile csv(run_dir + "/truth.csv", "tick,target,x,y,vx,vy,class");
@@ -208,16 +212,16 @@ void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario
 }
 
 RunIdentity claimRunDirectory(const std::string& run_dir, const common::Scenario& scenario, bool in_process,
-                              bool overwrite) {
+                              bool overwrite, const HostPlan& hosts) {
   createRunDirectory(run_dir, overwrite);
   RunIdentity identity;
   identity.run_id = newRunId();
-  const int participants = participantCount(scenario, in_process);
+  const int participants = participantCount(scenario, in_process, hosts);
   // Cyclone maps participant index i to ports 7400 + 250 d + 2 i + {10, 11}: beyond 119
   // participants a run's ports would spill into the next domain's range.
   if (participants > kMaxParticipants)
     throw std::runtime_error("a run may have at most " + std::to_string(kMaxParticipants) +
-                             " DDS participants (node tiles + supernodes + 3), this one needs " +
+                             " DDS participants on one host (node tiles + supernodes + 3), this one needs " +
                              std::to_string(participants));
   identity.domain = pickFreeDomain(identity.run_id, participants);
   return identity;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/scenario_config.hpp"
+#include "launcher/hosts.hpp"
 #include "launcher/run_description.hpp"
 
 namespace wsn::launcher {
@@ -43,17 +44,18 @@ inline constexpr const char* kRunLockFile = ".wsntrack.lock";
 /// first runs ("RUN_DIR: a run is still live there (wsntrack pid N)").
 void createRunDirectory(const std::string& path, bool overwrite);
 
-/// Writes scenario.yaml (resolved), truth.csv and cyclonedds.xml for `participants` processes, and
+/// Writes scenario.yaml (resolved), truth.csv and cyclonedds.xml for `participants` processes (on a
+/// run over several hosts: the launcher's host's, and cyclonedds-NAME.xml for each other host), and
 /// sensors.csv (sensor,x,y: true positions) when the layout is random: a grid follows from
 /// scenario.yaml alone, and writing it would cost up to 10^7 rows.
 void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario, const RunIdentity& identity,
-                    int participants);
+                    int participants, const HostPlan& hosts = {});
 
 /// What a run needs before its run.json can be written: the directory (created, or cleared with
 /// `overwrite`, and locked), a fresh run id and a domain with free ports for its participants. The
 /// inputs (writeRunInputs) follow once run.json says the run is running, so that a run stopped
 /// while they are written is marked. Throws std::runtime_error saying what failed.
 RunIdentity claimRunDirectory(const std::string& run_dir, const common::Scenario& scenario, bool in_process,
-                              bool overwrite);
+                              bool overwrite, const HostPlan& hosts = {});
 
 }  // namespace wsn::launcher

@@ -94,11 +94,18 @@ RunFigures readRunFigures(const std::string& run_dir) {
   return parseRunFigures(readFile(run_dir + "/metrics.json"), readFile(run_dir + "/network.json"));
 }
 
-std::string runStartLine(const common::Scenario& scenario, int domain, bool in_process) {
+std::string runStartLine(const common::Scenario& scenario, int domain, bool in_process, const HostPlan& hosts) {
   std::ostringstream out;
   out << "wsntrack: " << scenario.name << " (seed " << scenario.run.seed << ", " << scenario.run.ticks << " ticks) on "
       << scenario.run.node_processes << " node tiles, " << scenario.supernodes.size() << " supernodes, engine "
-      << scenario.tracker.engine << ", domain " << domain << (in_process ? ", in-process" : "") << "\n";
+      << scenario.tracker.engine << ", domain " << domain << (in_process ? ", in-process" : "");
+  if (hosts.multiHost()) {
+    out << ", over " << hosts.hosts().size() << " hosts (";
+    for (std::size_t h = 0; h < hosts.hosts().size(); ++h)
+      out << (h == 0 ? "" : ", ") << hosts.hosts()[h].name << " " << hosts.hosts()[h].address;
+    out << ")";
+  }
+  out << "\n";
   return out.str();
 }
 
@@ -129,7 +136,9 @@ std::string runSummary(const std::string& run_dir, const RunFigures& f, const Cl
     row(out, "peak RSS (whole process)", show(mib(result.in_process_peak_rss_kb), 1) + " MiB");
   } else {
     out << "  peak RSS per process (MiB):";
-    for (const auto& outcome : result.outcomes) out << " " << outcome.name << " " << show(mib(outcome.peak_rss_kb), 1) << ";";
+    for (const auto& outcome : result.outcomes)
+      out << " " << outcome.name << (outcome.host.empty() ? "" : "@" + outcome.host) << " "
+          << show(mib(outcome.peak_rss_kb), 1) << ";";
     out << "\n";
   }
   if (plots) {

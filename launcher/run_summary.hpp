@@ -8,6 +8,7 @@
 
 #include "common/scenario_config.hpp"
 #include "launcher/cluster.hpp"
+#include "launcher/hosts.hpp"
 #include "launcher/plot_job.hpp"
 
 namespace wsn::launcher {
@@ -45,7 +46,7 @@ RunFigures parseRunFigures(const std::string& metrics_json, const std::string& n
 RunFigures readRunFigures(const std::string& run_dir);
 
 /// "wsntrack: NAME (seed S, T ticks) on N node tiles, ...": the line before the cluster starts.
-std::string runStartLine(const common::Scenario& scenario, int domain, bool in_process);
+std::string runStartLine(const common::Scenario& scenario, int domain, bool in_process, const HostPlan& hosts = {});
 
 /// The summary after a run that succeeded: the run directory, the figures, the wall time and peak
 /// memory of `result`, and the plots when they were asked for.

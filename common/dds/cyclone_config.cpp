@@ -10,21 +10,25 @@
 
 namespace wsn::dds {
 
-std::string cycloneConfigTemplate(std::uint64_t run_id, int participants) {
+std::string cycloneConfigTemplate(std::uint64_t run_id, int participants, const CycloneNetwork& network) {
   std::ostringstream xml;
+  std::string interface = "<NetworkInterface name=\"lo\"/>";
+  if (!network.interface_address.empty()) interface = "<NetworkInterface address=\"" + network.interface_address + "\"/>";
+  std::string peers;
+  for (const auto& peer : network.peers) peers += "<Peer address=\"" + peer + "\"/>";
   // MaxAutoParticipantIndex bounds the ports probed on the unicast peer: one per process and
   // per viewer slot, with headroom for Cyclone's off-by-one.
   xml << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       << "<CycloneDDS xmlns=\"https://cdds.io/config\">\n"
       << "  <Domain Id=\"any\">\n"
       << "    <General>\n"
-      << "      <Interfaces><NetworkInterface name=\"lo\"/></Interfaces>\n"
+      << "      <Interfaces>" << interface << "</Interfaces>\n"
       << "      <AllowMulticast>false</AllowMulticast>\n"
       << "    </General>\n"
       << "    <Discovery>\n"
       << "      <ParticipantIndex>" << kParticipantIndexPlaceholder << "</ParticipantIndex>\n"
       << "      <MaxAutoParticipantIndex>" << participants + kViewerSlots + 1 << "</MaxAutoParticipantIndex>\n"
-      << "      <Peers><Peer address=\"127.0.0.1\"/></Peers>\n"
+      << "      <Peers>" << peers << "</Peers>\n"
       << "      <Tag>wsntrack-" << std::hex << run_id << std::dec << "</Tag>\n"
       // A lost participant announcement is repeated within a second rather than Cyclone's default
       // 30 s: a loaded host (sanitizers, parallel runs) must not stall a cluster's start for that.

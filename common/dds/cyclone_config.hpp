@@ -1,10 +1,12 @@
-// The per-run Cyclone DDS configuration: loopback only, multicast off, unicast peer
-// 127.0.0.1, a discovery tag unique to the run, and an explicit participant index per process
-// (Cyclone 0.10's automatic index probing has an off-by-one; the launcher knows every process).
+// The per-run Cyclone DDS configuration: loopback only (or, for a run over several hosts, the
+// host's own address), multicast off, unicast peers (127.0.0.1, or every host of the run), a
+// discovery tag unique to the run, and an explicit participant index per process (Cyclone 0.10's
+// automatic index probing has an off-by-one; the launcher knows every process).
 #pragma once
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace wsn::dds {
 
@@ -17,8 +19,15 @@ inline constexpr const char* kParticipantIndexPlaceholder = "${WSN_PARTICIPANT_I
 /// that unicast discovery reaches them.
 inline constexpr int kViewerSlots = 4;
 
-/// The XML template for a run with `participants` processes (the launcher included).
-std::string cycloneConfigTemplate(std::uint64_t run_id, int participants);
+/// Where a process's DDS traffic goes: one interface, and the unicast peers discovery reaches.
+struct CycloneNetwork {
+  std::string interface_address;                 ///< empty: the loopback interface "lo"
+  std::vector<std::string> peers{"127.0.0.1"};   ///< every address a participant of the run may have
+};
+
+/// The XML template for a run with `participants` processes (the launcher included; on a run
+/// over several hosts, the most on any one host).
+std::string cycloneConfigTemplate(std::uint64_t run_id, int participants, const CycloneNetwork& network = {});
 
 /// The template with the placeholder replaced by `participant_index`.
 std::string cycloneConfigFor(const std::string& config_template, int participant_index);

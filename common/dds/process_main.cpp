@@ -1,6 +1,7 @@
 #include "common/dds/process_main.hpp"
 
 #include <pthread.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -89,10 +90,26 @@ class StopSignals {
   std::thread thread_;
 };
 
+/// Ends the process as SIGTERM would (a stop request) once its standard input reaches its end: a
+/// role started on another host through ssh keeps the connection as its lifeline, so that it ends
+/// when the launcher, or the launcher's end of the connection, does. The thread is left to the
+/// process's end: a blocking read cannot be interrupted portably.
+void endWithStandardInput() {
+  std::thread([] {
+    char buffer[256];
+    while (true) {
+      const ssize_t n = ::read(0, buffer, sizeof buffer);
+      if (n == 0 || (n < 0 && errno != EINTR)) break;
+    }
+    ::kill(::getpid(), SIGTERM);  // to the process: the StopSignals thread takes it
+  }).detach();
+}
+
 }  // namespace
 
-std::string readConfigTemplate(const std::string& run_dir) {
-  const std::string path = run_dir + "/cyclonedds.xml";
+std::string readConfigTemplate(const std::string& run_dir) { return readConfigFile(run_dir + "/cyclonedds.xml"); }
+
+std::string readConfigFile(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path + ": cannot read the run's Cyclone DDS configuration");
   std::stringstream text;
@@ -111,6 +128,9 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
   std::string run_id_hex;
   double stall_timeout_s = 60.0;
   double tick_interval_s = 0.0;
+  std::string cyclone_config;
+  bool faults_in_role = false;
+  bool stdin_lifeline = false;
 
   po::options_description options("Options");
   options.add_options()("help,h", "show this help and exit")(
@@ -124,7 +144,14 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
       "stall-timeout", po::value(&stall_timeout_s)->default_value(60.0),
       "seconds without any input after which the role gives up (a producer died)")(
       "tick-interval", po::value(&tick_interval_s)->default_value(0.0),
-      "sources start at most one tick per this many seconds (0: as fast as possible)");
+      "sources start at most one tick per this many seconds (0: as fast as possible)")(
+      "cyclone-config", po::value(&cyclone_config),
+      "the Cyclone DDS configuration template of this host (default RUN_DIR/cyclonedds.xml; a run over "
+      "several hosts has one per host)")(
+      "faults-in-role", "enact the scenario's kills and pauses of this process in the role itself (exit status 3 "
+      "for a kill) instead of awaiting the launcher's signals: for a process the launcher cannot signal")(
+      "stdin-lifeline", "end, as for SIGTERM, when standard input reaches its end: a process started over ssh "
+      "ends with the launcher's connection");
   if (indexed)
     options.add_options()("index", po::value(&index)->required(), "tile or supernode index of this process")(
         "first-tick", po::value(&context.first_tick)->default_value(1),
@@ -141,6 +168,9 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
       return 0;
     }
     po::notify(vm);
+    faults_in_role = vm.count("faults-in-role") != 0;
+    stdin_lifeline = vm.count("stdin-lifeline") != 0;
+    if (cyclone_config.empty()) cyclone_config = context.run_dir + "/cyclonedds.xml";
     const char* end = run_id_hex.data() + run_id_hex.size();
     const auto [stop, error] = std::from_chars(run_id_hex.data(), end, context.run_id, 16);
     if (run_id_hex.empty() || error != std::errc() || stop != end)
@@ -168,11 +198,12 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
   context.stall_timeout = std::chrono::milliseconds(static_cast<long>(stall_timeout_s * 1000));
   context.tick_interval = std::chrono::microseconds(std::llround(tick_interval_s * 1e6));
   context.domain = static_cast<dds_domainid_t>(domain);
-  context.signalled_faults = true;
+  context.signalled_faults = !faults_in_role;
 
   try {
     // Before the domain: Cyclone's threads must inherit the blocked signals.
     const StopSignals stop_signals(stop_source, "wsntrack-" + role + " " + std::to_string(context.index));
+    if (stdin_lifeline) endWithStandardInput();
     context.scenario = load_scenario(context.run_dir + "/scenario.yaml");
     context.shape.supernodes = static_cast<std::int32_t>(context.scenario.supernodes.size());
     if (context.first_tick != 1) {
@@ -181,9 +212,13 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
         throw std::invalid_argument("--first-tick " + std::to_string(context.first_tick) + ": the scenario's faults have no "
                                     "restart of " + role + " " + std::to_string(context.index) + " at that tick");
     }
-    Domain domain_handle(context.domain, cycloneConfigFor(readConfigTemplate(context.run_dir), participant_index));
+    Domain domain_handle(context.domain, cycloneConfigFor(readConfigFile(cyclone_config), participant_index));
     runner(context);
     return 0;
+  } catch (const ScheduledDeath& death) {
+    std::cerr << "wsntrack-" << role << " " << context.index << ": ended as the scenario's faults asked (" << death.what()
+              << ")\n";
+    return kExitScheduledDeath;
   } catch (const std::exception& error) {
     std::cerr << "wsntrack-" << role << " " << context.index << ": " << error.what() << "\n";
     return 1;

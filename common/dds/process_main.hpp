@@ -18,11 +18,19 @@ using RoleRunner = std::function<void(const RoleContext&)>;
 /// and this layer cannot name it.
 using ScenarioLoader = common::Scenario (*)(const std::string& path);
 
+/// Exit status of a role process that ended where the scenario's faults kill it, enacting the fault
+/// itself (--faults-in-role, for roles the launcher cannot signal: on another host).
+inline constexpr int kExitScheduledDeath = 3;
+
 /// Runs one role as a process. `summary` is the --help text's first paragraph.
 int runRoleProcess(int argc, char** argv, const std::string& role, const std::string& summary, bool indexed,
                    ScenarioLoader load_scenario, const RoleRunner& runner);
 
-/// Reads the run's Cyclone configuration template from run_dir/cyclonedds.xml.
+/// Reads the Cyclone configuration template in file `path`.
+std::string readConfigFile(const std::string& path);
+
+/// Reads the run's Cyclone configuration template, run_dir/cyclonedds.xml (on a run over several
+/// hosts, the launcher's host's).
 std::string readConfigTemplate(const std::string& run_dir);
 
 }  // namespace wsn::dds

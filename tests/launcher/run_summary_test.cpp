@@ -26,7 +26,7 @@ ClusterResult processes() {
   result.ok = true;
   result.wall_s = 4.5;
   result.first_tick_s = 1.25;
-  result.outcomes = {{"node 0", 0, "", "", 10240}, {"aggregator 0", 0, "", "", 20480 + 512}};
+  result.outcomes = {{"node 0", 0, "", "", 10240, 0, ""}, {"aggregator 0", 0, "", "", 20480 + 512, 0, ""}};
   return result;
 }
 
@@ -110,8 +110,8 @@ TEST_CASE("a failed run names the failure and every process that exited non-zero
   auto result = processes();
   result.ok = false;
   result.failure = "supernode 1 exited with 3";
-  result.outcomes.push_back({"supernode 1", 3, "bad engine", "", 0});
-  result.outcomes.push_back({"network 0", 143, "", "", 0});
+  result.outcomes.push_back({"supernode 1", 3, "bad engine", "", 0, 0, ""});
+  result.outcomes.push_back({"network 0", 143, "", "", 0, 0, ""});
   CHECK(runFailure(result) ==
         "wsntrack run: FAILED: supernode 1 exited with 3\n"
         "  supernode 1: exit 3 (bad engine)\n"
@@ -123,10 +123,10 @@ TEST_CASE("a process killed by a signal is named with the signal, its exit code 
   CHECK(signalName(SIGSEGV) == "SIGSEGV");
   CHECK(signalName(SIGTERM) == "SIGTERM");
   CHECK(signalName(64) == "signal 64");
-  RoleOutcome killed{"supernode 2", 128 + SIGKILL, "", "", 0, SIGKILL};
+  RoleOutcome killed{"supernode 2", 128 + SIGKILL, "", "", 0, SIGKILL, ""};
   CHECK(exitDescription(killed) == "killed by SIGKILL");
   // A process that exits with 137 itself is not a signal death.
-  CHECK(exitDescription({"node 0", 137, "", "", 0}) == "exited with code 137");
+  CHECK(exitDescription({"node 0", 137, "", "", 0, 0, ""}) == "exited with code 137");
   auto result = processes();
   result.ok = false;
   result.failure = "supernode 2 killed by SIGKILL; log d/logs/supernode-2.log";
