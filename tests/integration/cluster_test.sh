@@ -248,6 +248,17 @@ EOF
       grep -qF -- "wsntrack run: --set $set_arg: $message" err.txt \
         || { cat err.txt >&2; fail "message for --set $set_arg lacks '--set $set_arg: $message'"; }
     done
+    # A hosts file that cannot be read, or names a role the scenario lacks, stops the run before it starts.
+    printf 'hosts:\n  - {name: a, address: 10.0.0.1}\n  - {name: b, address: 10.0.0.2, start: ssh b, roles: [supernode 9]}\n' >hosts.yaml
+    for bad in "missing.yaml|missing.yaml: cannot open hosts file" \
+               "hosts.yaml|hosts.yaml:3: 'supernode 9': the scenario has 4 supernodes (indices 0 to 3)" \
+               "hosts.yaml --in-process|--hosts spreads the run's processes over hosts; --in-process keeps them in one"; do
+      hosts_arg="${bad%%|*}"; message="${bad#*|}"
+      # shellcheck disable=SC2086
+      "$wsntrack" run "$scenario" --quiet --out "$PWD/bad" --hosts $hosts_arg >/dev/null 2>err.txt; rc=$?
+      [ "$rc" -eq 2 ] || { cat err.txt >&2; fail "--hosts $hosts_arg gave exit $rc, expected 2"; }
+      grep -qF -- "wsntrack run: $message" err.txt || { cat err.txt >&2; fail "message for --hosts $hosts_arg"; }
+    done
     [ -e bad ] && fail "a rejected run created its run directory"
     "$wsntrack" validate "$scenario" --set network.pte=abc >/dev/null 2>err.txt && fail "validate accepted --set network.pte=abc"
     grep -qF -- "oh_quadrants.yaml: --set network.pte=abc: 'network.pte' must be a number" err.txt \
