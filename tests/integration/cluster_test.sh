@@ -32,13 +32,8 @@ same_outputs() {
   diff <(deterministic_metrics "$a") <(deterministic_metrics "$b") >/dev/null || fail "metrics.json differs between $a and $b"
 }
 
-no_leftovers() {
-  sleep 0.5
-  if pgrep -f "wsntrack-.*--run-dir $work/$case_name" >/dev/null; then
-    pgrep -af "wsntrack-.*--run-dir $work/$case_name" >&2
-    fail "processes left behind"
-  fi
-}
+# shellcheck source=common.sh
+. "$(dirname "$0")/common.sh"
 
 # run.json's string value of key $2 in run directory $1 (one key per line, as the launcher writes it).
 run_json() { sed -n "s/^  \"$2\": \"\(.*\)\",\{0,1\}$/\1/p" "$1/run.json"; }

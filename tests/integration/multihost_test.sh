@@ -70,13 +70,8 @@ run_both() {
     { cat "$3.stderr" >&2; for f in "$3"/logs/*.log; do echo "== $f" >&2; tail -5 "$f" >&2; done; fail "the run over three hosts failed"; }
 }
 
-no_leftovers() {
-  sleep 0.5
-  if pgrep -f "wsntrack-.*--run-dir $work/$case_name" >/dev/null; then
-    pgrep -af "wsntrack-.*--run-dir $work/$case_name" >&2
-    fail "processes left behind"
-  fi
-}
+# shellcheck source=common.sh
+. "$(dirname "$0")/common.sh"
 
 case "$case_name" in
   outputs)

@@ -39,13 +39,8 @@ wait_for_run_json() {
 
 json_value() { sed -n "s/.*\"$2\": \"\{0,1\}\([0-9a-f]*\)\"\{0,1\},\{0,1\}$/\1/p" "$1/run.json"; }
 
-no_leftovers() {
-  sleep 0.5
-  if pgrep -f "wsntrack-.*--run-dir $work/$case_name" >/dev/null; then
-    pgrep -af "wsntrack-.*--run-dir $work/$case_name" >&2
-    fail "processes left behind"
-  fi
-}
+# shellcheck source=common.sh
+. "$(dirname "$0")/common.sh"
 
 case "$case_name" in
   live)
