@@ -250,8 +250,9 @@ void runAggregatorRole(const dds::RoleContext& context) {
     auto plan = context.faultPlan();
 
     Reader<wsn_msg_TrackBatch> track_reader(participant, topics.track_batch, Qos::reliableKeepAll());
-    Writer<wsn_msg_GlobalTrackBatch> global_writer(participant, topics.global_track_batch, Qos::reliableKeepAll());
+    Writer<wsn_msg_TickDone> tick_done_writer(participant, topics.tick_done, Qos::reliableKeepAll());
     // For live views only: not in waitForDiscovery, since nobody need be listening.
+    Writer<wsn_msg_GlobalTrackBatch> global_writer(participant, topics.global_track_batch, Qos::reliableKeepAll());
     Writer<wsn_msg_TickMetrics> tick_metrics_writer(participant, topics.tick_metrics, Qos::reliableKeepAll());
     RestartedReaders restarted(participant, context, plan);
     FaultsAtAggregator faults(plan, scenario, context.run_id,
@@ -284,9 +285,9 @@ void runAggregatorRole(const dds::RoleContext& context) {
       plan.loseUnscheduled(role, index, from);
       faults.lose(j, from, current);
     });
-    // Every role reads the global batches: the tiles for back-pressure, all for the end of run.
-    const int global_readers = context.shape.processes() - 1;
-    waitForDiscovery(participant, {{&global_writer, global_readers}, {&faults.writer(), context.shape.supernodes}},
+    // Every role follows the end of each tick: the tiles for back-pressure, all for the end of run.
+    const int tick_done_readers = context.shape.processes() - 1;
+    waitForDiscovery(participant, {{&tick_done_writer, tick_done_readers}, {&faults.writer(), context.shape.supernodes}},
                      {{&track_reader, context.shape.supernodes}}, context);
     status.ready();
 
@@ -315,9 +316,10 @@ void runAggregatorRole(const dds::RoleContext& context) {
       const TickScores scores = scorer.add(t, truth.at(t), global);
       per_tick_csv.row(scorer.csvRow(scores));
       for (const auto& track : global) global_csv.row(globalTrackCsvRow(t, track));
-      restarted.waitFor(global_writer, t);
       publishGlobalTracks(global_writer, context.run_id, t, global);
       publishTickMetrics(tick_metrics_writer, context.run_id, t, scores);
+      restarted.waitFor(tick_done_writer, t);
+      tick_done_writer.write(wsn_msg_TickDone{context.run_id, t});
       faults.afterTick(t, scores, inputs.live);
       status.running(t);
     }

@@ -7,7 +7,7 @@
 namespace wsn::aggregator {
 
 /// For ticks 1..T: takes one TrackBatch per supernode, associates them, publishes the
-/// GlobalTrackBatch and the tick's TickMetrics, and writes tracks.csv, tracks_supernode.csv,
+/// GlobalTrackBatch, the tick's TickMetrics and its TickDone, and writes tracks.csv, tracks_supernode.csv,
 /// metrics_per_tick.csv and, at the end, metrics.json.
 void runAggregatorRole(const dds::RoleContext& context);
 

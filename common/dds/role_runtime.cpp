@@ -38,6 +38,7 @@ RunTopics::RunTopics(const Participant& participant)
       rehome_batch(participant, topic_names::kRehomeBatch),
       global_track_batch(participant, topic_names::kGlobalTrackBatch),
       tick_metrics(participant, topic_names::kTickMetrics),
+      tick_done(participant, topic_names::kTickDone),
       process_status(participant, topic_names::kProcessStatus) {}
 
 StatusPublisher::StatusPublisher(const Participant& participant, const RunTopics& topics, const RoleContext& context)
@@ -275,12 +276,12 @@ PipelineProgress::PipelineProgress(const Participant& participant, const RunTopi
                                    const RoleContext& context, RoleLoop& loop)
     : context_(context),
       loop_(loop),
-      reader_(participant, topics.global_track_batch, Qos::reliableKeepAll()),
+      reader_(participant, topics.tick_done, Qos::reliableKeepAll()),
       completed_through_(std::max(context.first_tick - 1, 0)) {
   loop_.watch(reader_, [this] {
-    reader_.take([this](const wsn_msg_GlobalTrackBatch& batch) {
-      if (batch.run_id != context_.run_id || batch.tick <= completed_through_) return;
-      arrived_.insert(batch.tick);
+    reader_.take([this](const wsn_msg_TickDone& done) {
+      if (done.run_id != context_.run_id || done.tick <= completed_through_) return;
+      arrived_.insert(done.tick);
       while (!arrived_.empty() && *arrived_.begin() == completed_through_ + 1) {
         completed_through_ = *arrived_.begin();
         arrived_.erase(arrived_.begin());
@@ -291,7 +292,7 @@ PipelineProgress::PipelineProgress(const Participant& participant, const RunTopi
 
 void PipelineProgress::waitForCompleted(std::int32_t tick) {
   loop_.waitUntil([&] { return completed_through_ >= tick; },
-                  [&] { return "the aggregator's global tracks of tick " + std::to_string(completed_through_ + 1); });
+                  [&] { return "the aggregator's end of tick " + std::to_string(completed_through_ + 1); });
 }
 
 void PipelineProgress::paceTick() {

@@ -33,6 +33,7 @@ inline constexpr const char* kTrackBatch = "wsn_track_batch";
 inline constexpr const char* kRehomeBatch = "wsn_rehome_batch";
 inline constexpr const char* kGlobalTrackBatch = "wsn_global_track_batch";
 inline constexpr const char* kTickMetrics = "wsn_tick_metrics";
+inline constexpr const char* kTickDone = "wsn_tick_done";
 inline constexpr const char* kProcessStatus = "wsn_process_status";
 /// The partition of what one supernode alone reads (its deliveries): the network model writes
 /// each supernode's batches into its partition, so they cross the wire to that supernode only
@@ -73,6 +74,10 @@ struct TopicType<wsn_msg_GlobalTrackBatch> {
 template <>
 struct TopicType<wsn_msg_TickMetrics> {
   static constexpr const dds_topic_descriptor_t& descriptor = wsn_msg_TickMetrics_desc;
+};
+template <>
+struct TopicType<wsn_msg_TickDone> {
+  static constexpr const dds_topic_descriptor_t& descriptor = wsn_msg_TickDone_desc;
 };
 template <>
 struct TopicType<wsn_msg_ProcessStatus> {
@@ -144,6 +149,7 @@ struct RunTopics {
   Topic<wsn_msg_HandoffBatch> rehome_batch;
   Topic<wsn_msg_GlobalTrackBatch> global_track_batch;
   Topic<wsn_msg_TickMetrics> tick_metrics;
+  Topic<wsn_msg_TickDone> tick_done;
   Topic<wsn_msg_ProcessStatus> process_status;
 };
 
@@ -312,7 +318,7 @@ void waitForClusterReady(const Participant& participant, const RunTopics& topics
 
 namespace wsn::dds {
 
-/// Follows the aggregator's GlobalTrackBatch ticks: the pipeline's end. Sources use it for
+/// Follows the aggregator's TickDone ticks: the pipeline's end. Sources use it for
 /// back-pressure (at most max_ticks_in_flight ticks ahead); every role waits for the last tick
 /// before leaving so that nothing it wrote is still in flight when its writers are deleted. A
 /// restarted process follows them from its first tick (RoleContext::first_tick).
@@ -320,14 +326,14 @@ class PipelineProgress {
  public:
   PipelineProgress(const Participant& participant, const RunTopics& topics, const RoleContext& context,
                    RoleLoop& loop);
-  /// Highest tick t such that the global batches of all ticks <= t arrived.
+  /// Highest tick t such that the aggregator finished every tick <= t.
   std::int32_t completedThrough() const { return completed_through_; }
   void waitForCompleted(std::int32_t tick);
   /// A source's wall-clock pacing (RoleContext::tick_interval), called before each tick: returns
   /// one interval after the previous tick's scheduled start, at once when the interval is zero. A
   /// late tick restarts the schedule rather than being made up by a burst.
   void paceTick();
-  Reader<wsn_msg_GlobalTrackBatch>& reader() { return reader_; }
+  Reader<wsn_msg_TickDone>& reader() { return reader_; }
   PipelineProgress(const PipelineProgress&) = delete;
   PipelineProgress& operator=(const PipelineProgress&) = delete;
   ~PipelineProgress() { loop_.unwatch(reader_); }
@@ -335,7 +341,7 @@ class PipelineProgress {
  private:
   const RoleContext& context_;
   RoleLoop& loop_;
-  Reader<wsn_msg_GlobalTrackBatch> reader_;
+  Reader<wsn_msg_TickDone> reader_;
   std::set<std::int32_t> arrived_;
   std::int32_t completed_through_ = 0;
   std::optional<std::chrono::steady_clock::time_point> paced_at_;
@@ -355,7 +361,7 @@ void enactProcessFault(const common::FaultSpec& fault, const RoleContext& contex
                        PipelineProgress& progress, RoleLoop& loop);
 
 /// The aggregator's last wait before its writers go: until every role the scenario's faults left
-/// live at the last tick reported DONE (each does once it holds the last global tracks), or the
+/// live at the last tick reported DONE (each does once it saw the last TickDone), or the
 /// stall timeout passed. Counted in roles rather than in DDS acknowledgements, which a killed
 /// process's reader would hold back until its lease expired. Made before the run, so that it
 /// holds the DONE of a role that left before the wait began.
