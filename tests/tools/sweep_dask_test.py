@@ -93,6 +93,9 @@ def processes_naming(text):
     return found
 
 
+WORKER_START_S = 90
+
+
 class DaskCluster:
     """A scheduler and workers on 127.0.0.1, started by the test; stop() ends each by its PID.
     `prefix`: a command each worker runs under (unshare, to hide a directory from it)."""
@@ -112,7 +115,11 @@ class DaskCluster:
             self._start(f"worker{i}", list(prefix) + [
                 dask, "worker", "--scheduler-file", str(self.file), "--host", "127.0.0.1", "--nthreads", "1",
                 "--no-nanny", "--no-dashboard", "--name", f"w{i}", "--local-directory", str(self.dir / f"w{i}")])
-        self._wait_for_workers(workers)
+        try:
+            self._wait_for_workers(workers)
+        except BaseException:
+            self.stop()  # setUpClass failing means no tearDownClass: nothing may outlive the test
+            raise
 
     def _start(self, name, command):
         log = open(self.dir / f"{name}.log", "w", encoding="utf-8")
@@ -122,7 +129,9 @@ class DaskCluster:
 
     def _wait_for_workers(self, n):
         """Each worker's address, from its log once it has registered with the scheduler."""
-        deadline = time.monotonic() + 30
+        # Starting a worker imports dask and distributed, about 3 s on an idle machine; a loaded
+        # CI host (sanitizer builds beside the suite) has taken over 30.
+        deadline = time.monotonic() + WORKER_START_S
         while len(self.workers) < n:
             for process, name in self.processes[1:]:
                 text = (self.dir / f"{name}.log").read_text(encoding="utf-8", errors="replace")
@@ -132,7 +141,7 @@ class DaskCluster:
                 if process.poll() is not None:
                     raise AssertionError(f"{name} exited {process.returncode}:\n{text}")
             if time.monotonic() > deadline:
-                raise AssertionError(f"{n - len(self.workers)} workers did not register within 30 s")
+                raise AssertionError(f"{n - len(self.workers)} workers did not register within {WORKER_START_S} s")
             time.sleep(0.1)
 
     @property
@@ -225,7 +234,9 @@ class OnCluster(unittest.TestCase):
         """Kills (SIGKILL, by its PID) the first worker seen running a wsntrack of the sweep into `runs`
         that started less than 0.2 s ago (a run takes longer: it is still in flight);
         returns (the worker's address, that wsntrack's PID, the run's name)."""
-        deadline = time.monotonic() + 30
+        # Starting a worker imports dask and distributed, about 3 s on an idle machine; a loaded
+        # CI host (sanitizer builds beside the suite) has taken over 30.
+        deadline = time.monotonic() + WORKER_START_S
         while time.monotonic() < deadline:
             for address, worker in self.cluster.workers.items():
                 for pid, (parent, age, cmdline) in processes_naming(str(runs)).items():
