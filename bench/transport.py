@@ -2,7 +2,7 @@
 """wsntrack's DDS path and lockstep against their reference points, on the run's own loopback
 Cyclone configuration (the scale-out issue, item 4; docs/PERFORMANCE.md):
 
-    bench/transport.py throughput [--sizes 1k 4k] [--seconds 10] [--repeats 3]
+    bench/transport.py throughput [--sizes 256 1k 4k 16k] [--seconds 10] [--repeats 3]
     bench/transport.py lockstep [--processes 8 16 32 64 70] [--ticks 200] [--in-flight K] [--repeats 3]
 
 throughput: report batches from a node tile's writer to a subscriber in another process
@@ -301,7 +301,7 @@ def lockstep(args):
             rows.append((n, *cluster_shape(n), statistics.median(ours), statistics.median(plain)))
     finally:
         shutil.rmtree(work, ignore_errors=True)
-    in_flight = args.in_flight or "the default"
+    in_flight = args.in_flight or "default"
     print(f"medians of {args.repeats} runs of {args.ticks} ticks, run.max_ticks_in_flight {in_flight}; "
           "ratio = cost per tick of wsntrack / of the barrier")
     print("| processes | tiles | supernodes | wsntrack ticks/s | ms/tick | barrier ticks/s | ms/tick | ratio |")
@@ -321,7 +321,8 @@ def main(argv):
     shared.add_argument("--repeats", type=int, default=3, help="runs per row; the table gives medians (default: 3)")
     modes = parser.add_subparsers(dest="mode", required=True)
     tp = modes.add_parser("throughput", parents=[shared], help="report batches against ddsperf")
-    tp.add_argument("--sizes", nargs="+", type=size_bytes, default=[1024, 4096], help="serialized sample sizes (default: 1k 4k)")
+    tp.add_argument("--sizes", nargs="+", type=size_bytes, default=[256, 1024, 4096, 16384],
+                    help="serialized sample sizes (default: 256 1k 4k 16k)")
     tp.add_argument("--seconds", type=int, default=10, help="publishing time per run, at least 3 (default: 10)")
     ls = modes.add_parser("lockstep", parents=[shared], help="wsntrack's lockstep against a plain barrier")
     ls.add_argument("--processes", nargs="+", type=int, default=[8, 16, 32, 64, 70], help="N (default: 8 16 32 64 70)")
