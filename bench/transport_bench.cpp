@@ -227,8 +227,17 @@ int throughput(ThroughputOptions options) {
     ::waitpid(child, nullptr, 0);
     throw;
   }
+  // The subscriber ends by itself once it took the end marker; a hung one is killed, by its pid.
   int status = 0;
-  ::waitpid(child, &status, 0);
+  const auto deadline = Clock::now() + options.timeout;
+  while (::waitpid(child, &status, WNOHANG) == 0) {
+    if (Clock::now() > deadline) {
+      ::kill(child, SIGKILL);
+      ::waitpid(child, &status, 0);
+      throw std::runtime_error("the subscriber did not end within the timeout; killed");
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
   return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
 }
 
