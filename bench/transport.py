@@ -31,7 +31,6 @@ import os
 import re
 import shutil
 import signal
-import socket
 import statistics
 import subprocess
 import sys
@@ -90,21 +89,18 @@ class Bench:
         return run_bounded([self.exe, "config", "--processes", str(processes), "--index", str(index),
                             "--run-id", str(run_id)], 30)
 
-    def pick_domain(self, processes, run_id):
-        """A domain whose ports are free for every participant index the configuration lets Cyclone
-        probe, reserved (as `wsntrack run` reserves its own) with the lock file launchers use, held
-        until the next pick; outside the kernel's ephemeral ports."""
-        probe = int(re.search(r"<MaxAutoParticipantIndex>(\d+)<", self.config(processes, 0, run_id)).group(1))
-        lo, hi = ephemeral_range()
-        locks = Path(tempfile.gettempdir()) / "wsntrack-domain-locks"
-        locks.mkdir(exist_ok=True)
+    def pick_domain(self, processes):
+        """A domain whose ports are free for a cluster of `processes` (the benchmark probes them as the
+        launcher does), reserved as `wsntrack run` reserves its own, with the lock file launchers
+        use, held until the next pick."""
         if self.lock is not None:
             os.close(self.lock)
             self.lock = None
-        for domain in [d for d in range(1, 231) if 7400 + 250 * d + 249 < lo or 7400 + 250 * d > hi]:
-            base = 7400 + 250 * domain
-            if not all(udp_free(base + 2 * i + k) for i in range(probe + 1) for k in (10, 11)):
-                continue
+        locks = Path(tempfile.gettempdir()) / "wsntrack-domain-locks"
+        if not locks.exists():
+            locks.mkdir(exist_ok=True)
+            os.chmod(locks, 0o1777)  # as the launcher makes it: any user's runs lock there
+        for domain in run_bounded([self.exe, "domains", "--processes", str(processes)], 30).split():
             fd = os.open(locks / f"domain-{domain}.lock", os.O_RDWR | os.O_CREAT, 0o666)
             try:
                 fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
@@ -112,25 +108,8 @@ class Bench:
                 os.close(fd)
                 continue
             self.lock = fd
-            return domain
+            return int(domain)
         sys.exit("transport.py: no Cyclone DDS domain with free loopback ports")
-
-
-def ephemeral_range():
-    try:
-        lo, hi = Path("/proc/sys/net/ipv4/ip_local_port_range").read_text().split()
-        return int(lo), int(hi)
-    except (OSError, ValueError):
-        return 32768, 60999
-
-
-def udp_free(port):
-    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
-        try:
-            s.bind(("127.0.0.1", port))
-            return True
-        except OSError:
-            return False
 
 
 def run_id():
@@ -143,7 +122,7 @@ def wsntrack_throughput(bench, size, seconds, raw):
     """Samples/s, serialized bytes and reports per batch of one wsn_transport_bench throughput run;
     `raw`: the subscriber takes without decoding, as ddsperf's does."""
     rid = run_id()
-    domain = bench.pick_domain(2, rid)
+    domain = bench.pick_domain(2)
     out = run_bounded([bench.exe, "throughput", "--bytes", str(size), "--seconds", str(seconds),
                        "--domain", str(domain), "--run-id", str(rid)] + (["--raw"] if raw else []), seconds + 60)
     match = re.search(r"^samples/s (\S+) MB/s (\S+) size (\d+) reports (\d+)$", out, re.M)
@@ -156,7 +135,7 @@ def ddsperf_throughput(bench, size, seconds, work):
     """ddsperf pub and sub, each with its own participant index of the same run configuration; the
     median of the subscriber's per-second rates, without the first and last seconds."""
     rid = run_id()
-    domain = bench.pick_domain(2, rid)
+    domain = bench.pick_domain(2)
     envs = []
     for index in (0, 1):
         path = work / f"ddsperf-{index}.xml"
@@ -255,7 +234,7 @@ def wsntrack_ticks_per_s(wsntrack, processes, ticks, in_flight, work, timeout):
 def barrier_ticks_per_s(bench, processes, ticks, timeout):
     """N barrier processes on one domain; the median of their ticks/s (they end within a tick)."""
     rid = run_id()
-    domain = bench.pick_domain(processes + 1, rid)
+    domain = bench.pick_domain(processes + 1)
     command = [bench.exe, "barrier", "--processes", str(processes), "--ticks", str(ticks), "--domain", str(domain),
                "--run-id", str(rid), "--timeout", str(timeout)]
     started = [subprocess.Popen(command + ["--index", str(i)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)

@@ -11,6 +11,7 @@
 //   size        the serialized size of a batch of --reports reports, and the batch nearest --bytes.
 //   config      the Cyclone XML of process --index of --processes (so that ddsperf runs on the very
 //               configuration of a run: CYCLONEDDS_URI=file://...).
+//   domains     the domain ids whose ports a cluster of --processes finds free now, one a line.
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -97,19 +98,25 @@ int reportsForBytes(std::size_t bytes) {
   return best;
 }
 
-/// A domain id in 1 .. 100 (ports below Linux's ephemeral range) whose ports for every index
-/// the configuration lets Cyclone probe are free; from a pid-dependent start so concurrent runs
-/// spread out. The scripts pass --domain themselves, holding the launchers' domain locks.
-int chooseDomain(int participants) {
-  const int first = 1 + static_cast<int>(::getpid() % 100);
-  for (int k = 0; k < 100; ++k) {
-    const int domain = 1 + (first - 1 + k) % 100;
+/// The domain ids in 1 .. 100 (ports below Linux's ephemeral range) whose ports for every index
+/// the configuration of `participants` processes lets Cyclone probe are free right now.
+std::vector<int> freeDomains(int participants) {
+  std::vector<int> domains;
+  for (int domain = 1; domain <= 100; ++domain) {
     bool free = true;
     for (int index = 0; index <= participants + dds::kViewerSlots + 1 && free; ++index)
       free = dds::cyclonePortsFree(domain, index);
-    if (free) return domain;
+    if (free) domains.push_back(domain);
   }
-  throw std::runtime_error("no Cyclone DDS domain with free loopback ports in 1 .. 100");
+  return domains;
+}
+
+/// A free domain from a pid-dependent start, so that concurrent runs spread out. The scripts pass
+/// --domain themselves, one of `domains` that they reserve with the launchers' lock files.
+int chooseDomain(int participants) {
+  const auto domains = freeDomains(participants);
+  if (domains.empty()) throw std::runtime_error("no Cyclone DDS domain with free loopback ports in 1 .. 100");
+  return domains[static_cast<std::size_t>(::getpid()) % domains.size()];
 }
 
 /// Polls `ready` (discovery only: the measured loops never poll) until it holds or `timeout` passes.
@@ -304,13 +311,13 @@ int run(int argc, char** argv) {
   int timeout_s = 60;
   po::options_description visible(
       "wsn_transport_bench MODE [options]: the DDS path of wsntrack (ReportBatch, reliable KEEP_ALL,\n"
-      "the run's loopback Cyclone configuration). MODE: throughput | barrier | size | config");
+      "the run's loopback Cyclone configuration). MODE: throughput | barrier | size | config | domains");
   visible.add_options()("help,h", "this text")(
       "bytes", po::value(&bytes), "throughput/size: the batch nearest this many serialized bytes (overrides --reports)")(
       "reports", po::value(&tp.reports)->default_value(12), "throughput/size: reports per batch")(
       "seconds", po::value(&tp.seconds)->default_value(5.0), "throughput: how long to publish (at least 3)")(
       "raw", "throughput: count samples without decoding them (as ddsperf does)")(
-      "processes", po::value(&bp.processes)->default_value(2), "barrier/config: N, the processes")(
+      "processes", po::value(&bp.processes)->default_value(2), "barrier/config/domains: N, the processes")(
       "index", po::value(&bp.index)->default_value(0), "barrier: this process, 0 .. N - 1; config: its participant index")(
       "ticks", po::value(&bp.ticks)->default_value(200), "barrier: ticks measured")(
       "warmup", po::value(&bp.warmup)->default_value(20), "barrier: ticks before the measured ones")(
@@ -334,6 +341,10 @@ int run(int argc, char** argv) {
   bp.domain = tp.domain;
   if (vm.count("run-id")) tp.run_id = bp.run_id = vm["run-id"].as<std::uint64_t>();
 
+  if (mode == "domains") {
+    for (const int domain : freeDomains(bp.processes)) std::cout << domain << "\n";
+    return 0;
+  }
   if (mode == "config") {
     std::cout << dds::cycloneConfigFor(dds::cycloneConfigTemplate(bp.run_id, bp.processes), bp.index);
     return 0;
@@ -351,7 +362,7 @@ int run(int argc, char** argv) {
     if (bp.processes < 1 || bp.index < 0 || bp.index >= bp.processes) throw std::invalid_argument("--index must be in [0, N)");
     return barrier(bp);
   }
-  std::cerr << "wsn_transport_bench: unknown mode '" << mode << "' (throughput, barrier, size or config)\n";
+  std::cerr << "wsn_transport_bench: unknown mode '" << mode << "' (throughput, barrier, size, config or domains)\n";
   return 2;
 }
 
