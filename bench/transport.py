@@ -2,14 +2,15 @@
 """wsntrack's DDS path and lockstep against their reference points, on the run's own loopback
 Cyclone configuration (the scale-out issue, item 4; docs/PERFORMANCE.md):
 
-    bench/transport.py throughput [--sizes 256 1k 4k 16k] [--seconds 10] [--repeats 3]
+    bench/transport.py throughput [--sizes 256 1k 4k 16k] [--seconds 10] [--sample report] [--repeats 3]
     bench/transport.py lockstep [--processes 8 16 32 64 70] [--ticks 200] [--in-flight K] [--repeats 3]
 
 throughput: report batches from a node tile's writer to a subscriber in another process
 (build/bin/wsn_transport_bench throughput: reliable KEEP_ALL, one freshly encoded ReportBatch per
 write, decoded on arrival) beside `ddsperf pub size S` / `ddsperf sub` (reliable, keep-all) at the
 same serialized size, both on the Cyclone configuration of a run (ddsperf through CYCLONEDDS_URI);
-also "raw", the same path with the subscriber taking without decoding, as ddsperf's does. Each
+also "raw", the same path with the subscriber taking without decoding, as ddsperf's does; and with
+--sample boundary, a tile's SensorBoundary (flat {sensor, z} readings) in place of the reports. Each
 figure is the median over the repeats of the subscriber's median whole-second rate; the ratio is
 wsntrack's samples/s over ddsperf's (goal >= 0.5).
 
@@ -118,14 +119,15 @@ def run_id():
 
 # --- throughput ------------------------------------------------------------------------------------
 
-def wsntrack_throughput(bench, size, seconds, raw):
-    """Samples/s, serialized bytes and reports per batch of one wsn_transport_bench throughput run;
+def wsntrack_throughput(bench, size, seconds, raw, sample):
+    """Samples/s, serialized bytes and items per batch of one wsn_transport_bench throughput run;
     `raw`: the subscriber takes without decoding, as ddsperf's does."""
     rid = run_id()
     domain = bench.pick_domain(2)
     out = run_bounded([bench.exe, "throughput", "--bytes", str(size), "--seconds", str(seconds),
-                       "--domain", str(domain), "--run-id", str(rid)] + (["--raw"] if raw else []), seconds + 60)
-    match = re.search(r"^samples/s (\S+) MB/s (\S+) size (\d+) reports (\d+)$", out, re.M)
+                       "--domain", str(domain), "--run-id", str(rid), "--sample", sample] + (["--raw"] if raw else []),
+                      seconds + 60)
+    match = re.search(r"^samples/s (\S+) MB/s (\S+) size (\d+) items (\d+)$", out, re.M)
     if not match:
         sys.exit(f"transport.py: no samples/s line in:\n{out}")
     return float(match.group(1)), int(match.group(3)), int(match.group(4))
@@ -170,21 +172,21 @@ def throughput(args):
             decoded, raw, theirs = [], [], []
             for k in range(args.repeats):
                 print(f"size {size}: run {k + 1}/{args.repeats} ...", file=sys.stderr, flush=True)
-                rate, bytes_, reports = wsntrack_throughput(bench, size, args.seconds, raw=False)
+                rate, bytes_, items = wsntrack_throughput(bench, size, args.seconds, False, args.sample)
                 decoded.append(rate)
-                raw.append(wsntrack_throughput(bench, size, args.seconds, raw=True)[0])
+                raw.append(wsntrack_throughput(bench, size, args.seconds, True, args.sample)[0])
                 theirs.append(ddsperf_throughput(bench, bytes_, args.seconds, work))
-            rows.append((size, bytes_, reports, *map(statistics.median, (decoded, raw, theirs))))
+            rows.append((size, bytes_, items, *map(statistics.median, (decoded, raw, theirs))))
     finally:
         shutil.rmtree(work, ignore_errors=True)
-    print(f"medians of {args.repeats} runs of {args.seconds} s each; samples/s (MB/s = samples/s x serialized bytes / 10^6);"
+    print(f"{args.sample} batches; medians of {args.repeats} runs of {args.seconds} s each; samples/s (MB/s = samples/s x serialized bytes / 10^6);"
           " ratio: wsntrack decoded / ddsperf")
-    print("| size | reports | bytes | wsntrack decoded | wsntrack raw | ddsperf | ratio | ratio raw |")
+    print("| size | items | bytes | wsntrack decoded | wsntrack raw | ddsperf | ratio | ratio raw |")
     print("|---|---|---|---|---|---|---|---|")
-    for size, bytes_, reports, decoded, raw, theirs in rows:
+    for size, bytes_, items, decoded, raw, theirs in rows:
         def cell(rate):
             return f"{rate:.0f} ({rate * bytes_ / 1e6:.1f} MB/s)"
-        print(f"| {size} | {reports} | {bytes_} | {cell(decoded)} | {cell(raw)} | {cell(theirs)} | {decoded / theirs:.2f} | "
+        print(f"| {size} | {items} | {bytes_} | {cell(decoded)} | {cell(raw)} | {cell(theirs)} | {decoded / theirs:.2f} | "
               f"{raw / theirs:.2f} |")
     return 0
 
@@ -302,6 +304,8 @@ def main(argv):
     tp = modes.add_parser("throughput", parents=[shared], help="report batches against ddsperf")
     tp.add_argument("--sizes", nargs="+", type=size_bytes, default=[256, 1024, 4096, 16384],
                     help="serialized sample sizes (default: 256 1k 4k 16k)")
+    tp.add_argument("--sample", choices=["report", "boundary"], default="report",
+                    help="report: a tile's ReportBatch; boundary: the flat SensorBoundary, to compare (default: report)")
     tp.add_argument("--seconds", type=int, default=10, help="publishing time per run, at least 3 (default: 10)")
     ls = modes.add_parser("lockstep", parents=[shared], help="wsntrack's lockstep against a plain barrier")
     ls.add_argument("--processes", nargs="+", type=int, default=[8, 16, 32, 64, 70], help="N (default: 8 16 32 64 70)")

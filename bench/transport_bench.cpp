@@ -4,11 +4,12 @@
 //
 //   throughput  one process publishes ReportBatch samples of a fixed serialized size as fast as the
 //               reliable writer lets it, a forked process takes (and decodes) them; prints samples/s
-//               and MB/s, the median of the subscriber's whole one-second intervals.
+//               and MB/s, the median of the subscriber's whole one-second intervals. --sample
+//               boundary does the same with the flat SensorBoundary, to compare.
 //   barrier     one of N processes of a plain publish/subscribe barrier: each writes "done tick t"
 //               (an empty ReportBatch) on one topic, waits until it holds tick t of all N, goes on to
 //               t + 1; prints ticks/s after the warm-up ticks.
-//   size        the serialized size of a batch of --reports reports, and the batch nearest --bytes.
+//   size        the serialized size of a batch of --items items, or the batch nearest --bytes.
 //   config      the Cyclone XML of process --index of --processes (so that ddsperf runs on the very
 //               configuration of a run: CYCLONEDDS_URI=file://...).
 //   domains     the domain ids whose ports a cluster of --processes finds free now, one a line.
@@ -59,18 +60,51 @@ struct Node {
   dds::Participant participant;
 };
 
-/// N fused reports of Oh et al. eq. 6 as a node tile publishes them (position, the engine's noise).
-std::vector<common::Report> makeReports(int n) {
-  std::vector<common::Report> reports;
-  for (int i = 0; i < n; ++i)
-    reports.push_back({1, static_cast<common::SensorId>(1000 + i), 10.0 + i, 20.0 - i, i % 3 == 0 ? common::kFalseAlarm : i});
-  return reports;
-}
+/// The throughput's sample: the report batch of a node tile, N fused reports of Oh et al. eq. 6
+/// (position, the engine's noise), each carrying its measurement's four (empty) sequences.
+struct ReportPayload {
+  using Sample = wsn_msg_ReportBatch;
+  static constexpr const char* kTopic = dds::topic_names::kReportBatch;
+  std::vector<common::Report> items;
+  explicit ReportPayload(int n) {
+    for (int i = 0; i < n; ++i)
+      items.push_back({1, static_cast<common::SensorId>(1000 + i), 10.0 + i, 20.0 - i, i % 3 == 0 ? common::kFalseAlarm : i});
+  }
+  /// Encodes the items into `sample`; the result owns what the sample points at.
+  auto fill(Sample& sample) const {
+    auto encoded = dds::encode(items);
+    sample.reports = dds::sequenceView<dds_sequence_wsn_msg_Report>(encoded.items);
+    return encoded;
+  }
+  static void clear(Sample& sample) { sample.reports = {}; }
+  static std::size_t decode(const Sample& sample) { return dds::decode(sample.reports, sample.tick).size(); }
+};
 
-/// Bytes of the sample's CDR serialization as the writer makes it (the type's minimum XCDR
+/// A flat counterpart for comparison: a tile's boundary readings, plain {sensor, z} items, so that
+/// the cost of the report's nested type shows beside that of the path itself.
+struct BoundaryPayload {
+  using Sample = wsn_msg_SensorBoundary;
+  static constexpr const char* kTopic = dds::topic_names::kSensorBoundary;
+  std::vector<common::SensorReading> items;
+  explicit BoundaryPayload(int n) {
+    for (int i = 0; i < n; ++i) items.push_back({static_cast<common::SensorId>(1000 + i), 2.5 + i});
+  }
+  auto fill(Sample& sample) const {
+    auto encoded = dds::encode(items);
+    sample.readings = dds::sequenceView<dds_sequence_wsn_msg_SensorReading>(encoded);
+    return encoded;
+  }
+  static void clear(Sample& sample) { sample.readings = {}; }
+  static std::size_t decode(const Sample& sample) { return dds::decode(sample.readings).size(); }
+};
+
+/// Bytes of a batch of n items' CDR serialization as the writer makes it (the type's minimum XCDR
 /// version, without the 4-byte encapsulation header), the size ddsperf's "size" counts.
-std::size_t serializedBytes(const wsn_msg_ReportBatch& sample) {
-  const std::uint32_t* ops = wsn_msg_ReportBatch_desc.m_ops;
+template <typename Payload>
+std::size_t batchBytes(int n) {
+  typename Payload::Sample sample{};
+  const auto storage = Payload(n).fill(sample);
+  const std::uint32_t* ops = dds::TopicType<typename Payload::Sample>::descriptor.m_ops;
   dds_ostream_t os;
   dds_ostream_init(&os, 0, dds_stream_minimum_xcdr_version(ops));
   dds_stream_write(&os, reinterpret_cast<const char*>(&sample), ops);
@@ -79,22 +113,16 @@ std::size_t serializedBytes(const wsn_msg_ReportBatch& sample) {
   return bytes;
 }
 
-std::size_t batchBytes(int reports) {
-  auto encoded = dds::encode(makeReports(reports));
-  wsn_msg_ReportBatch sample{};
-  sample.reports = dds::sequenceView<dds_sequence_wsn_msg_Report>(encoded.items);
-  return serializedBytes(sample);
-}
-
-/// The number of reports whose batch comes nearest `bytes` serialized.
-int reportsForBytes(std::size_t bytes) {
+/// The number of items whose batch comes nearest `bytes` serialized.
+template <typename Payload>
+int itemsForBytes(std::size_t bytes) {
+  const auto distance = [&](int n) {
+    const auto size = batchBytes<Payload>(n);
+    return std::max(size, bytes) - std::min(size, bytes);
+  };
   int best = 0;
-  for (int n = 1; n < 100000; ++n) {
-    const auto size = batchBytes(n);
-    if (std::max(size, bytes) - std::min(size, bytes) < std::max(batchBytes(best), bytes) - std::min(batchBytes(best), bytes))
-      best = n;
-    if (size > bytes) break;
-  }
+  for (int n = 1; n < 100000 && batchBytes<Payload>(n - 1) <= bytes; ++n)
+    if (distance(n) < distance(best)) best = n;
   return best;
 }
 
@@ -130,33 +158,36 @@ void waitFor(F ready, std::chrono::milliseconds timeout, const std::string& what
 }
 
 struct ThroughputOptions {
-  int reports = 12;
+  int items = 16;
   double seconds = 5.0;
   int domain = 0;
   std::uint64_t run_id = 0;
   bool decode = true;
+  bool batching = false;
   std::chrono::milliseconds timeout{30000};
 };
 
 /// The subscriber: counts each whole second's samples from the first sample on, until the end
 /// marker; prints the median of those counts. Decodes each batch as the network model does.
+template <typename Payload>
 int subscribe(const ThroughputOptions& options, std::size_t bytes) {
+  using Sample = typename Payload::Sample;
   Node node(options.domain, options.run_id, 2, 1);
-  Topic<wsn_msg_ReportBatch> topic(node.participant, dds::topic_names::kReportBatch);
-  Reader<wsn_msg_ReportBatch> reader(node.participant, topic, Qos::reliableKeepAll());
+  Topic<Sample> topic(node.participant, Payload::kTopic);
+  Reader<Sample> reader(node.participant, topic, Qos::reliableKeepAll());
   dds::ReadCondition condition(reader);
   dds::WaitSet waitset(node.participant);
   waitset.attach(condition.handle(), 0);
 
   std::vector<std::uint64_t> per_second;
   std::uint64_t total = 0;
-  std::size_t decoded_reports = 0;
+  std::size_t decoded_items = 0;
   std::optional<Clock::time_point> first;
   bool ended = false;
   while (!ended) {
     if (waitset.wait(options.timeout).empty())
       throw std::runtime_error("subscriber: no sample for " + std::to_string(options.timeout.count()) + " ms");
-    reader.take([&](const wsn_msg_ReportBatch& batch) {
+    reader.take([&](const Sample& batch) {
       if (batch.run_id != options.run_id) return;
       if (batch.tick == kEndTick) {
         ended = true;
@@ -168,7 +199,7 @@ int subscribe(const ThroughputOptions& options, std::size_t bytes) {
       if (per_second.size() <= second) per_second.resize(second + 1, 0);
       ++per_second[second];
       ++total;
-      if (options.decode) decoded_reports += dds::decode(batch.reports, batch.tick).size();
+      if (options.decode) decoded_items += Payload::decode(batch);
     });
   }
   if (per_second.size() < 3) throw std::runtime_error("subscriber: under 3 s of samples; give --seconds 3 or more");
@@ -177,50 +208,57 @@ int subscribe(const ThroughputOptions& options, std::size_t bytes) {
   std::sort(steady.begin(), steady.end());
   const double median = steady.size() % 2 == 1 ? static_cast<double>(steady[steady.size() / 2])
                                                 : 0.5 * static_cast<double>(steady[steady.size() / 2 - 1] + steady[steady.size() / 2]);
-  std::printf("samples %llu reports_decoded %zu seconds %zu\n", static_cast<unsigned long long>(total), decoded_reports,
+  std::printf("samples %llu items_decoded %zu seconds %zu\n", static_cast<unsigned long long>(total), decoded_items,
               steady.size());
-  std::printf("samples/s %.0f MB/s %.2f size %zu reports %d\n", median, median * static_cast<double>(bytes) / 1e6, bytes,
-              options.reports);
+  std::printf("samples/s %.0f MB/s %.2f size %zu items %d\n", median, median * static_cast<double>(bytes) / 1e6, bytes,
+              options.items);
   std::fflush(stdout);
   return 0;
 }
 
 /// The publisher: a node tile's writer, one freshly encoded batch per write, as fast as the
 /// reliable KEEP_ALL writer accepts them (it blocks while its history is full).
+template <typename Payload>
 void publish(const ThroughputOptions& options) {
+  using Sample = typename Payload::Sample;
   Node node(options.domain, options.run_id, 2, 0);
-  Topic<wsn_msg_ReportBatch> topic(node.participant, dds::topic_names::kReportBatch);
-  Writer<wsn_msg_ReportBatch> writer(node.participant, topic, Qos::reliableKeepAll());
+  Topic<Sample> topic(node.participant, Payload::kTopic);
+  Writer<Sample> writer(node.participant, topic, Qos::reliableKeepAll());
+  // ddsperf's publisher has Cyclone pack samples into datagrams until a flush; the roles' writers
+  // do not (one batch per tick, latency first). --batching does as ddsperf, to tell the two apart.
+  // Cyclone 0.10 sets it for every writer of the process (this one alone here).
+  if (options.batching) dds_write_set_batch(true);
   waitFor([&] { return writer.matchedRoleReaders() >= 1; }, options.timeout, "the subscriber");
-  const auto reports = makeReports(options.reports);
+  const Payload payload(options.items);
   const auto stop_at = Clock::now() + std::chrono::duration<double>(options.seconds);
-  wsn_msg_ReportBatch sample{};
+  Sample sample{};
   sample.run_id = options.run_id;
   for (std::int32_t t = 1; Clock::now() < stop_at; ++t) {
-    auto encoded = dds::encode(reports);
     sample.tick = t;
-    sample.reports = dds::sequenceView<dds_sequence_wsn_msg_Report>(encoded.items);
+    const auto storage = payload.fill(sample);
     writer.write(sample);
   }
   sample.tick = kEndTick;
-  sample.reports = {};
+  Payload::clear(sample);
   writer.write(sample);
+  dds_write_flush(writer.handle());
   writer.waitForAcknowledgements(options.timeout);
 }
 
 /// Forks the subscriber (before either side touches Cyclone), publishes, and returns the
 /// subscriber's exit status.
+template <typename Payload>
 int throughput(ThroughputOptions options) {
   if (options.domain == 0) options.domain = chooseDomain(2);
   if (options.run_id == 0) options.run_id = static_cast<std::uint64_t>(::getpid()) << 16 | 0x7b;
-  const std::size_t bytes = batchBytes(options.reports);
+  const std::size_t bytes = batchBytes<Payload>(options.items);
   std::fflush(stdout);
   const pid_t child = ::fork();
   if (child < 0) throw std::runtime_error("fork failed");
   if (child == 0) {
     int status = 1;
     try {
-      status = subscribe(options, bytes);
+      status = subscribe<Payload>(options, bytes);
     } catch (const std::exception& e) {
       std::cerr << "wsn_transport_bench subscriber: " << e.what() << "\n";
     }
@@ -228,7 +266,7 @@ int throughput(ThroughputOptions options) {
     ::_exit(status);
   }
   try {
-    publish(options);
+    publish<Payload>(options);
   } catch (...) {
     ::kill(child, SIGTERM);  // its own child, by pid
     ::waitpid(child, nullptr, 0);
@@ -277,7 +315,7 @@ int barrier(const BarrierOptions& options) {
   wsn_msg_ReportBatch sample{};
   sample.run_id = options.run_id;
   sample.tile = static_cast<std::uint32_t>(options.index);
-  Clock::time_point started{};
+  auto started = Clock::now();
   const int last = options.warmup + options.ticks;
   for (std::int32_t t = 1; t <= last; ++t) {
     sample.tick = t;
@@ -305,6 +343,7 @@ namespace po = boost::program_options;
 
 int run(int argc, char** argv) {
   std::string mode;
+  std::string sample;
   ThroughputOptions tp;
   BarrierOptions bp;
   std::size_t bytes = 0;
@@ -314,9 +353,12 @@ int run(int argc, char** argv) {
       "the run's loopback Cyclone configuration). MODE: throughput | barrier | size | config | domains");
   visible.add_options()("help,h", "this text")(
       "bytes", po::value(&bytes), "throughput/size: the batch nearest this many serialized bytes (overrides --reports)")(
-      "reports", po::value(&tp.reports)->default_value(12), "throughput/size: reports per batch")(
+      "items", po::value(&tp.items)->default_value(16), "throughput/size: reports (or readings) per batch")(
+      "sample", po::value(&sample)->default_value("report"),
+      "throughput/size: report (ReportBatch, a tile's reports) or boundary (SensorBoundary: flat readings, to compare)")(
       "seconds", po::value(&tp.seconds)->default_value(5.0), "throughput: how long to publish (at least 3)")(
       "raw", "throughput: count samples without decoding them (as ddsperf does)")(
+      "batching", "throughput: writer batching, as ddsperf's publisher has (the roles do not)")(
       "processes", po::value(&bp.processes)->default_value(2), "barrier/config/domains: N, the processes")(
       "index", po::value(&bp.index)->default_value(0), "barrier: this process, 0 .. N - 1; config: its participant index")(
       "ticks", po::value(&bp.ticks)->default_value(200), "barrier: ticks measured")(
@@ -335,8 +377,11 @@ int run(int argc, char** argv) {
     std::cout << visible << "\n";
     return mode.empty() && !vm.count("help") ? 2 : 0;
   }
-  if (bytes > 0) tp.reports = reportsForBytes(bytes);
+  if (sample != "report" && sample != "boundary") throw std::invalid_argument("--sample must be report or boundary");
+  const bool reports = sample == "report";
+  if (bytes > 0) tp.items = reports ? itemsForBytes<ReportPayload>(bytes) : itemsForBytes<BoundaryPayload>(bytes);
   tp.decode = vm.count("raw") == 0;
+  tp.batching = vm.count("batching") != 0;
   tp.timeout = bp.timeout = std::chrono::milliseconds(1000 * timeout_s);
   bp.domain = tp.domain;
   if (vm.count("run-id")) tp.run_id = bp.run_id = vm["run-id"].as<std::uint64_t>();
@@ -350,12 +395,12 @@ int run(int argc, char** argv) {
     return 0;
   }
   if (mode == "size") {
-    std::printf("reports %d size %zu\n", tp.reports, batchBytes(tp.reports));
+    std::printf("items %d size %zu\n", tp.items, reports ? batchBytes<ReportPayload>(tp.items) : batchBytes<BoundaryPayload>(tp.items));
     return 0;
   }
   if (mode == "throughput") {
     if (tp.seconds < 3) throw std::invalid_argument("--seconds must be at least 3 (the first and last seconds do not count)");
-    return throughput(tp);
+    return reports ? throughput<ReportPayload>(tp) : throughput<BoundaryPayload>(tp);
   }
   if (mode == "barrier") {
     if (bp.domain <= 0 || bp.domain > dds::kMaxDomainId) throw std::invalid_argument("barrier needs --domain in [1, 230]");
