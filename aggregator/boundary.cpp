@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "common/near_pairs.hpp"
 #include "common/output.hpp"
 
 namespace wsn::aggregator {
@@ -73,19 +74,28 @@ void BoundaryAccumulator::add(const std::vector<common::TargetState>& truth, con
 
   // Only matched targets are candidates: an unmatched target within T of an unmatched track
   // cannot occur (the matching is of maximum size), and a far-off false track is no duplicate.
-  for (const auto& track : events.false_positives) {
-    const common::TargetState* nearest = nullptr;
-    double nearest_distance = threshold_;
-    for (const auto& match : events.matches) {
-      const common::TargetState& target = targetOf(match.target);
-      const double d = common::distance({target.x, target.y}, {track.x, track.y});
-      if (d < nearest_distance || (d == nearest_distance && nearest != nullptr && target.id < nearest->id)) {
-        nearest = &target;
-        nearest_distance = d;
-      }
-    }
-    if (nearest != nullptr) ++side(*nearest).duplicate_track_ticks;
+  // The nearest (lower id on a tie) is a minimum, so any order of the candidates finds it; only
+  // those within T of the track are looked at (a city-scale tick has ~10^3 of each).
+  std::vector<const common::TargetState*> matched;
+  std::vector<common::Vec2> matched_at;
+  for (const auto& match : events.matches) {
+    matched.push_back(&targetOf(match.target));
+    matched_at.push_back({matched.back()->x, matched.back()->y});
   }
+  std::vector<common::Vec2> false_at;
+  for (const auto& track : events.false_positives) false_at.push_back({track.x, track.y});
+  std::vector<const common::TargetState*> nearest(false_at.size(), nullptr);
+  std::vector<double> nearest_distance(false_at.size(), threshold_);
+  common::forEachPairWithin(false_at, matched_at, threshold_, [&](std::uint32_t f, std::uint32_t m) {
+    const common::TargetState& target = *matched[m];
+    const double d = common::distance(matched_at[m], false_at[f]);
+    if (d < nearest_distance[f] || (d == nearest_distance[f] && nearest[f] != nullptr && target.id < nearest[f]->id)) {
+      nearest[f] = &target;
+      nearest_distance[f] = d;
+    }
+  });
+  for (const common::TargetState* target : nearest)
+    if (target != nullptr) ++side(*target).duplicate_track_ticks;
 }
 
 BoundarySummary BoundaryAccumulator::summary() const {
