@@ -279,6 +279,9 @@ Spawned spawn(const RoleSlot& slot, const ClusterOptions& options, const std::st
       ::close(fd);
     }
     if (remote) ::dup2(lifeline[0], 0);  // dup2 clears close-on-exec on the copy
+    // Cyclone opens its sockets without close-on-exec: the launcher's observer's ports must not
+    // stay bound for as long as any role lives.
+    ::close_range(3, ~0U, 0);
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
@@ -289,6 +292,16 @@ Spawned spawn(const RoleSlot& slot, const ClusterOptions& options, const std::st
   }
   if (remote) ::close(lifeline[0]);
   return {pid, lifeline[1]};
+}
+
+/// " (on host h2, started by 'ssh h2', hosts file line 7)" for a process started through a host's
+/// start command: its exit status may be the command's own (ssh's 255, a missing namespace's).
+std::string startedBy(const RoleSlot& slot, const ClusterOptions& options) {
+  if (!options.hosts.startsRemotely(slot.role, slot.index)) return "";
+  const Host& host = options.hosts.hosts()[slot.host];
+  std::string command;
+  for (const auto& word : host.start) command += (command.empty() ? "" : " ") + word;
+  return " (on host " + host.name + ", started by '" + command + "', hosts file line " + std::to_string(host.line) + ")";
 }
 
 /// The outcome of every slot before it ran: its name, host and log.
@@ -395,7 +408,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
       // After an interrupt the roles stop because they were told to (a terminal's Ctrl-C reaches
       // every process of the group): their exit codes say nothing about a fault.
       else if (outcome.exit_code != 0 && result.failure.empty() && g_interrupt_signal.load() == 0)
-        result.failure = outcome.name + " " + exitDescription(outcome) + "; log " +
+        result.failure = outcome.name + " " + exitDescription(outcome) + startedBy(slots[slot_index], options) + "; log " +
                          outcome.log_path + ":\n" + tailOf(outcome.log_path, 8);
       if (block) break;
     }

@@ -94,6 +94,8 @@ HostPlan parseHostPlan(const std::string& yaml_text, const std::string& name_for
     throw ScenarioError(name_for_errors + ":" + std::to_string(line) + ": invalid YAML: " + error.msg);
   }
   const Reader r(name_for_errors);
+  if (root.IsDefined() && !root.IsNull() && !root.IsMap())
+    r.fail(Reader::lineOf(root), "a hosts file is a mapping with one key, 'hosts:', got " + common::config::describe(root));
   const Section top = r.section(root, 1, "", {"hosts"});
   const Entry* list = top.find("hosts");
   if (list == nullptr || !list->value.IsSequence() || list->value.size() < 2)
@@ -104,7 +106,7 @@ HostPlan parseHostPlan(const std::string& yaml_text, const std::string& name_for
   std::vector<Host> hosts;
   std::map<std::pair<std::string, std::uint32_t>, std::size_t> placed;
   std::set<std::string> names;
-  std::set<std::string> addresses;
+  std::map<std::string, std::string> host_of_address;
   common::config::forEachItem(r, *list, "hosts", "{name, address, start, roles}",
                               [&](const YAML::Node& item, int line, const std::string& path) {
     const Section s = r.section(item, line, path, {"address", "name", "roles", "start"});
@@ -118,8 +120,10 @@ HostPlan parseHostPlan(const std::string& yaml_text, const std::string& name_for
     in_addr parsed{};
     if (::inet_pton(AF_INET, host.address.c_str(), &parsed) != 1)
       r.fail(Reader::lineOf(*s.find("address")), "'" + path + ".address' must be an IPv4 address (a.b.c.d), got '" + host.address + "'");
-    if (!addresses.insert(host.address).second)
-      r.fail(Reader::lineOf(*s.find("address")), "address " + host.address + " is given to two hosts");
+    if (const auto [at, inserted] = host_of_address.emplace(host.address, host.name); !inserted)
+      r.fail(Reader::lineOf(*s.find("address")),
+             "address " + host.address + " is given to two hosts (" + at->second + " and " + host.name + ")");
+    host.line = line;
     if (const Entry* start = s.find("start")) {
       if (hosts.empty())
         r.fail(Reader::lineOf(*start), "the first host is the launcher's own, whose roles it starts directly: leave out "
@@ -129,7 +133,12 @@ HostPlan parseHostPlan(const std::string& yaml_text, const std::string& name_for
       r.fail(line, "'" + path + "' (" + host.name + ") needs 'start', the command that starts a process there, e.g. "
                    "'ssh -o BatchMode=yes " + host.address + "'");
     }
-    if (const Entry* roles = s.find("roles")) {
+    const Entry* roles = s.find("roles");
+    if (!hosts.empty() && (roles == nullptr || (roles->value.IsSequence() && roles->value.size() == 0)))
+      r.fail(roles == nullptr ? line : Reader::lineOf(*roles),
+             "'" + path + "' (" + host.name + ") runs no role: list its roles, e.g. [node 0, supernode 0-1], or leave the "
+             "host out");
+    if (roles != nullptr) {
       if (!roles->value.IsSequence())
         r.fail(Reader::lineOf(*roles), "'" + path + ".roles' must be a list such as [network, node 0-1, supernode 2], got " +
                                            common::config::describe(roles->value));
@@ -147,6 +156,15 @@ HostPlan parseHostPlan(const std::string& yaml_text, const std::string& name_for
     hosts.push_back(std::move(host));
   });
   return HostPlan(std::move(hosts), std::move(placed));
+}
+
+void checkLauncherHost(const HostPlan& plan, const std::string& file) {
+  if (!plan.multiHost()) return;
+  const Host& first = plan.hosts().front();
+  if (!dds::hasLocalAddress(first.address))
+    throw ScenarioError(file + ":" + std::to_string(std::max(first.line, 1)) + ": the first host (" + first.name +
+                        ") is the launcher's own, but no interface here has " + first.address +
+                        ": run wsntrack on that host (in its network namespace, if it is one)");
 }
 
 HostPlan loadHostPlan(const std::string& path, const common::Scenario& scenario) {

@@ -21,6 +21,7 @@ struct Host {
   /// Command a role's command line is appended to, to start it there (ssh HOST, ip netns exec NS);
   /// empty on the launcher's own host, whose roles the launcher starts directly.
   std::vector<std::string> start;
+  int line = 0;  ///< where the hosts file lists it, for messages
 };
 
 /// The hosts of a run and which role instance runs on which. An empty plan is a run on this host
@@ -50,6 +51,10 @@ class HostPlan {
 /// else the host's address, with every host's address as a unicast peer (its own included, for its
 /// other processes).
 dds::CycloneNetwork cycloneNetworkOf(const HostPlan& plan, std::size_t host);
+
+/// Throws common::ScenarioError "FILE:LINE: ..." unless this machine (network namespace) has the
+/// first host's address: the launcher runs there, and its observer joins the run from it.
+void checkLauncherHost(const HostPlan& plan, const std::string& file);
 
 /// Reads a hosts file for `scenario` (its node tiles and supernodes bound the role indices).
 /// Throws common::ScenarioError "FILE:LINE: what was expected" for any problem.

@@ -241,6 +241,7 @@ int commandRun(const std::vector<std::string>& command_line) {
   if (!args.hosts_file.empty()) {
     try {
       cluster.hosts = launcher::loadHostPlan(args.hosts_file, scenario);
+      launcher::checkLauncherHost(cluster.hosts, args.hosts_file);
     } catch (const std::exception& error) {
       std::cerr << "wsntrack run: " << error.what() << "\n";
       return 2;
@@ -275,6 +276,10 @@ int commandRun(const std::vector<std::string>& command_line) {
     guard.phase("writing the run's inputs");
     launcher::writeRunInputs(cluster.run_dir, scenario, cluster.identity,
                              launcher::participantCount(scenario, cluster.in_process, cluster.hosts), cluster.hosts);
+    // The placement is part of the record of the run (its outputs do not depend on it).
+    if (cluster.hosts.multiHost())
+      std::filesystem::copy_file(args.hosts_file, cluster.run_dir + "/hosts.yaml",
+                                 std::filesystem::copy_options::overwrite_existing);
   } catch (const std::exception& error) {
     if (guard.hasRunDirectory()) markRunOrWarn(cluster.run_dir, launcher::kRunFailed, error.what());
     std::cerr << "wsntrack run: " << error.what() << "\n";

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 namespace wsn::launcher {
@@ -113,7 +114,12 @@ std::string runSummary(const std::string& run_dir, const RunFigures& f, const Cl
                        const std::optional<PlotOutcome>& plots) {
   std::ostringstream out;
   out << "\nRun directory: " << run_dir << "\n";
-  row(out, "mode", in_process ? "in-process (threads over DDS)" : "multi-process over DDS");
+  std::set<std::string> hosts;
+  for (const auto& outcome : result.outcomes)
+    if (!outcome.host.empty()) hosts.insert(outcome.host);
+  row(out, "mode", in_process        ? "in-process (threads over DDS)"
+                   : hosts.size() > 1 ? "multi-process over DDS, over " + std::to_string(hosts.size()) + " hosts"
+                                      : "multi-process over DDS");
   row(out, "targets (truth)", show(f.truth_targets, 0));
   row(out, "tracks (global ids)", show(f.track_ids, 0));
   row(out, "eps_K  (Oh eq. 9)", show(f.eps_k, 4));

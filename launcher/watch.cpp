@@ -207,6 +207,12 @@ class Watcher {
   }
 
   int watch(Clock::time_point start_deadline) {
+    if (const auto address = dds::cycloneInterfaceAddress(dds::readConfigTemplate(options_.run_dir));
+        !address.empty() && !dds::hasLocalAddress(address)) {
+      std::cerr << "wsntrack watch: this run's launcher host uses address " << address
+                << ", which no interface here has: watch from that host (in its network namespace, if it is one)\n";
+      return kWatchFailed;
+    }
     auto domain = joinDomain();
     if (!domain) {
       std::cerr << "wsntrack watch: every viewer slot of this run (participant indices " << run_.first_viewer_index

@@ -1,6 +1,7 @@
 #include "common/dds/cyclone_config.hpp"
 
 #include <arpa/inet.h>
+#include <ifaddrs.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -78,6 +79,27 @@ bool udpPortFree(int port) {
 }
 
 }  // namespace
+
+std::string cycloneInterfaceAddress(const std::string& config_xml) {
+  const std::string key = "<NetworkInterface address=\"";
+  const auto at = config_xml.find(key);
+  if (at == std::string::npos) return "";
+  const auto end = config_xml.find('"', at + key.size());
+  return end == std::string::npos ? "" : config_xml.substr(at + key.size(), end - at - key.size());
+}
+
+bool hasLocalAddress(const std::string& address) {
+  in_addr wanted{};
+  if (::inet_pton(AF_INET, address.c_str(), &wanted) != 1) return false;
+  ifaddrs* list = nullptr;
+  if (::getifaddrs(&list) != 0) return false;
+  bool found = false;
+  for (const ifaddrs* i = list; i != nullptr && !found; i = i->ifa_next)
+    if (i->ifa_addr != nullptr && i->ifa_addr->sa_family == AF_INET)
+      found = reinterpret_cast<const sockaddr_in*>(i->ifa_addr)->sin_addr.s_addr == wanted.s_addr;
+  ::freeifaddrs(list);
+  return found;
+}
 
 bool cyclonePortsFree(int domain, int index) {
   const auto [discovery, data] = cyclonePorts(domain, index);

@@ -38,6 +38,12 @@ std::pair<int, int> cyclonePorts(int domain, int index);
 /// Whether Cyclone's unicast ports of `index` on `domain` can be bound on 127.0.0.1 right now.
 bool cyclonePortsFree(int domain, int index);
 
+/// The interface address a configuration made by cycloneConfigTemplate names; empty for loopback.
+std::string cycloneInterfaceAddress(const std::string& config_xml);
+
+/// Whether an interface of this machine (of this network namespace) has IPv4 address `address`.
+bool hasLocalAddress(const std::string& address);
+
 /// Largest domain id whose ports still fit below 65536.
 inline constexpr int kMaxDomainId = 230;
 

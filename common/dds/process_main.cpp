@@ -101,6 +101,8 @@ void endWithStandardInput() {
       const ssize_t n = ::read(0, buffer, sizeof buffer);
       if (n == 0 || (n < 0 && errno != EINTR)) break;
     }
+    std::fprintf(stderr, "standard input (the launcher's lifeline) closed: stopping\n");
+    std::fflush(stderr);
     ::kill(::getpid(), SIGTERM);  // to the process: the StopSignals thread takes it
   }).detach();
 }

@@ -87,10 +87,26 @@ case "$case_name" in
     done
     grep -q "over 3 hosts (h1 10.77.0.1, h2 10.77.0.2, h3 10.77.0.3)" three.stderr || { cat three.stderr >&2; fail "the start line does not name the hosts"; }
     grep -q "node 0@h2 .*supernode 3@h3 .*aggregator 0@h1 " three.stdout || { cat three.stdout >&2; fail "the summary does not say where each process ran"; }
+    grep -q "multi-process over DDS, over 3 hosts" three.stdout || { cat three.stdout >&2; fail "the summary's mode does not count the hosts"; }
+    cmp -s hosts.yaml three/hosts.yaml || fail "the run directory does not keep the hosts file"
     [ -f three/cyclonedds-h2.xml ] && grep -q '<NetworkInterface address="10.77.0.2"/>' three/cyclonedds-h2.xml ||
       fail "no Cyclone configuration of h2 with its own address"
     grep -q '<Peer address="10.77.0.1"/><Peer address="10.77.0.2"/><Peer address="10.77.0.3"/>' three/cyclonedds.xml ||
       fail "the launcher's host does not list every host as a peer"
+
+    # A launcher started outside the first host, and a host whose start command fails, are named.
+    "$wsntrack" run "$src/scenarios/oh_quadrants.yaml" --quiet --no-plot --out "$PWD/outside" --hosts hosts.yaml \
+      >outside.stdout 2>outside.stderr; rc=$?
+    [ "$rc" -eq 2 ] || { cat outside.stderr >&2; fail "a launcher outside h1 gave exit $rc, expected 2"; }
+    grep -qF "hosts.yaml:2: the first host (h1) is the launcher's own, but no interface here has 10.77.0.1" outside.stderr ||
+      { cat outside.stderr >&2; fail "no clear message for a launcher outside h1"; }
+    hosts_file "[ip, netns, exec, $ns-nowhere]" >bad_start.yaml
+    timeout 60 ip netns exec "$ns-h1" "$wsntrack" run "$src/scenarios/oh_quadrants.yaml" --quiet --no-plot \
+      --out "$PWD/bad_start" --hosts bad_start.yaml >bad_start.stdout 2>bad_start.stderr; rc=$?
+    [ "$rc" -eq 1 ] || { cat bad_start.stderr >&2; fail "a failing start command gave exit $rc, expected 1"; }
+    grep -qF "(on host h3, started by 'ip netns exec $ns-nowhere', hosts file line 9)" bad_start.stderr ||
+      { cat bad_start.stderr >&2; fail "the failure does not name the host and its start command"; }
+    grep -q '"status": "failed"' bad_start/run.json || fail "the run with a failing start command is not marked failed"
 
     run_both "$src/scenarios/oh_quadrants_faults.yaml" one_faults three_faults
     same_outputs one_faults three_faults
@@ -119,6 +135,8 @@ case "$case_name" in
       for pid in $(pgrep -f "wsntrack-.*--run-dir $PWD/run "); do kill -9 "$pid"; done
       fail "roles outlived their launcher by 5 s"
     fi
+    grep -q "standard input (the launcher's lifeline) closed: stopping" run/logs/supernode-3.log ||
+      { cat run/logs/supernode-3.log >&2; fail "supernode 3 did not say why it stopped"; }
     no_leftovers ;;
   *) fail "unknown case $case_name" ;;
 esac

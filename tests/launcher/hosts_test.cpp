@@ -88,6 +88,24 @@ TEST_CASE("a single-host plan keeps the loopback configuration", "[launcher][hos
   CHECK(xml.find("<Peers><Peer address=\"127.0.0.1\"/></Peers>") != std::string::npos);
 }
 
+TEST_CASE("the launcher runs only where the first host's address is", "[launcher][hosts]") {
+  const std::string second = "  - {name: b, address: 192.0.2.7, start: ssh b, roles: [node]}\n";
+  const HostPlan here = parseHostPlan("hosts:\n  - {name: a, address: 127.0.0.1}\n" + second, "hosts.yaml", fourGroups());
+  CHECK_NOTHROW(checkLauncherHost(here, "hosts.yaml"));
+  // 192.0.2.0/24 is TEST-NET-1 (RFC 5737): no machine has it.
+  const HostPlan elsewhere =
+      parseHostPlan("hosts:\n  - {name: a, address: 192.0.2.1}\n" + second, "hosts.yaml", fourGroups());
+  try {
+    checkLauncherHost(elsewhere, "hosts.yaml");
+    FAIL("a launcher on a host without 192.0.2.1 was accepted");
+  } catch (const common::ScenarioError& error) {
+    CHECK(std::string(error.what()) ==
+          "hosts.yaml:2: the first host (a) is the launcher's own, but no interface here has 192.0.2.1: run wsntrack on "
+          "that host (in its network namespace, if it is one)");
+  }
+  CHECK_NOTHROW(checkLauncherHost(HostPlan{}, "none"));
+}
+
 TEST_CASE("mistakes in a hosts file are reported with their line", "[launcher][hosts]") {
   const std::string a = "hosts:\n  - {name: a, address: 10.0.0.1}\n";
   CHECK(errorOf("hosts: []\n") ==
@@ -104,7 +122,7 @@ TEST_CASE("mistakes in a hosts file are reported with their line", "[launcher][h
   CHECK(errorOf(a + "  - {name: b, address: 10.0.0.2, start: ssh b, roles: [supernode 0-2]}\n"
                     "  - {name: c, address: 10.0.0.3, start: ssh c, roles: [supernode 2]}\n") ==
         "hosts.yaml:4: supernode 2 is placed on two hosts (b and c)");
-  CHECK(errorOf(a + "  - {name: b, address: 10.0.0.2}\n") ==
+  CHECK(errorOf(a + "  - {name: b, address: 10.0.0.2, roles: [node]}\n") ==
         "hosts.yaml:3: 'hosts[1]' (b) needs 'start', the command that starts a process there, e.g. "
         "'ssh -o BatchMode=yes 10.0.0.2'");
   CHECK(errorOf("hosts:\n  - {name: a, address: 10.0.0.1, start: ssh a}\n  - {name: b, address: 10.0.0.2, start: ssh b}\n") ==
@@ -112,13 +130,19 @@ TEST_CASE("mistakes in a hosts file are reported with their line", "[launcher][h
   CHECK(errorOf(a + "  - {name: b, address: host-b, start: ssh b}\n") ==
         "hosts.yaml:3: 'hosts[1].address' must be an IPv4 address (a.b.c.d), got 'host-b'");
   CHECK(errorOf(a + "  - {name: b, address: 10.0.0.1, start: ssh b}\n") ==
-        "hosts.yaml:3: address 10.0.0.1 is given to two hosts");
+        "hosts.yaml:3: address 10.0.0.1 is given to two hosts (a and b)");
+  CHECK(errorOf(a + "  - {name: b, address: 10.0.0.2, start: ssh b}\n") ==
+        "hosts.yaml:3: 'hosts[1]' (b) runs no role: list its roles, e.g. [node 0, supernode 0-1], or leave the host out");
+  CHECK(errorOf(a + "  - {name: b, address: 10.0.0.2, start: ssh b, roles: []}\n")
+            .rfind("hosts.yaml:3: 'hosts[1]' (b) runs no role", 0) == 0);
+  CHECK(errorOf("- {name: a, address: 10.0.0.1}\n") ==
+        "hosts.yaml:1: a hosts file is a mapping with one key, 'hosts:', got a list");
   CHECK(errorOf(a + "  - {name: a, address: 10.0.0.2, start: ssh b}\n") == "hosts.yaml:3: host 'a' is listed twice");
   CHECK(errorOf(a + "  - {name: b/c, address: 10.0.0.2, start: ssh b}\n") ==
         "hosts.yaml:3: 'hosts[1].name' must be 1 to 32 of A-Z a-z 0-9 _ -, got 'b/c'");
   CHECK(errorOf(a + "  - {name: b, address: 10.0.0.2, start: ''}\n")
             .rfind("hosts.yaml:3: 'hosts[1].start' is empty", 0) == 0);
-  CHECK(errorOf(a + "  - {name: b, address: 10.0.0.2, start: ssh b, user: me}\n").rfind("hosts.yaml:3: ", 0) == 0);
+  CHECK(errorOf(a + "  - {name: b, address: 10.0.0.2, start: ssh b, user: me, roles: [node]}\n").rfind("hosts.yaml:3: ", 0) == 0);
   CHECK(errorOf("hosts: [\n").rfind("hosts.yaml:", 0) == 0);
 }
 
