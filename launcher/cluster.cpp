@@ -346,6 +346,9 @@ class RunningProcesses {
     return slot;
   }
   const std::map<pid_t, std::size_t>& bySlot() const { return slot_of_; }
+  void signalAll(int signal_number) const {
+    for (const auto& [pid, slot] : slot_of_) ::kill(pid, signal_number);
+  }
   bool empty() const { return slot_of_.empty(); }
 
  private:
@@ -371,10 +374,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
                                static_cast<std::int32_t>(options.scenario.supernodes.size()));
   FaultSignals fault_signals(plan, options.scenario.run.ticks);
   RestartSchedule restarts(plan, supernodeSlots(slots), options.scenario.run.max_ticks_in_flight);
-  auto stopAll = [&](int signal_number) {
-    fault_signals.continueAll();
-    for (const auto& [pid, slot] : running) ::kill(pid, signal_number);
-  };
+  auto stopAll = [&](int signal_number) { fault_signals.continueAll(); processes.signalAll(signal_number); };
   std::vector<std::size_t> lost_now;  // slots lost by hand since the last announcement
   HandLosses hand_losses(options.scenario);
   auto reap = [&](bool block) {
@@ -462,6 +462,8 @@ ClusterResult runProcesses(const ClusterOptions& options) {
 
   // Stop whatever is left: politely first, then for good. Every pid we started is reaped.
   if (!running.empty()) {
+    for (const auto& [pid, slot] : running)
+      if (result.outcomes[slot].message.empty()) result.outcomes[slot].message = kStoppedByLauncher;
     stopAll(SIGTERM);
     const auto deadline = Clock::now() + kStopGrace;
     while (!running.empty() && Clock::now() < deadline) {

@@ -37,6 +37,10 @@ struct ClusterOptions {
   std::function<void(const ClusterResult&)> abandon;
 };
 
+/// RoleOutcome::message of a process the launcher stopped because the run ended (failed, timed out
+/// or interrupted) while it still ran: its exit status says nothing about a fault of its own.
+inline constexpr const char* kStoppedByLauncher = "stopped by the launcher";
+
 /// How one process (or role thread) ended.
 struct RoleOutcome {
   std::string name;      ///< e.g. "node 1"

@@ -178,10 +178,15 @@ std::string runFailure(const ClusterResult& result) {
     return out.str();
   }
   out << "wsntrack run: FAILED: " << result.failure << "\n";
-  for (const auto& outcome : result.outcomes)
-    if (outcome.exit_code != 0)
-      out << "  " << outcome.name << ": " << (outcome.signal != 0 ? exitDescription(outcome) + ", " : "") << "exit "
-          << outcome.exit_code << (outcome.message.empty() ? "" : " (" + outcome.message + ")") << "\n";
+  for (const auto& outcome : result.outcomes) {
+    if (outcome.exit_code == 0) continue;
+    if (outcome.message == kStoppedByLauncher) {
+      out << "  " << outcome.name << ": " << kStoppedByLauncher << " (exit " << outcome.exit_code << ")\n";
+      continue;
+    }
+    out << "  " << outcome.name << ": " << (outcome.signal != 0 ? exitDescription(outcome) + ", " : "") << "exit "
+        << outcome.exit_code << (outcome.message.empty() ? "" : " (" + outcome.message + ")") << "\n";
+  }
   return out.str();
 }
 

@@ -112,10 +112,12 @@ TEST_CASE("a failed run names the failure and every process that exited non-zero
   result.failure = "supernode 1 exited with 3";
   result.outcomes.push_back({"supernode 1", 3, "bad engine", "", 0, 0, ""});
   result.outcomes.push_back({"network 0", 143, "", "", 0, 0, ""});
+  result.outcomes.push_back({"node 1", 1, kStoppedByLauncher, "", 0, 0, ""});
   CHECK(runFailure(result) ==
         "wsntrack run: FAILED: supernode 1 exited with 3\n"
         "  supernode 1: exit 3 (bad engine)\n"
-        "  network 0: exit 143\n");
+        "  network 0: exit 143\n"
+        "  node 1: stopped by the launcher (exit 1)\n");
 }
 
 TEST_CASE("a process killed by a signal is named with the signal, its exit code kept", "[launcher][run_summary]") {
