@@ -222,12 +222,12 @@ template <typename Payload>
 void publish(const ThroughputOptions& options) {
   using Sample = typename Payload::Sample;
   Node node(options.domain, options.run_id, 2, 0);
+  // Before the writer exists: a writer takes the setting when it is made. ddsperf's publisher has
+  // Cyclone pack samples into datagrams until a flush; the roles' writers do not (one batch per
+  // tick, latency first). --batching does as ddsperf, to tell the two apart.
+  if (options.batching) dds_write_set_batch(true);
   Topic<Sample> topic(node.participant, Payload::kTopic);
   Writer<Sample> writer(node.participant, topic, Qos::reliableKeepAll());
-  // ddsperf's publisher has Cyclone pack samples into datagrams until a flush; the roles' writers
-  // do not (one batch per tick, latency first). --batching does as ddsperf, to tell the two apart.
-  // Cyclone 0.10 sets it for every writer of the process (this one alone here).
-  if (options.batching) dds_write_set_batch(true);
   waitFor([&] { return writer.matchedRoleReaders() >= 1; }, options.timeout, "the subscriber");
   const Payload payload(options.items);
   const auto stop_at = Clock::now() + std::chrono::duration<double>(options.seconds);
