@@ -32,6 +32,7 @@
 
 #include "common/dds/codec.hpp"
 #include "common/dds/cyclone_config.hpp"
+#include "launcher/run_directory.hpp"
 #include "common/dds/entity.hpp"
 #include "common/dds/role_runtime.hpp"
 #include "dds/ddsi/ddsi_cdrstream.h"
@@ -139,14 +140,6 @@ std::vector<int> freeDomains(int participants) {
   return domains;
 }
 
-/// A free domain from a pid-dependent start, so that concurrent runs spread out. The scripts pass
-/// --domain themselves, one of `domains` that they reserve with the launchers' lock files.
-int chooseDomain(int participants) {
-  const auto domains = freeDomains(participants);
-  if (domains.empty()) throw std::runtime_error("no Cyclone DDS domain with free loopback ports in 1 .. 100");
-  return domains[static_cast<std::size_t>(::getpid()) % domains.size()];
-}
-
 /// Polls `ready` (discovery only: the measured loops never poll) until it holds or `timeout` passes.
 template <typename F>
 void waitFor(F ready, std::chrono::milliseconds timeout, const std::string& what) {
@@ -249,8 +242,9 @@ void publish(const ThroughputOptions& options) {
 /// subscriber's exit status.
 template <typename Payload>
 int throughput(ThroughputOptions options) {
-  if (options.domain == 0) options.domain = chooseDomain(2);
   if (options.run_id == 0) options.run_id = static_cast<std::uint64_t>(::getpid()) << 16 | 0x7b;
+  // As `wsntrack run` picks and reserves its own (the lock is held until this process ends).
+  if (options.domain == 0) options.domain = launcher::pickFreeDomain(options.run_id, 2);
   const std::size_t bytes = batchBytes<Payload>(options.items);
   std::fflush(stdout);
   const pid_t child = ::fork();

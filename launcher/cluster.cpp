@@ -213,11 +213,6 @@ void noteFirstTick(ClusterResult& result, std::int32_t tick, Clock::time_point s
   if (tick >= 1 && result.first_tick_s == 0.0) result.first_tick_s = std::chrono::duration<double>(Clock::now() - started).count();
 }
 
-/// The Cyclone configuration template of the processes on host `host` of a run over several hosts.
-std::string hostConfigPath(const ClusterOptions& options, std::size_t host) {
-  return options.run_dir + "/cyclonedds-" + options.hosts.hosts().at(host).name + ".xml";
-}
-
 /// A started role process. A process on another host holds the read end of a pipe as its standard
 /// input (its lifeline, --stdin-lifeline): `lifeline` is the write end, which the launcher keeps open
 /// while the process runs and which the kernel closes when the launcher dies.
@@ -252,13 +247,10 @@ Spawned spawn(const RoleSlot& slot, const ClusterOptions& options, const std::st
     // and ends when its standard input does.
     for (const char* flag : {"--faults-in-role", "--stdin-lifeline"}) args.push_back(flag);
     args.push_back("--cyclone-config");
-    args.push_back(hostConfigPath(options, slot.host));
+    args.push_back(hostConfigFile(options.run_dir, options.hosts, slot.host));
     const auto& start = options.hosts.hosts().at(slot.host).start;
     args.insert(args.begin(), start.begin(), start.end());
     if (::pipe2(lifeline, O_CLOEXEC) != 0) throw std::runtime_error(std::string("pipe failed: ") + std::strerror(errno));
-  } else if (options.hosts.multiHost()) {
-    args.push_back("--cyclone-config");
-    args.push_back(options.run_dir + "/cyclonedds.xml");
   }
   const pid_t launcher = ::getpid();
   const pid_t pid = ::fork();
@@ -588,19 +580,23 @@ int runExitStatus(const ClusterResult& result) {
   return result.interrupted_by != 0 ? 128 + result.interrupted_by : 1;
 }
 
-int participantCount(const common::Scenario& scenario, bool in_process, const HostPlan& hosts) {
-  if (in_process) return 1;
+/// Cyclone participants on each host: its role processes, and on the launcher's (0) its observer.
+/// In-process, one participant index for everything.
+std::vector<int> participantsPerHost(const common::Scenario& scenario, bool in_process, const HostPlan& hosts) {
+  if (in_process) return {1};
   std::vector<int> per_host;
   clusterSlots(scenario, hosts, &per_host);
-  per_host.front() += 1;  // the launcher's observer
+  per_host.front() += 1;
+  return per_host;
+}
+
+int participantCount(const common::Scenario& scenario, bool in_process, const HostPlan& hosts) {
+  const auto per_host = participantsPerHost(scenario, in_process, hosts);
   return *std::max_element(per_host.begin(), per_host.end());
 }
 
 int launcherHostParticipants(const common::Scenario& scenario, bool in_process, const HostPlan& hosts) {
-  if (in_process) return 1;
-  std::vector<int> per_host;
-  clusterSlots(scenario, hosts, &per_host);
-  return per_host.front() + 1;
+  return participantsPerHost(scenario, in_process, hosts).front();
 }
 
 void installInterruptHandlers() {

@@ -113,7 +113,8 @@ HostPlan parseHostPlan(const std::string& yaml_text, const std::string& name_for
     r.require(s, {"name", "address"}, path);
     Host host;
     host.name = r.textValue(*s.find("name"), path + ".name");
-    if (!std::regex_match(host.name, std::regex("[A-Za-z0-9_-]{1,32}")))
+    static const std::regex kHostName("[A-Za-z0-9_-]{1,32}");
+    if (!std::regex_match(host.name, kHostName))
       r.fail(Reader::lineOf(*s.find("name")), "'" + path + ".name' must be 1 to 32 of A-Z a-z 0-9 _ -, got '" + host.name + "'");
     if (!names.insert(host.name).second) r.fail(Reader::lineOf(*s.find("name")), "host '" + host.name + "' is listed twice");
     host.address = r.textValue(*s.find("address"), path + ".address");
@@ -156,6 +157,11 @@ HostPlan parseHostPlan(const std::string& yaml_text, const std::string& name_for
     hosts.push_back(std::move(host));
   });
   return HostPlan(std::move(hosts), std::move(placed));
+}
+
+std::string hostConfigFile(const std::string& run_dir, const HostPlan& plan, std::size_t host) {
+  if (host == 0) return run_dir + "/cyclonedds.xml";
+  return run_dir + "/cyclonedds-" + plan.hosts().at(host).name + ".xml";
 }
 
 void checkLauncherHost(const HostPlan& plan, const std::string& file) {

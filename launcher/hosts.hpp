@@ -52,6 +52,10 @@ class HostPlan {
 /// other processes).
 dds::CycloneNetwork cycloneNetworkOf(const HostPlan& plan, std::size_t host);
 
+/// The Cyclone configuration template of host `host` in run directory `run_dir`: the launcher's
+/// host (0) uses the run's cyclonedds.xml, every other host cyclonedds-NAME.xml.
+std::string hostConfigFile(const std::string& run_dir, const HostPlan& plan, std::size_t host);
+
 /// Throws common::ScenarioError "FILE:LINE: ..." unless this machine (network namespace) has the
 /// first host's address: the launcher runs there, and its observer joins the run from it.
 void checkLauncherHost(const HostPlan& plan, const std::string& file);

@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -185,10 +186,8 @@ void createRunDirectory(const std::string& path, bool overwrite) {
 void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario, const RunIdentity& identity,
                     int participants, const HostPlan& hosts) {
   common::writeTextFile(run_dir + "/scenario.yaml", scenario::resolvedScenarioYaml(scenario));
-  common::writeTextFile(run_dir + "/cyclonedds.xml",
-                        dds::cycloneConfigTemplate(identity.run_id, participants, cycloneNetworkOf(hosts, 0)));
-  for (std::size_t h = 1; h < hosts.hosts().size(); ++h)
-    common::writeTextFile(run_dir + "/cyclonedds-" + hosts.hosts()[h].name + ".xml",
+  for (std::size_t h = 0; h < std::max<std::size_t>(hosts.hosts().size(), 1); ++h)
+    common::writeTextFile(hostConfigFile(run_dir, hosts, h),
                           dds::cycloneConfigTemplate(identity.run_id, participants, cycloneNetworkOf(hosts, h)));
 
   const common::Truth truth(truthConfig(scenario));

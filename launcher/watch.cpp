@@ -191,8 +191,7 @@ class Watcher {
   /// A Cyclone domain on the first free viewer slot of the run. Ports are probed first so that
   /// Cyclone does not log a failure; a slot taken in between (two viewers starting at once) is
   /// caught by the domain creation failing, and the next slot is tried.
-  std::optional<dds::Domain> joinDomain() {
-    const std::string config = dds::readConfigTemplate(options_.run_dir);
+  std::optional<dds::Domain> joinDomain(const std::string& config) {
     for (int slot = 0; slot < run_.viewer_slots; ++slot) {
       const int index = run_.first_viewer_index + slot;
       if (!dds::cyclonePortsFree(run_.identity.domain, index)) continue;
@@ -207,13 +206,13 @@ class Watcher {
   }
 
   int watch(Clock::time_point start_deadline) {
-    if (const auto address = dds::cycloneInterfaceAddress(dds::readConfigTemplate(options_.run_dir));
-        !address.empty() && !dds::hasLocalAddress(address)) {
+    const std::string config = dds::readConfigTemplate(options_.run_dir);
+    if (const auto address = dds::cycloneInterfaceAddress(config); !address.empty() && !dds::hasLocalAddress(address)) {
       std::cerr << "wsntrack watch: this run's launcher host uses address " << address
                 << ", which no interface here has: watch from that host (in its network namespace, if it is one)\n";
       return kWatchFailed;
     }
-    auto domain = joinDomain();
+    auto domain = joinDomain(config);
     if (!domain) {
       std::cerr << "wsntrack watch: every viewer slot of this run (participant indices " << run_.first_viewer_index
                 << ".." << run_.first_viewer_index + run_.viewer_slots - 1

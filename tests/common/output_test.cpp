@@ -46,21 +46,17 @@ TEST_CASE("fixed6 and significant9 agree with printf on random doubles of every 
   std::mt19937_64 random(20261129);
   std::uniform_real_distribution<double> mantissa(-1.0, 1.0);
   std::uniform_int_distribution<int> exponent(-30, 30);
-  int checked = 0;
   for (int i = 0; i < 200000; ++i) {
     const double value = std::ldexp(mantissa(random), exponent(random));
     REQUIRE(fixed6(value) == printfFixed6(value));
     REQUIRE(significant9(value) == printfSignificant9(value));
-    ++checked;
   }
   // Exact ties at the sixth decimal: odd multiples of 1/128 = 0.0078125 end in a 5 at the
   // seventh, and round (to even) as printf rounds them.
   for (int k = 0; k < 4096; ++k) {
     const double value = (2 * k + 1) / 128.0;
     REQUIRE(fixed6(value) == printfFixed6(value));
-    ++checked;
   }
-  CHECK(checked == 204096);
 }
 
 }  // namespace

@@ -127,6 +127,11 @@ case "$case_name" in
     launcher=$!
     for _ in $(seq 1 100); do pgrep -f "wsntrack-supernode.*--run-dir $PWD/run .*--index 3" >/dev/null && break; sleep 0.1; done
     sleep 1  # into the tick loop (100 ticks paced at 0.2 s)
+    # A viewer outside the launcher's namespace is told where to watch from.
+    "$wsntrack" watch "$PWD/run" --plain --timeout 5 >watch.stdout 2>watch.stderr; rc=$?
+    [ "$rc" -eq 1 ] || { cat watch.stderr >&2; fail "watch outside h1 gave exit $rc, expected 1"; }
+    grep -qF "this run's launcher host uses address 10.77.0.1, which no interface here has" watch.stderr ||
+      { cat watch.stderr >&2; fail "watch outside h1 does not say where to watch from"; }
     pgrep -f "wsntrack-supernode.*--run-dir $PWD/run .*--index 3" >/dev/null || { cat run.stderr >&2; fail "supernode 3 is not running on h3"; }
     kill -9 "$launcher"; wait "$launcher" 2>/dev/null
     for _ in $(seq 1 50); do pgrep -f "wsntrack-.*--run-dir $PWD/run " >/dev/null || break; sleep 0.1; done
