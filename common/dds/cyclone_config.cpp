@@ -6,10 +6,18 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 
 namespace wsn::dds {
+
+int spdpIntervalSeconds(int participants) {
+  const long long peer_ports = participants + kViewerSlots + 1;
+  const long long announcements = static_cast<long long>(participants) * peer_ports;
+  const long long seconds = (announcements + kSpdpAnnouncementsPerSecond - 1) / kSpdpAnnouncementsPerSecond;
+  return static_cast<int>(std::clamp(seconds, 1LL, static_cast<long long>(kMaxSpdpIntervalSeconds)));
+}
 
 std::string cycloneConfigTemplate(std::uint64_t run_id, int participants, const CycloneNetwork& network) {
   std::ostringstream xml;
@@ -31,10 +39,7 @@ std::string cycloneConfigTemplate(std::uint64_t run_id, int participants, const 
       << "      <MaxAutoParticipantIndex>" << participants + kViewerSlots + 1 << "</MaxAutoParticipantIndex>\n"
       << "      <Peers>" << peers << "</Peers>\n"
       << "      <Tag>wsntrack-" << std::hex << run_id << std::dec << "</Tag>\n"
-      // A lost participant announcement is repeated within a second rather than Cyclone's default
-      // 30 s: a loaded host (sanitizers, parallel runs) must not stall a cluster's start for that.
-      // On loopback, with at most a dozen peers, the traffic is negligible.
-      << "      <SPDPInterval>1 s</SPDPInterval>\n"
+      << "      <SPDPInterval>" << spdpIntervalSeconds(participants) << " s</SPDPInterval>\n"
       << "    </Discovery>\n"
       // A killed process's readers stay matched until their lease ends (10 s), and a reliable
       // writer keeps what they never acknowledge. Cyclone's adaptive watermark (30 kB at first,
