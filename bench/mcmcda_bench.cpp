@@ -176,8 +176,8 @@ const wsn::common::Scenario& benchScenario(const std::string& engine = "mcmcda")
 
 /// Loads are built once per scale and shared by every run and repetition of a benchmark.
 const Load& loadAt(std::int32_t scale) {
-  static std::array<std::unique_ptr<Load>, 5> loads;
-  auto& load = loads.at(static_cast<std::size_t>(scale));
+  static std::map<std::int32_t, std::unique_ptr<Load>> loads;
+  auto& load = loads[scale];
   if (!load) load = std::make_unique<Load>(makeLoad(scale, benchScenario().dynamics.process_noise_sigma));
   return *load;
 }
@@ -257,7 +257,8 @@ wsn::supernode::mcmcda::Problem typicalProblem(std::int32_t scale) {
 
 void samplerChain(benchmark::State& state) {
   const auto problem = typicalProblem(static_cast<std::int32_t>(state.range(0)));
-  wsn::supernode::mcmcda::Sampler sampler(problem);
+  using wsn::supernode::mcmcda::ProposalSets;
+  wsn::supernode::mcmcda::Sampler sampler(problem, state.range(1) == 0 ? ProposalSets::kRescan : ProposalSets::kKept);
   Stream rng(kSeed, Purpose::kTracker, 0, problem.lastTick());
   // The engine starts each tick's chain near the mode (previous best plus a greedy guess); one
   // untimed chain from the empty partition gets this one there too.
@@ -278,5 +279,10 @@ BENCHMARK(supernodeTick)->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
 // The same ticks of the other window engines.
 BENCHMARK_CAPTURE(engineTick, gnn, std::string("gnn"))->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(engineTick, sbmht, std::string("sbmht"))->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
-// One iteration = one chain of nmc iterations on the median window of the same loads.
-BENCHMARK(samplerChain)->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::kMillisecond);
+// One iteration = one chain of nmc iterations on the median window of the same loads, and of
+// 16x and 64x (windows the size of the aggregator's at city scale), with the proposal sets found
+// by rescans (second argument 0) or kept (1): what sets kKeepProposalSetsFrom.
+BENCHMARK(samplerChain)
+    ->ArgsProduct({{1, 2, 4, 16, 64}, {0, 1}})
+    ->ArgNames({"load", "kept"})
+    ->Unit(benchmark::kMillisecond);

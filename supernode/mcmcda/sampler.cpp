@@ -64,7 +64,10 @@ double logPosterior(const Problem& problem, const Partition& partition) {
   return sum;
 }
 
-Sampler::Sampler(const Problem& problem) : problem_(problem) {
+Sampler::Sampler(const Problem& problem, ProposalSets sets)
+    : problem_(problem),
+      keep_sets_(sets == ProposalSets::kKept ||
+                 (sets == ProposalSets::kBySize && problem.size() >= kKeepProposalSetsFrom)) {
   const auto n = static_cast<std::size_t>(problem.size());
   track_of_.assign(n, -1);
   position_.assign(n, -1);
@@ -86,9 +89,38 @@ Sampler::Sampler(const Problem& problem) : problem_(problem) {
   for (std::size_t k = 1; k < log_count_.size(); ++k) log_count_[k] = std::log(static_cast<double>(k));
   log_stop_ = std::log(problem.params().stop_probability);
   log_go_on_ = std::log1p(-problem.params().stop_probability);
-  scratch_list_.reserve(n);
-  scratch_pairs_.reserve(links);
   for (auto* buffer : {&tail_, &target_a_, &target_b_, &backup_a_, &backup_b_}) buffer->reserve(longest);
+  if (!keep_sets_) {
+    rescanned_starts_.reserve(n);
+    rescanned_pairs_.reserve(links);
+    return;
+  }
+  pred_start_.assign(n + 1, 0);
+  for (std::int32_t i = 0; i < problem.size(); ++i)
+    for (const std::int32_t j : problem.successors(i)) ++pred_start_[static_cast<std::size_t>(j) + 1];
+  for (std::size_t j = 0; j < n; ++j) pred_start_[j + 1] += pred_start_[j];
+  pred_.resize(links);
+  {
+    std::vector<std::int32_t> fill(pred_start_.begin(), pred_start_.end() - 1);
+    for (std::int32_t i = 0; i < problem.size(); ++i)
+      for (const std::int32_t j : problem.successors(i)) pred_[static_cast<std::size_t>(fill[static_cast<std::size_t>(j)]++)] = i;
+  }
+  // Every observation unassigned: each successor is free, and each observation with one starts.
+  free_successors_.resize(n);
+  std::vector<std::int32_t> starts(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    free_successors_[i] = static_cast<std::int32_t>(problem.successors(static_cast<std::int32_t>(i)).size());
+    starts[i] = free_successors_[i] > 0 ? 1 : 0;
+  }
+  birth_starts_.reset(static_cast<std::int32_t>(n));
+  birth_starts_.assign(starts);
+  merge_pairs_.reset(static_cast<std::int32_t>(tracks_.size()));
+  pairs_of_slot_.assign(tracks_.size(), 0);
+  // A refresh visits each changed track's end and each changed first element's predecessors:
+  // past n / (1 + mean predecessors) changes, rebuilding (one pass over the window) costs less.
+  change_capacity_ = std::max<std::size_t>(16, n / (1 + links / std::max<std::size_t>(n, 1)));
+  changed_slots_.reserve(change_capacity_);
+  changed_firsts_.reserve(change_capacity_);
 }
 
 void Sampler::setState(const Partition& partition) {
@@ -137,9 +169,12 @@ std::int32_t Sampler::addTrack(std::span<const std::int32_t> obs, double score) 
   auto& track = tracks_[static_cast<std::size_t>(slot)];
   track.obs.assign(obs.begin(), obs.end());
   track.score = score;
+  touchFirst(obs.front());
+  touchSlot(slot);
   for (std::size_t m = 0; m < obs.size(); ++m) {
     track_of_[static_cast<std::size_t>(obs[m])] = slot;
     position_[static_cast<std::size_t>(obs[m])] = static_cast<std::int32_t>(m);
+    taken(obs[m]);
   }
   log_posterior_ += score;
   return slot;
@@ -147,9 +182,13 @@ std::int32_t Sampler::addTrack(std::span<const std::int32_t> obs, double score) 
 
 void Sampler::removeTrack(std::int32_t slot) {
   auto& track = tracks_[static_cast<std::size_t>(slot)];
+  touchFirst(track.obs.front());
+  touchSlot(slot);
+  touchSlot(track_count_ - 1);  // its track moves into `slot`
   for (const std::int32_t i : track.obs) {
     track_of_[static_cast<std::size_t>(i)] = -1;
     position_[static_cast<std::size_t>(i)] = -1;
+    released(i);
   }
   log_posterior_ -= track.score;
   const std::int32_t last = track_count_ - 1;
@@ -163,18 +202,31 @@ void Sampler::removeTrack(std::int32_t slot) {
 
 void Sampler::setTrack(std::int32_t slot, std::span<const std::int32_t> obs, double score) {
   auto& track = tracks_[static_cast<std::size_t>(slot)];
-  // Only observations still marked as this track's: in a switch, the first setTrack has already
+  if (track.obs.front() != obs.front()) {
+    touchFirst(track.obs.front());
+    touchFirst(obs.front());
+  }
+  touchSlot(slot);
+  // Observations in both the old and the new track stay taken throughout, so that the birth
+  // starting points follow only the observations that really changed hands: the old track's are
+  // marked as leaving first, and released only if the new track does not take them back. Only
+  // observations still marked as this track's: in a switch, the first setTrack has already
   // handed the other track's tail over.
   for (const std::int32_t i : track.obs)
-    if (track_of_[static_cast<std::size_t>(i)] == slot) {
-      track_of_[static_cast<std::size_t>(i)] = -1;
-      position_[static_cast<std::size_t>(i)] = -1;
-    }
-  track.obs.assign(obs.begin(), obs.end());
+    if (track_of_[static_cast<std::size_t>(i)] == slot) track_of_[static_cast<std::size_t>(i)] = kLeaving;
   for (std::size_t m = 0; m < obs.size(); ++m) {
+    const std::int32_t was = track_of_[static_cast<std::size_t>(obs[m])];
     track_of_[static_cast<std::size_t>(obs[m])] = slot;
     position_[static_cast<std::size_t>(obs[m])] = static_cast<std::int32_t>(m);
+    if (was == kUnassigned) taken(obs[m]);
   }
+  for (const std::int32_t i : track.obs)
+    if (track_of_[static_cast<std::size_t>(i)] == kLeaving) {
+      track_of_[static_cast<std::size_t>(i)] = kUnassigned;
+      position_[static_cast<std::size_t>(i)] = -1;
+      released(i);
+    }
+  track.obs.assign(obs.begin(), obs.end());
   log_posterior_ += score - track.score;
   track.score = score;
 }
@@ -275,33 +327,128 @@ double Sampler::logExtension(std::int32_t from, std::span<const std::int32_t> ta
   return log_q;
 }
 
-std::int32_t Sampler::collectBirthStarts(std::vector<std::int32_t>* out) const {
-  if (out != nullptr) out->clear();
-  std::int32_t count = 0;
+void Sampler::touchFirst(std::int32_t first) {
+  if (!keep_sets_) return;
+  if (rebuild_merge_pairs_) return;
+  if (changed_firsts_.size() == change_capacity_) rebuild_merge_pairs_ = true;
+  else changed_firsts_.push_back(first);
+}
+
+void Sampler::touchSlot(std::int32_t slot) {
+  if (!keep_sets_) return;
+  if (rebuild_merge_pairs_) return;
+  if (changed_slots_.size() == change_capacity_) rebuild_merge_pairs_ = true;
+  else changed_slots_.push_back(slot);
+}
+
+void Sampler::taken(std::int32_t j) {
+  if (!keep_sets_) return;
+  // j was unassigned: a starting point iff it had a free successor; and it is no longer a free
+  // successor of its predecessors.
+  if (free_successors_[static_cast<std::size_t>(j)] > 0) birth_starts_.add(j, -1);
+  for (const std::int32_t i : predecessors(j))
+    if (--free_successors_[static_cast<std::size_t>(i)] == 0 && track_of_[static_cast<std::size_t>(i)] == kUnassigned)
+      birth_starts_.add(i, -1);
+}
+
+void Sampler::released(std::int32_t j) {
+  if (!keep_sets_) return;
+  if (free_successors_[static_cast<std::size_t>(j)] > 0) birth_starts_.add(j, 1);
+  for (const std::int32_t i : predecessors(j))
+    if (free_successors_[static_cast<std::size_t>(i)]++ == 0 && track_of_[static_cast<std::size_t>(i)] == kUnassigned)
+      birth_starts_.add(i, 1);
+}
+
+std::int32_t Sampler::birthStartCount() {
+  if (keep_sets_) return birth_starts_.total();
+  rescanned_starts_.clear();
   for (std::int32_t i = 0; i < problem_.size(); ++i) {
     if (track_of_[static_cast<std::size_t>(i)] >= 0) continue;
     for (const std::int32_t j : problem_.successors(i))
       if (track_of_[static_cast<std::size_t>(j)] < 0) {
-        ++count;
-        if (out != nullptr) out->push_back(i);
+        rescanned_starts_.push_back(i);
         break;
       }
   }
+  return static_cast<std::int32_t>(rescanned_starts_.size());
+}
+
+std::int32_t Sampler::pickBirthStart(std::int32_t k) {
+  return keep_sets_ ? birth_starts_.select(k).index : rescanned_starts_[static_cast<std::size_t>(k)];
+}
+
+std::int32_t Sampler::mergePairsFrom(std::int32_t slot) const {
+  if (slot >= track_count_) return 0;
+  std::int32_t count = 0;
+  for (const std::int32_t j : problem_.successors(tracks_[static_cast<std::size_t>(slot)].obs.back()))
+    if (track_of_[static_cast<std::size_t>(j)] >= 0 && position_[static_cast<std::size_t>(j)] == 0) ++count;
   return count;
 }
 
-std::int32_t Sampler::collectMergePairs(std::vector<std::array<std::int32_t, 2>>* out) const {
-  if (out != nullptr) out->clear();
-  std::int32_t count = 0;
+void Sampler::refreshMergePairs() {
+  const auto update = [this](std::int32_t slot) {
+    const std::int32_t now = mergePairsFrom(slot);
+    auto& was = pairs_of_slot_[static_cast<std::size_t>(slot)];
+    if (now != was) merge_pairs_.add(slot, now - was);
+    was = now;
+  };
+  if (rebuild_merge_pairs_) {
+    for (std::int32_t slot = 0; slot < merge_pairs_.size(); ++slot)
+      pairs_of_slot_[static_cast<std::size_t>(slot)] = mergePairsFrom(slot);
+    merge_pairs_.assign(pairs_of_slot_);
+    rebuild_merge_pairs_ = false;
+  } else {
+    // A slot's pairs depend on its last element and on which of that element's successors are
+    // first elements: a track whose end changed is a changed slot; one whose end stayed has its
+    // end among the predecessors of a first element that came or went.
+    for (const std::int32_t slot : changed_slots_) update(slot);
+    for (const std::int32_t first : changed_firsts_)
+      for (const std::int32_t p : predecessors(first)) {
+        const std::int32_t slot = track_of_[static_cast<std::size_t>(p)];
+        if (slot >= 0 && tracks_[static_cast<std::size_t>(slot)].obs.back() == p) update(slot);
+      }
+  }
+  changed_slots_.clear();
+  changed_firsts_.clear();
+}
+
+std::int32_t Sampler::mergePairCount() {
+  if (keep_sets_) {
+    refreshMergePairs();
+    return merge_pairs_.total();
+  }
+  rescanned_pairs_.clear();
   for (std::int32_t u = 0; u < track_count_; ++u)
     for (const std::int32_t j : problem_.successors(tracks_[static_cast<std::size_t>(u)].obs.back())) {
       const std::int32_t v = track_of_[static_cast<std::size_t>(j)];
-      if (v >= 0 && position_[static_cast<std::size_t>(j)] == 0) {
-        ++count;
-        if (out != nullptr) out->push_back({u, v});
-      }
+      if (v >= 0 && position_[static_cast<std::size_t>(j)] == 0) rescanned_pairs_.push_back({u, v});
     }
-  return count;
+  return static_cast<std::int32_t>(rescanned_pairs_.size());
+}
+
+std::array<std::int32_t, 2> Sampler::pickMergePair(std::int32_t k) {
+  if (!keep_sets_) return rescanned_pairs_[static_cast<std::size_t>(k)];
+  const auto [u, offset] = merge_pairs_.select(k);
+  std::int32_t left = offset;
+  for (const std::int32_t j : problem_.successors(tracks_[static_cast<std::size_t>(u)].obs.back()))
+    if (track_of_[static_cast<std::size_t>(j)] >= 0 && position_[static_cast<std::size_t>(j)] == 0 && left-- == 0)
+      return {u, track_of_[static_cast<std::size_t>(j)]};
+  throw std::logic_error("mcmcda: merge pair count out of step with the state");
+}
+
+std::vector<std::int32_t> Sampler::birthStarts() {
+  std::vector<std::int32_t> out;
+  for (std::int32_t k = 0; k < birthStartCount(); ++k) out.push_back(pickBirthStart(k));
+  return out;
+}
+
+std::vector<std::array<std::int32_t, 2>> Sampler::mergePairs() {
+  std::vector<std::array<std::int32_t, 2>> out;
+  for (std::int32_t k = 0; k < mergePairCount(); ++k) {
+    const auto [u, v] = pickMergePair(k);
+    out.push_back({tracks_[static_cast<std::size_t>(u)].obs.back(), tracks_[static_cast<std::size_t>(v)].obs.front()});
+  }
+  return out;
 }
 
 std::int32_t Sampler::countTracksAtLeast(std::size_t length) const {
@@ -361,9 +508,9 @@ void Sampler::birth(common::Stream& rng) {
   // Oh (TAC 2009): a new track starts at an unassigned observation that has an unassigned
   // candidate successor and grows by the extension process (at least one step).
   const std::int32_t K = track_count_;
-  const std::int32_t starts = collectBirthStarts(&scratch_list_);
+  const std::int32_t starts = birthStartCount();
   if (starts == 0) return;
-  const std::int32_t first = scratch_list_[rng.below(static_cast<std::uint64_t>(starts))];
+  const std::int32_t first = pickBirthStart(static_cast<std::int32_t>(rng.below(static_cast<std::uint64_t>(starts))));
   const auto unassigned = [this](std::int32_t j) { return track_of_[static_cast<std::size_t>(j)] < 0; };
   const double log_path = sampleExtension(first, true, unassigned, rng, tail_);
   target_a_.clear();
@@ -387,7 +534,7 @@ void Sampler::death(common::Stream& rng) {
   const double log_forward = logMoveProbability(Move::kDeath, K) - logCount(K);
   removeTrack(slot);
   const auto unassigned = [this](std::int32_t j) { return track_of_[static_cast<std::size_t>(j)] < 0; };
-  const std::int32_t starts = collectBirthStarts(nullptr);
+  const std::int32_t starts = birthStartCount();
   const double log_reverse = logMoveProbability(Move::kBirth, K - 1) - logCount(starts) +
                              logExtension(backup_a_.front(), std::span(backup_a_).subspan(1), true, unassigned);
   if (accept(-score + log_reverse - log_forward, rng))
@@ -416,7 +563,7 @@ void Sampler::split(common::Stream& rng) {
   const double log_forward = logMoveProbability(Move::kSplit, K) - logCount(eligible) - logCount(n - 3);
   setTrack(slot, target_a_, score_a);
   const std::int32_t added = addTrack(target_b_, score_b);
-  const double log_reverse = logMoveProbability(Move::kMerge, K + 1) - logCount(collectMergePairs(nullptr));
+  const double log_reverse = logMoveProbability(Move::kMerge, K + 1) - logCount(mergePairCount());
   if (accept(score_a + score_b - old_score + log_reverse - log_forward, rng)) {
     ++stats_.accepted[static_cast<std::size_t>(Move::kSplit)];
   } else {
@@ -427,9 +574,9 @@ void Sampler::split(common::Stream& rng) {
 
 void Sampler::merge(common::Stream& rng) {
   const std::int32_t K = track_count_;
-  const std::int32_t pairs = collectMergePairs(&scratch_pairs_);
+  const std::int32_t pairs = mergePairCount();
   if (pairs == 0) return;
-  const auto [u, v] = scratch_pairs_[rng.below(static_cast<std::uint64_t>(pairs))];
+  const auto [u, v] = pickMergePair(static_cast<std::int32_t>(rng.below(static_cast<std::uint64_t>(pairs))));
   const auto& first = tracks_[static_cast<std::size_t>(u)];
   const auto& second = tracks_[static_cast<std::size_t>(v)];
   backup_a_.assign(first.obs.begin(), first.obs.end());

@@ -1,5 +1,7 @@
 // Properties of the MCMCDA sampler beyond exactness: its iterations never allocate, its score
 // bookkeeping matches a fresh evaluation, and it is deterministic given the seed.
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
@@ -69,7 +71,7 @@ Problem busyProblem() {
 
 TEST_CASE("mcmcda sampler iterations do not allocate", "[mcmcda]") {
   const Problem problem = busyProblem();
-  Sampler sampler(problem);
+  Sampler sampler(problem, GENERATE(ProposalSets::kKept, ProposalSets::kRescan));
   common::Stream rng(1, common::Purpose::kTracker, 0, 0);
   sampler.run(2000, rng);  // away from the empty start
   // The counter must see an allocation, or the zero below would prove nothing.
@@ -109,6 +111,86 @@ TEST_CASE("mcmcda sampler is deterministic given the seed", "[mcmcda]") {
     return sampler.state();
   };
   CHECK(chain(5) == chain(5));
+}
+
+TEST_CASE("mcmcda sampler draws births and merges from exactly the sets a rescan of its state finds", "[mcmcda]") {
+  // Kept sets follow what each move changed; the definition on the partition is what they, and
+  // the sampler's own rescans, must match after every kind of move, accepted or undone.
+  const ProposalSets sets = GENERATE(ProposalSets::kKept, ProposalSets::kRescan);
+  const Problem problem = busyProblem();
+  Sampler sampler(problem, sets);
+  common::Stream rng(7, common::Purpose::kTracker, 0, 0);
+  // Every 25 rounds the tracks are cut in two, so that merges are accepted, not only births and
+  // deaths. Splits, reductions and switches are rarely accepted near the posterior's mode, but
+  // each rejected one has changed the state and undone it, which the sets must follow too.
+  const auto fragment = [&] {
+    Partition pieces;
+    for (const auto& track : sampler.state()) {
+      const std::size_t half = track.size() >= 4 ? track.size() / 2 : track.size();
+      pieces.emplace_back(track.begin(), track.begin() + static_cast<std::ptrdiff_t>(half));
+      if (half < track.size()) pieces.emplace_back(track.begin() + static_cast<std::ptrdiff_t>(half), track.end());
+    }
+    sampler.setState(pieces);
+  };
+  int checked_with_pairs = 0;
+  for (int round = 0; round < 400; ++round) {
+    if (round % 25 == 10) fragment();
+    sampler.run(1 + round % 7, rng);
+    const Partition state = sampler.state();
+    std::vector<std::int32_t> owner(static_cast<std::size_t>(problem.size()), -1);
+    std::vector<bool> first(static_cast<std::size_t>(problem.size()), false);
+    for (std::size_t k = 0; k < state.size(); ++k) {
+      for (const std::int32_t i : state[k]) owner[static_cast<std::size_t>(i)] = static_cast<std::int32_t>(k);
+      first[static_cast<std::size_t>(state[k].front())] = true;
+    }
+    std::vector<std::int32_t> starts;
+    for (std::int32_t i = 0; i < problem.size(); ++i) {
+      if (owner[static_cast<std::size_t>(i)] >= 0) continue;
+      for (const std::int32_t j : problem.successors(i))
+        if (owner[static_cast<std::size_t>(j)] < 0) {
+          starts.push_back(i);
+          break;
+        }
+    }
+    std::vector<std::array<std::int32_t, 2>> pairs;
+    for (const auto& track : state)
+      for (const std::int32_t j : problem.successors(track.back()))
+        if (first[static_cast<std::size_t>(j)]) pairs.push_back({track.back(), j});
+    INFO("round " << round);
+    REQUIRE(sampler.birthStarts() == starts);
+    auto drawn = sampler.mergePairs();
+    std::sort(drawn.begin(), drawn.end());
+    std::sort(pairs.begin(), pairs.end());
+    REQUIRE(drawn == pairs);
+    if (!pairs.empty()) ++checked_with_pairs;
+  }
+  CHECK(checked_with_pairs > 30);  // the merge sets were not all empty
+  const auto& stats = sampler.stats();
+  for (int move = 0; move < kMoveCount; ++move) {
+    INFO(moveName(static_cast<Move>(move)));
+    CHECK(stats.proposed[static_cast<std::size_t>(move)] > 50);
+  }
+  for (const Move move : {Move::kBirth, Move::kDeath, Move::kMerge, Move::kExtension, Move::kUpdate})
+    CHECK(stats.accepted[static_cast<std::size_t>(move)] > 0);
+}
+
+TEST_CASE("mcmcda sampler's chain is the same whether it keeps its proposal sets or rescans", "[mcmcda]") {
+  const Problem problem = busyProblem();
+  const auto chain = [&](ProposalSets sets) {
+    Sampler sampler(problem, sets);
+    common::Stream rng(11, common::Purpose::kTracker, 0, 0);
+    std::vector<Partition> states;
+    for (int round = 0; round < 30; ++round) {
+      sampler.run(200, rng);
+      states.push_back(sampler.state());
+    }
+    return std::pair(states, sampler.stats().accepted);
+  };
+  const auto kept = chain(ProposalSets::kKept);
+  const auto rescanned = chain(ProposalSets::kRescan);
+  CHECK(kept.first == rescanned.first);
+  CHECK(kept.second == rescanned.second);
+  CHECK(kept.first.back().size() >= 4);
 }
 
 namespace {
