@@ -266,6 +266,9 @@ struct RunConfig {
   std::uint64_t seed = 1;
   std::int32_t node_processes = 2;       ///< one sensor tile per node process
   std::int32_t max_ticks_in_flight = 3;  ///< back-pressure bound of the lockstep pipeline
+  /// Processes the supernodes run in (multi-process runs): each holds a group of consecutive
+  /// supernodes as threads on one DDS participant. 0: derived (supernodeProcesses()).
+  std::int32_t supernode_processes = 0;
   friend bool operator==(const RunConfig&, const RunConfig&) = default;
 };
 

@@ -399,6 +399,11 @@ const FieldTable<RunConfig>& run() {
                     "[1, 64], at most the number of 2 Rs cells over the region"),
           integer<C>("max_ticks_in_flight", &C::max_ticks_in_flight, 1, 64, "ticks",
                      "back-pressure bound of the lockstep pipeline"),
+          integer<C>("supernode_processes", &C::supernode_processes, 0, 1024, "processes",
+                     "processes the supernodes run in, each a group of consecutive supernodes sharing one DDS "
+                     "participant (a supernode the faults kill or pause runs alone). 0: one per supernode up to "
+                     "16 supernodes, else 16, as discovery grows with the participants. The results do not "
+                     "depend on it"),
       }};
   return table;
 }

@@ -56,18 +56,31 @@ void markInterrupted(ClusterResult& result) {
                    " before the last tick; the run directory is incomplete";
 }
 
-/// One role instance of the cluster, its host and its participant index there.
+/// One process of the cluster (or, in-process, one role thread): a role instance, or a group of
+/// `count` consecutive supernodes; its host and its participant index there.
 struct RoleSlot {
   std::string role;
-  std::uint32_t index = 0;
-  std::size_t host = 0;  ///< into HostPlan::hosts(); 0, the launcher's, on a single-host run
+  std::uint32_t index = 0;  ///< the first index of a group
+  std::size_t host = 0;     ///< into HostPlan::hosts(); 0, the launcher's, on a single-host run
   int participant_index = 0;
-  std::string name() const { return role + " " + std::to_string(index); }
+  std::uint32_t count = 1;
+  bool holds(std::uint32_t i) const { return i >= index && i < index + count; }
+  /// "supernode 3", or "supernode 0-3" for a group.
+  std::string name() const { return role + " " + indices("-"); }
+  /// The stem of its log file: "supernode-3", "supernode-0-3".
+  std::string logStem() const { return role + "-" + indices("-"); }
+
+ private:
+  std::string indices(const char* dash) const {
+    return std::to_string(index) + (count > 1 ? dash + std::to_string(index + count - 1) : "");
+  }
 };
 
-/// Every process of the cluster, numbered per host; `next_index[h]` ends as host h's count.
+/// Every process of the cluster, numbered per host; `next_index[h]` ends as host h's count. With
+/// `group_supernodes`, consecutive supernodes on one host share a process (supernodeProcesses),
+/// except those the scenario's faults kill or pause: the launcher enacts those on the process.
 std::vector<RoleSlot> clusterSlots(const common::Scenario& scenario, const HostPlan& hosts,
-                                   std::vector<int>* next_index = nullptr) {
+                                   std::vector<int>* next_index = nullptr, bool group_supernodes = true) {
   std::vector<RoleSlot> slots;
   std::vector<int> next(std::max<std::size_t>(hosts.hosts().size(), 1), 0);
   const auto add = [&](const std::string& role, std::uint32_t index) {
@@ -76,7 +89,21 @@ std::vector<RoleSlot> clusterSlots(const common::Scenario& scenario, const HostP
   };
   for (std::int32_t i = 0; i < scenario.run.node_processes; ++i) add("node", static_cast<std::uint32_t>(i));
   add("network", 0);
-  for (std::size_t j = 0; j < scenario.supernodes.size(); ++j) add("supernode", static_cast<std::uint32_t>(j));
+  const auto supernodes = static_cast<std::int32_t>(scenario.supernodes.size());
+  const std::int32_t group_size =
+      group_supernodes ? (supernodes + supernodeProcesses(scenario) - 1) / supernodeProcesses(scenario) : 1;
+  std::set<std::int32_t> alone;
+  for (const auto& fault : scenario.faults)
+    if (fault.stopsProcess() && fault.role == common::FaultRole::kSupernode) alone.insert(fault.index);
+  for (std::int32_t j = 0; j < supernodes; ++j) {
+    auto* group = slots.back().role == "supernode" ? &slots.back() : nullptr;
+    const auto index = static_cast<std::uint32_t>(j);
+    if (group != nullptr && static_cast<std::int32_t>(group->count) < group_size && !alone.contains(j) &&
+        !alone.contains(static_cast<std::int32_t>(group->index)) && hosts.hostOf("supernode", index) == group->host)
+      ++group->count;
+    else
+      add("supernode", index);
+  }
   add("aggregator", 0);
   if (next_index != nullptr) *next_index = next;
   return slots;
@@ -236,6 +263,10 @@ Spawned spawn(const RoleSlot& slot, const ClusterOptions& options, const std::st
     args.push_back("--index");
     args.push_back(std::to_string(slot.index));
   }
+  if (slot.count > 1) {
+    args.push_back("--count");
+    args.push_back(std::to_string(slot.count));
+  }
   if (first_tick > 1) {
     args.push_back("--first-tick");
     args.push_back(std::to_string(first_tick));
@@ -302,17 +333,24 @@ std::vector<RoleOutcome> initialOutcomes(const std::vector<RoleSlot>& slots, con
   for (std::size_t i = 0; i < slots.size(); ++i) {
     outcomes[i].name = slots[i].name();
     if (options.hosts.multiHost()) outcomes[i].host = options.hosts.hosts()[slots[i].host].name;
-    outcomes[i].log_path = options.run_dir + "/logs/" + slots[i].role + "-" + std::to_string(slots[i].index) + ".log";
+    outcomes[i].log_path = options.run_dir + "/logs/" + slots[i].logStem() + ".log";
   }
   return outcomes;
 }
 
-/// The slots of the supernodes, in index order.
+/// The slot of each supernode, in index order.
 std::vector<std::size_t> supernodeSlots(const std::vector<RoleSlot>& slots) {
   std::vector<std::size_t> supernode_slots;
   for (std::size_t i = 0; i < slots.size(); ++i)
-    if (slots[i].role == "supernode") supernode_slots.push_back(i);
+    if (slots[i].role == "supernode") supernode_slots.insert(supernode_slots.end(), slots[i].count, i);
   return supernode_slots;
+}
+
+/// Whether losing the process of `slot` by hand leaves a run that can go on: every role it holds.
+bool survivable(HandLosses& losses, const RoleSlot& slot) {
+  for (std::uint32_t k = 0; k < slot.count; ++k)
+    if (!losses.survivable(slot.role, slot.index + k)) return false;
+  return true;
 }
 
 /// The role processes the launcher started and has not reaped yet, with the lifelines of those on
@@ -391,7 +429,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
         outcome.message = "ended where the scenario's faults kill it";
         restarts.killed(slot_index);
       } else if (outcome.signal == SIGKILL && g_interrupt_signal.load() == 0 && result.failure.empty() &&
-                 hand_losses.survivable(slots[slot_index].role, slots[slot_index].index)) {
+                 survivable(hand_losses, slots[slot_index])) {
         // A deployment loses nodes and supernodes: the run goes on without this one.
         outcome.exit_code = 0;
         outcome.message = "killed by SIGKILL outside the scenario's faults; the cluster went on without it";
@@ -421,7 +459,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
       noteFirstTick(result, tick, started);
       for (const auto& f : faulted)
         for (const auto& [pid, slot] : running)
-          if (slots[slot].role == f.role && slots[slot].index == f.index && !remote(slot))
+          if (slots[slot].role == f.role && slots[slot].holds(f.index) && !remote(slot))
             fault_signals.announced(pid, f.role, f.index, f.tick);
       faulted.clear();
       fault_signals.progressed(tick);
@@ -429,13 +467,13 @@ ClusterResult runProcesses(const ClusterOptions& options) {
       progress.update(tick);
       reap(false);
       for (const std::size_t lost : lost_now)
-        observer.announceLost(slots[lost].role, slots[lost].index, result.outcomes[lost].message);
+        for (std::uint32_t k = 0; k < slots[lost].count; ++k)
+          observer.announceLost(slots[lost].role, slots[lost].index + k, result.outcomes[lost].message);
       lost_now.clear();
       for (const auto& [slot, first_tick] : restarts.due(tick)) {
         auto& outcome = result.outcomes[slot];
         outcome.message += ", restarted at tick " + std::to_string(first_tick);
-        outcome.log_path = options.run_dir + "/logs/" + slots[slot].role + "-" + std::to_string(slots[slot].index) +
-                           "-from-" + std::to_string(first_tick) + ".log";
+        outcome.log_path = options.run_dir + "/logs/" + slots[slot].logStem() + "-from-" + std::to_string(first_tick) + ".log";
         processes.start(slot, outcome.log_path, first_tick);
       }
       if (!failures.empty() && result.failure.empty()) result.failure = failures.front();
@@ -472,7 +510,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
 
 ClusterResult runThreads(const ClusterOptions& options) {
   ClusterResult result;
-  const auto slots = clusterSlots(options.scenario, options.hosts);
+  const auto slots = clusterSlots(options.scenario, options.hosts, nullptr, false);
   const auto started = Clock::now();
   // The first failure stops every role thread: their waits wake at once on the request.
   std::stop_source stop;
@@ -578,6 +616,13 @@ ClusterResult runThreads(const ClusterOptions& options) {
 int runExitStatus(const ClusterResult& result) {
   if (result.ok) return 0;
   return result.interrupted_by != 0 ? 128 + result.interrupted_by : 1;
+}
+
+std::int32_t supernodeProcesses(const common::Scenario& scenario) {
+  const auto supernodes = static_cast<std::int32_t>(scenario.supernodes.size());
+  const std::int32_t wanted =
+      scenario.run.supernode_processes > 0 ? scenario.run.supernode_processes : kDefaultSupernodeProcesses;
+  return std::max(1, std::min(wanted, supernodes));
 }
 
 /// Cyclone participants on each host: its role processes, and on the launcher's (0) its observer.

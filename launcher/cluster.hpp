@@ -94,6 +94,15 @@ inline constexpr int kMaxParticipants = 119;
 static_assert(2 * (kMaxParticipants + dds::kViewerSlots + 1) + 11 < 250 + 10,
               "viewer slots would reach the next domain's unicast ports");
 
+/// Supernode processes when the scenario leaves run.supernode_processes at 0: discovery grows
+/// with the participants (every one announces its endpoints to every other), and at 10^6 sensors
+/// 64 supernode processes took 12 s to start where 16 took 2.2 s (docs/PERFORMANCE.md).
+inline constexpr std::int32_t kDefaultSupernodeProcesses = 16;
+
+/// The processes the scenario's supernodes run in: run.supernode_processes, or when 0 one per
+/// supernode up to kDefaultSupernodeProcesses; never more than the supernodes.
+std::int32_t supernodeProcesses(const common::Scenario& scenario);
+
 /// Number of Cyclone participants of a run: every process plus the launcher's observer; on a run
 /// over several hosts, the most on any one host (participant indices and ports count per host).
 int participantCount(const common::Scenario& scenario, bool in_process, const HostPlan& hosts = {});

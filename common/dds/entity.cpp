@@ -119,6 +119,9 @@ Participant::Participant(dds_domainid_t domain, std::string identity)
     : Entity(check(dds_create_participant(domain, nullptr, nullptr), "dds_create_participant")),
       identity_(std::move(identity)) {}
 
+Participant::Participant(const Participant& shared, std::string identity)
+    : Entity(shared.handle()), identity_(std::move(identity)), owned_(false) {}
+
 dds_entity_t createTopic(const Participant& participant, const dds_topic_descriptor_t& descriptor,
                          std::size_t sample_size, const std::string& name) {
   if (descriptor.m_size != sample_size)

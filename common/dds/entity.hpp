@@ -50,6 +50,8 @@ class Entity {
     if (handle_ > 0) dds_delete(handle_);  // never throws: a destructor must not
     handle_ = 0;
   }
+  /// Lets go of the handle without deleting it (for a view of an entity another owner holds).
+  void release() noexcept { handle_ = 0; }
 
  private:
   dds_entity_t handle_ = 0;
@@ -106,10 +108,20 @@ class Domain : public Entity {
 class Participant : public Entity {
  public:
   explicit Participant(dds_domainid_t domain, std::string identity = "");
+  /// A view of `shared` under another identity: the role threads of one process (a group of
+  /// supernodes) share one participant, so that the run has fewer participants to discover. The
+  /// view deletes nothing; each role deletes its own endpoints, and `shared` must outlive it.
+  Participant(const Participant& shared, std::string identity);
+  Participant(const Participant&) = delete;
+  Participant& operator=(const Participant&) = delete;
+  ~Participant() {
+    if (!owned_) release();
+  }
   const std::string& identity() const { return identity_; }
 
  private:
   std::string identity_;
+  bool owned_ = true;
 };
 
 /// Binds a generated C sample type to its idlc descriptor. Specialised once per type, with a

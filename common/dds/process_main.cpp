@@ -107,6 +107,49 @@ void endWithStandardInput() {
   }).detach();
 }
 
+/// A group (--count) takes only indices the scenario has, and none whose process the scenario's
+/// faults kill or pause: those are enacted on the whole process.
+void checkGroup(const RoleContext& context, int count, const std::string& role) {
+  const auto last = static_cast<long long>(context.index) + count - 1;
+  const long long available = role == "supernode" ? context.shape.supernodes : context.shape.tiles;
+  if (last >= available)
+    throw std::invalid_argument("--index " + std::to_string(context.index) + " --count " + std::to_string(count) +
+                                " runs " + role + " " + std::to_string(last) + ", but the scenario has " +
+                                std::to_string(available));
+  for (const auto& fault : context.scenario.faults) {
+    const auto our_role = role == "supernode" ? common::FaultRole::kSupernode : common::FaultRole::kNode;
+    if (fault.stopsProcess() && fault.role == our_role && fault.index >= static_cast<std::int32_t>(context.index) &&
+        fault.index <= last)
+      throw std::invalid_argument("--count " + std::to_string(count) + ": the scenario's faults " + fault.describe() +
+                                  ", which needs a process of its own");
+  }
+}
+
+/// Runs roles index .. index + count - 1 as threads on one shared participant. The first failure
+/// stops the others and is the process's; the process fails if any role does.
+void runGroup(const RoleContext& context, int count, std::stop_source& stop_source, const std::string& role,
+              const RoleRunner& runner) {
+  const Participant shared(context.domain);
+  std::vector<std::string> errors(static_cast<std::size_t>(count));
+  {
+    std::vector<std::jthread> threads;
+    for (int k = 0; k < count; ++k)
+      threads.emplace_back([&, k] {
+        RoleContext member = context;
+        member.index = context.index + static_cast<std::uint32_t>(k);
+        member.shared_participant = &shared;
+        try {
+          runner(member);
+        } catch (const std::exception& error) {
+          errors[static_cast<std::size_t>(k)] = role + " " + std::to_string(member.index) + ": " + error.what();
+          stop_source.request_stop();
+        }
+      });
+  }
+  for (const auto& error : errors)
+    if (!error.empty()) throw std::runtime_error(error);
+}
+
 }  // namespace
 
 std::string readConfigTemplate(const std::string& run_dir) { return readConfigFile(run_dir + "/cyclonedds.xml"); }
@@ -126,6 +169,7 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
   context.role = role;
   int participant_index = 0;
   long long index = 0;
+  int count = 1;
   int domain = 0;
   std::string run_id_hex;
   double stall_timeout_s = 60.0;
@@ -157,7 +201,10 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
   if (indexed)
     options.add_options()("index", po::value(&index)->required(), "tile or supernode index of this process")(
         "first-tick", po::value(&context.first_tick)->default_value(1),
-        "the first tick this process takes part in: 1, or the tick of the scenario's `restart` of this supernode");
+        "the first tick this process takes part in: 1, or the tick of the scenario's `restart` of this supernode")(
+        "count", po::value(&count)->default_value(1),
+        "run indices --index .. --index + count - 1 as threads of this process on one shared DDS participant "
+        "(the launcher groups supernodes so that a large cluster has fewer participants to discover)");
 
   try {
     po::variables_map vm;
@@ -178,6 +225,9 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
     if (run_id_hex.empty() || error != std::errc() || stop != end)
       throw std::invalid_argument("--run-id must be a 64-bit hexadecimal number, got '" + run_id_hex + "'");
     if (index < 0 || index > 1000000) throw std::invalid_argument("--index must be in [0, 1000000]");
+    if (count < 1 || count > 1024) throw std::invalid_argument("--count must be in [1, 1024]");
+    if (count > 1 && context.first_tick != 1)
+      throw std::invalid_argument("--count above 1 with --first-tick: a restart brings back one supernode");
     context.index = static_cast<std::uint32_t>(index);
     if (context.shape.tiles < 1 || context.shape.tiles > 64) throw std::invalid_argument("--tiles must be in [1, 64]");
     if (participant_index < 0 || participant_index > 1000)
@@ -215,7 +265,12 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
                                     "restart of " + role + " " + std::to_string(context.index) + " at that tick");
     }
     Domain domain_handle(context.domain, cycloneConfigFor(readConfigFile(cyclone_config), participant_index));
-    runner(context);
+    if (count == 1) {
+      runner(context);
+      return 0;
+    }
+    checkGroup(context, count, role);
+    runGroup(context, count, stop_source, role, runner);
     return 0;
   } catch (const ScheduledDeath& death) {
     std::cerr << "wsntrack-" << role << " " << context.index << ": ended as the scenario's faults asked (" << death.what()

@@ -346,7 +346,9 @@ void runWithStatus(StatusPublisher& status, const std::function<void()>& body) {
 
 void runRole(const RoleContext& context,
              const std::function<void(const Participant&, const RunTopics&, StatusPublisher&)>& body) {
-  Participant participant(context.domain, roleIdentity(context.role, context.index, context.first_tick));
+  const std::string identity = roleIdentity(context.role, context.index, context.first_tick);
+  const Participant participant = context.shared_participant != nullptr ? Participant(*context.shared_participant, identity)
+                                                                        : Participant(context.domain, identity);
   RunTopics topics(participant);
   StatusPublisher status(participant, topics, context);
   status.starting();

@@ -116,6 +116,9 @@ struct RoleContext {
   /// The first tick this process takes part in: 1, or the tick of the scenario's `restart` that
   /// started it (a supernode that a kill took, back afresh).
   std::int32_t first_tick = 1;
+  /// A participant shared by the role threads of one process (a group of supernodes, started with
+  /// --count), or null: the role makes its own.
+  const Participant* shared_participant = nullptr;
 
   /// The scenario's faults as every role applies them (common/faults.hpp).
   common::FaultPlan faultPlan() const { return {scenario.faults, shape.tiles, shape.supernodes}; }
