@@ -90,6 +90,8 @@ Sampler::Sampler(const Problem& problem, ProposalSets sets)
   log_stop_ = std::log(problem.params().stop_probability);
   log_go_on_ = std::log1p(-problem.params().stop_probability);
   for (auto* buffer : {&tail_, &target_a_, &target_b_, &backup_a_, &backup_b_}) buffer->reserve(longest);
+  step_cost_.reserve(longest);
+  step_feasible_.reserve(longest);
   if (!keep_sets_) {
     rescanned_starts_.reserve(n);
     rescanned_pairs_.reserve(links);
@@ -666,15 +668,42 @@ double Sampler::logSingleTrackProposal(std::int32_t slot, std::span<const std::i
   if (common == n_target && n_target < n && n_target >= 2)
     total = logSumExp(total, logMoveProbability(Move::kReduction, K) - logCount(countTracksAtLeast(3)) -
                                  logCount(n - 2));
-  for (std::int32_t keep = 1; keep <= std::min(common, n - 1); ++keep) {
-    if (n_target < keep + 1) break;
-    const auto free = [this, slot, keep](std::int32_t j) {
-      const std::int32_t owner = track_of_[static_cast<std::size_t>(j)];
-      return owner < 0 || (owner == slot && position_[static_cast<std::size_t>(j)] >= keep);
-    };
-    total = logSumExp(total, logMoveProbability(Move::kUpdate, K) - logCount(K) - logCount(n - 1) +
-                                 logExtension(current[static_cast<std::size_t>(keep - 1)],
-                                              target.subspan(static_cast<std::size_t>(keep)), true, free));
+  // Update from cut `keep` re-extends current[keep - 1] = target[keep - 1] along target[keep..]:
+  // every cut's path is a suffix of target. Its free set (unassigned, or this track's own
+  // observations from position keep on) is the same for every cut on the candidates it looks at,
+  // which all come after current[keep - 1] in time and so, if this track's, at position >= keep:
+  // unassigned or this track's. So each step's terms are computed once, and each cut sums its
+  // suffix in the order logExtension would, giving the same value bit for bit.
+  const std::int32_t last_keep = std::min({common, n - 1, n_target - 1});
+  if (last_keep < 1) return total;
+  const auto free = [this, slot](std::int32_t j) {
+    const std::int32_t owner = track_of_[static_cast<std::size_t>(j)];
+    return owner < 0 || owner == slot;
+  };
+  const auto steps = static_cast<std::size_t>(n_target - 1);  // step m goes target[m] -> target[m + 1]
+  step_cost_.resize(steps);
+  step_feasible_.resize(steps);
+  for (std::size_t m = 0; m < steps; ++m) {
+    const std::int32_t from = target[m];
+    const std::int32_t next = target[m + 1];
+    step_feasible_[m] = free(next) && problem_.linked(from, next);
+    if (!step_feasible_[m]) continue;
+    const std::int32_t gaps = freeGaps(from, free);
+    step_cost_[m] = logCount(gaps) + logCount(counts_[static_cast<std::size_t>(problem_.tick(next) - problem_.tick(from))]);
+  }
+  const double stop = freeGaps(target.back(), free) > 0 ? log_stop_ : 0.0;
+  const double log_cut = logMoveProbability(Move::kUpdate, K) - logCount(K) - logCount(n - 1);
+  // Cuts whose path has an infeasible step add nothing: from the last infeasible step back.
+  std::int32_t first_feasible_keep = 1;
+  for (std::size_t m = 0; m < steps; ++m)
+    if (!step_feasible_[m]) first_feasible_keep = static_cast<std::int32_t>(m) + 2;
+  for (std::int32_t keep = first_feasible_keep; keep <= last_keep; ++keep) {
+    double log_q = 0.0;
+    for (auto m = static_cast<std::size_t>(keep - 1); m < steps; ++m) {
+      if (m != static_cast<std::size_t>(keep - 1)) log_q += log_go_on_;
+      log_q -= step_cost_[m];
+    }
+    total = logSumExp(total, log_cut + (log_q + stop));
   }
   return total;
 }
