@@ -120,8 +120,10 @@ void checkGroup(const RoleContext& context, int count, const std::string& role) 
     const auto our_role = role == "supernode" ? common::FaultRole::kSupernode : common::FaultRole::kNode;
     if (fault.stopsProcess() && fault.role == our_role && fault.index >= static_cast<std::int32_t>(context.index) &&
         fault.index <= last)
-      throw std::invalid_argument("--count " + std::to_string(count) + ": the scenario's faults " + fault.describe() +
-                                  ", which needs a process of its own");
+      throw std::invalid_argument("--index " + std::to_string(context.index) + " --count " + std::to_string(count) +
+                                  " groups " + role + " " + std::to_string(fault.index) +
+                                  ", which the scenario's faults stop (" + fault.describe() +
+                                  "): it needs a process of its own");
   }
 }
 
@@ -264,13 +266,10 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
         throw std::invalid_argument("--first-tick " + std::to_string(context.first_tick) + ": the scenario's faults have no "
                                     "restart of " + role + " " + std::to_string(context.index) + " at that tick");
     }
+    if (count > 1) checkGroup(context, count, role);
     Domain domain_handle(context.domain, cycloneConfigFor(readConfigFile(cyclone_config), participant_index));
-    if (count == 1) {
-      runner(context);
-      return 0;
-    }
-    checkGroup(context, count, role);
-    runGroup(context, count, stop_source, role, runner);
+    if (count == 1) runner(context);
+    else runGroup(context, count, stop_source, role, runner);
     return 0;
   } catch (const ScheduledDeath& death) {
     std::cerr << "wsntrack-" << role << " " << context.index << ": ended as the scenario's faults asked (" << death.what()

@@ -27,8 +27,9 @@ same_outputs() {
     cmp -s "$a/$f" "$b/$f" || fail "$f differs between $a and $b"
   done
   # The resolved scenario records the process layout, which is meant to differ; nothing else may.
-  diff <(grep -v 'node_processes:' "$a/scenario.yaml") <(grep -v 'node_processes:' "$b/scenario.yaml") >/dev/null \
-    || fail "scenario.yaml differs between $a and $b beyond run.node_processes"
+  diff <(grep -v -e 'node_processes:' -e 'supernode_processes:' "$a/scenario.yaml") \
+       <(grep -v -e 'node_processes:' -e 'supernode_processes:' "$b/scenario.yaml") >/dev/null \
+    || fail "scenario.yaml differs between $a and $b beyond the process layout"
   diff <(deterministic_metrics "$a") <(deterministic_metrics "$b") >/dev/null || fail "metrics.json differs between $a and $b"
 }
 
@@ -81,7 +82,13 @@ case "$case_name" in
     run_ok "$PWD/mp1" --seed 7 --nodes 1
     run_ok "$PWD/mp4" --seed 7 --nodes 4
     run_ok "$PWD/ip2" --seed 7 --nodes 2 --in-process
-    for other in mp1 mp4 ip2; do same_outputs "$PWD/mp2" "$PWD/$other"; done
+    # The four supernodes in one process, and two by two, on shared participants.
+    run_ok "$PWD/sp1" --seed 7 --nodes 2 --set run.supernode_processes=1
+    run_ok "$PWD/sp2" --seed 7 --nodes 2 --set run.supernode_processes=2
+    for other in mp1 mp4 ip2 sp1 sp2; do same_outputs "$PWD/mp2" "$PWD/$other"; done
+    [ "$(ls sp1/logs | grep -c '^supernode')" -eq 1 ] && [ -f sp1/logs/supernode-0-3.log ] \
+      && [ "$(ls sp2/logs | grep -c '^supernode')" -eq 2 ] && [ -f sp2/logs/supernode-2-3.log ] \
+      || { ls sp1/logs sp2/logs >&2; fail "the supernodes did not run in the groups asked for"; }
     [ "$(wc -l <"$PWD/mp2/tracks.csv")" -gt 50 ] || fail "suspiciously few track rows"
     grep -q '"eps_k"' "$PWD/mp2/metrics.json" || fail "metrics.json lacks eps_k"
     grep -q '"wall_s"' "$PWD/mp2/metrics.json" || fail "metrics.json lacks wall_s"
@@ -112,6 +119,12 @@ FAULTS
     run_ok "$PWD/mpf" --ticks 16
     run_ok "$PWD/ipf" --ticks 16 --nodes 2 --in-process
     same_outputs "$PWD/mpf" "$PWD/ipf"
+    # Four processes of four supernodes each, less those the faults stop, which run alone (the
+    # launcher kills and pauses whole processes): 0 | 1-4 | 5 | 6 | 7-10 | 11-14 | 15.
+    run_ok "$PWD/mpg" --ticks 16 --set run.supernode_processes=4
+    same_outputs "$PWD/mpf" "$PWD/mpg"
+    [ "$(cd mpg/logs && ls supernode-*.log | sort | tr '\n' ' ')" = "supernode-0.log supernode-1-4.log supernode-11-14.log supernode-15.log supernode-5-from-10.log supernode-5.log supernode-6.log supernode-7-10.log " ] \
+      || { ls mpg/logs >&2; fail "the supernodes did not run in the groups expected"; }
     grep -q "restart of supernode 5 at tick 10: 1 tracks taken back" "$PWD/mpf.stdout" || { cat "$PWD/mpf.stdout" >&2; fail "the restart took no track back"; }
     for name in scale_1e4 scale_1e6; do
       "$wsntrack" validate "$src/scenarios/$name.yaml" >/dev/null 2>&1 || fail "scenarios/$name.yaml does not validate"
@@ -195,7 +208,8 @@ EOF
     { sed '/^supernodes:/,/^$/d' "$scenario"; echo "supernodes:";
       for i in $(seq 0 119); do echo "  - {x: $((i % 12 * 8 + 4)), y: $((i / 12 * 8 + 4))}"; done; } >crowd.yaml
     "$wsntrack" validate crowd.yaml >/dev/null || fail "crowd.yaml should be a valid scenario"
-    "$wsntrack" run crowd.yaml --quiet --out "$PWD/crowd" >/dev/null 2>err.txt && fail "run accepted 125 participants"
+    "$wsntrack" run crowd.yaml --quiet --out "$PWD/crowd" --set run.supernode_processes=120 >/dev/null 2>err.txt \
+      && fail "run accepted 125 participants"
     grep -q "at most 119 DDS participants" err.txt || { cat err.txt >&2; fail "no clear message for too many processes"; }
     # A role executable started by hand with a malformed run id: exit 2 before any DDS.
     "$bin/wsntrack-node" --run-dir "$PWD" --run-id 12zz --domain 1 --participant-index 0 --tiles 2 --index 0 \
@@ -207,6 +221,16 @@ EOF
       --first-tick 50 >/dev/null 2>err.txt; rc=$?
     [ "$rc" -eq 1 ] && grep -q -- "--first-tick 50: the scenario's faults have no restart of supernode 1 at that tick" err.txt ||
       { cat err.txt >&2; fail "wsntrack-supernode took a --first-tick without a restart (exit $rc)"; }
+    # A group of supernodes past the scenario's, or holding one the faults kill: refused before any DDS.
+    "$bin/wsntrack-supernode" --run-dir "$PWD/by_hand" --run-id 12 --domain 1 --participant-index 0 --tiles 2 --index 2 \
+      --count 3 >/dev/null 2>err.txt; rc=$?
+    [ "$rc" -eq 1 ] && grep -q -- "--index 2 --count 3 runs supernode 4, but the scenario has 4" err.txt ||
+      { cat err.txt >&2; fail "wsntrack-supernode took a group past the scenario's supernodes (exit $rc)"; }
+    cp "$src/scenarios/oh_quadrants_faults.yaml" by_hand/scenario.yaml
+    "$bin/wsntrack-supernode" --run-dir "$PWD/by_hand" --run-id 12 --domain 1 --participant-index 0 --tiles 2 --index 0 \
+      --count 3 >/dev/null 2>err.txt; rc=$?
+    [ "$rc" -eq 1 ] && grep -q -- "--index 0 --count 3 groups supernode 2, which the scenario's faults stop (kill of supernode 2 at tick 40): it needs a process of its own" err.txt ||
+      { cat err.txt >&2; fail "wsntrack-supernode grouped a supernode the faults stop (exit $rc)"; }
     no_leftovers ;;
   stale_drops)
     # A short window and long delays: the supernodes' stale drops, summed by the aggregator, are
