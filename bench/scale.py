@@ -37,7 +37,7 @@ def parse_summary(text):
     rss = {}
     line = re.search(r"peak RSS per process \(MiB\):(.*)$", text, re.M)
     if line:
-        for name, value in re.findall(r"\s*([a-z]+) \d+ ([0-9.]+);", line.group(1)):
+        for name, value in re.findall(r"\s*([a-z]+) [0-9-]+(?:@\S+)? ([0-9.]+);", line.group(1)):
             rss[name] = max(rss.get(name, 0.0), float(value))
     return {"startup_s": seconds("start-up (to tick 1)"), "loop_s": seconds("wall time (tick loop)"),
             "ticks_per_s": float(ticks_per_s.group(1)) if ticks_per_s else None, "rss": rss}

@@ -117,11 +117,11 @@ Problem::Problem(const ModelParams& params, std::vector<ProblemObservation> obse
 void Problem::buildSuccessors() {
   // Candidate successors (Oh: an observation at t + d within d * v-bar of one at t, d <= d-bar),
   // built once per problem so that no move searches for them. Each tick's observations are binned
-  // into vertical bands of width v-bar and sorted by y within a band, so the candidates of i at
-  // t + d are found in the 2d + 1 bands around x_i by a binary search for |y - y_i| <= d * v-bar,
-  // instead of a scan of the whole tick: the aggregator's window over a city holds thousands of
-  // elements per tick, of which a handful are in reach (at 10^6 sensors an x strip alone held 16
-  // times the candidates it linked).
+  // into vertical bands of width d-bar * v-bar (the farthest reach) and sorted by y within a band,
+  // so the candidates of i at t + d are found in the two or three bands that |x - x_i| <= d * v-bar
+  // touches, by a binary search for |y - y_i| <= d * v-bar, instead of a scan of the whole tick:
+  // the aggregator's window over a city holds thousands of elements per tick, of which a handful
+  // are in reach (at 10^6 sensors an x strip alone held 16 times the candidates it linked).
   const std::int32_t n = size();
   const std::int32_t dbar = params_.max_gap;
   succ_start_.assign(static_cast<std::size_t>(n) * static_cast<std::size_t>(dbar) + 1, 0);
@@ -136,20 +136,26 @@ void Problem::buildSuccessors() {
   }
   // At most kMaxBands bands, however small v-bar is against the spread of the observations.
   constexpr double kMaxBands = 4096.0;
-  const double width = std::max({params_.max_speed, (x_max - x_min) / kMaxBands, 1e-9});
+  const double width = std::max({params_.max_speed * dbar, (x_max - x_min) / kMaxBands, 1e-9});
   const auto band_of = [&](double x) {
     const double band = std::floor((x - x_min) / width);
     return std::isfinite(band) ? static_cast<std::int32_t>(std::clamp(band, 0.0, kMaxBands)) : 0;
   };
   const std::int32_t bands = band_of(x_max) + 1;
+  // Each entry carries what the link test reads, so the search stays in this array.
   struct Entry {
     std::int32_t band;
     double y;
     std::int32_t index;
+    double x;
+    bool anchor;
   };
   std::vector<Entry> entries;  // by tick, then band, then y
   entries.reserve(static_cast<std::size_t>(n));
-  for (std::int32_t j = 0; j < n; ++j) entries.push_back({band_of(observation(j).x), observation(j).y, j});
+  for (std::int32_t j = 0; j < n; ++j) {
+    const auto& o = observation(j);
+    entries.push_back({band_of(o.x), o.y, j, o.x, o.anchor});
+  }
   // Indices ascend with tick, so sorting each tick's run keeps the ticks in order.
   std::vector<std::size_t> tick_begin(span + 1, 0);
   for (std::int32_t j = 0; j < n; ++j) ++tick_begin[static_cast<std::size_t>(tick(j) - first_tick) + 1];
@@ -170,20 +176,22 @@ void Problem::buildSuccessors() {
   std::vector<std::int32_t> found;
   for (std::int32_t i = 0; i < n; ++i) {
     const auto& o = observation(i);
-    const std::int32_t band = band_of(o.x);
     for (std::int32_t d = 1; d <= dbar; ++d) {
       const auto t = static_cast<std::size_t>(tick(i) + d - first_tick);
       if (t < span) {
         const double reach = params_.max_speed * d;
-        const std::int32_t reach_bands = static_cast<std::int32_t>(std::ceil(reach / width));
         found.clear();
-        for (std::int32_t b = std::max(0, band - reach_bands); b <= std::min(bands - 1, band + reach_bands); ++b) {
+        for (std::int32_t b = band_of(o.x - reach); b <= std::min(bands - 1, band_of(o.x + reach)); ++b) {
           const std::size_t row = t * static_cast<std::size_t>(bands + 1) + static_cast<std::size_t>(b);
           auto it = std::lower_bound(entries.begin() + static_cast<std::ptrdiff_t>(band_begin[row]),
                                      entries.begin() + static_cast<std::ptrdiff_t>(band_begin[row + 1]), o.y - reach,
                                      [](const Entry& e, double y) { return e.y < y; });
-          for (; it != entries.begin() + static_cast<std::ptrdiff_t>(band_begin[row + 1]) && it->y <= o.y + reach; ++it)
-            if (linked(i, it->index)) found.push_back(it->index);
+          // linked(i, j) with the gap known to be d: not an anchor, within d * v-bar.
+          for (; it != entries.begin() + static_cast<std::ptrdiff_t>(band_begin[row + 1]) && it->y <= o.y + reach; ++it) {
+            const double dx = it->x - o.x;
+            const double dy = it->y - o.y;
+            if (!it->anchor && dx * dx + dy * dy <= reach * reach) found.push_back(it->index);
+          }
         }
         std::sort(found.begin(), found.end());  // index order, as the moves expect
         succ_.insert(succ_.end(), found.begin(), found.end());
