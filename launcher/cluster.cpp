@@ -25,6 +25,7 @@
 #include "aggregator/role.hpp"
 #include "common/dds/cyclone_config.hpp"
 #include "common/faults.hpp"
+#include "common/printable.hpp"
 #include "common/dds/entity.hpp"
 #include "common/dds/process_main.hpp"
 #include "common/dds/role_runtime.hpp"
@@ -188,14 +189,17 @@ class StatusObserver {
     std::int32_t tick = 0;
   };
 
-  /// Waits up to `timeout` for status samples; returns the aggregator's latest tick and
-  /// collects failure messages and the roles that announced a fault.
-  void poll(std::chrono::milliseconds timeout, std::int32_t& aggregator_tick, std::vector<std::string>& failures,
-            std::vector<Faulted>& faulted) {
+  /// Waits up to `timeout` for status samples; returns the aggregator's latest tick and collects
+  /// the roles that announced a fault and, by role name ("supernode 2"), the messages of FAILED
+  /// samples, made printable. A FAILED sample is only a claim: anything on the domain can write
+  /// one, so the run fails when the named process does, and the message then says why.
+  void poll(std::chrono::milliseconds timeout, std::int32_t& aggregator_tick,
+            std::map<std::string, std::string>& failed_messages, std::vector<Faulted>& faulted) {
     waitset_.wait(timeout);
     reader_.take([&](const wsn_msg_ProcessStatus& s) {
       if (s.run_id != run_id_) return;
-      if (s.state == wsn_msg_FAILED) failures.push_back(std::string(s.role) + " " + std::to_string(s.index) + ": " + s.message);
+      if (s.state == wsn_msg_FAILED)
+        failed_messages.emplace(common::printable(s.role) + " " + std::to_string(s.index), common::printable(s.message));
       if (s.state == wsn_msg_FAULTED) faulted.push_back({s.role, s.index, s.tick});
       if (std::strcmp(s.role, "aggregator") == 0 && (s.state == wsn_msg_RUNNING || s.state == wsn_msg_DONE))
         aggregator_tick = std::max(aggregator_tick, s.tick);
@@ -407,6 +411,16 @@ ClusterResult runProcesses(const ClusterOptions& options) {
   auto stopAll = [&](int signal_number) { fault_signals.continueAll(); processes.signalAll(signal_number); };
   std::vector<std::size_t> lost_now;  // slots lost by hand since the last announcement
   HandLosses hand_losses(options.scenario);
+  std::map<std::string, std::string> failed_messages;  // role name -> its FAILED sample's message
+  // What the roles of a failed process said of their failure, when they said it (a role's own
+  // message names it; in a group, each is named).
+  const auto saidWhy = [&](const RoleSlot& slot) {
+    std::string why;
+    for (std::uint32_t k = 0; k < slot.count; ++k)
+      if (const auto it = failed_messages.find(slot.role + " " + std::to_string(slot.index + k)); it != failed_messages.end())
+        why += (why.empty() ? ": " : "; ") + (slot.count > 1 ? it->first + ": " : "") + it->second;
+    return why;
+  };
   auto reap = [&](bool block) {
     int status = 0;
     struct rusage usage {};
@@ -438,8 +452,8 @@ ClusterResult runProcesses(const ClusterOptions& options) {
       // After an interrupt the roles stop because they were told to (a terminal's Ctrl-C reaches
       // every process of the group): their exit codes say nothing about a fault.
       else if (outcome.exit_code != 0 && result.failure.empty() && g_interrupt_signal.load() == 0)
-        result.failure = outcome.name + " " + exitDescription(outcome) + startedBy(slots[slot_index], options) + "; log " +
-                         outcome.log_path + ":\n" + tailOf(outcome.log_path, 8);
+        result.failure = outcome.name + " " + exitDescription(outcome) + startedBy(slots[slot_index], options) +
+                         saidWhy(slots[slot_index]) + "; log " + outcome.log_path + ":\n" + tailOf(outcome.log_path, 8);
       if (block) break;
     }
   };
@@ -451,11 +465,10 @@ ClusterResult runProcesses(const ClusterOptions& options) {
 
     ProgressDisplay progress(options.scenario.run.ticks, options.show_progress);
     std::int32_t tick = 0;
-    std::vector<std::string> failures;
     std::vector<StatusObserver::Faulted> faulted;
     while (!running.empty() && result.failure.empty()) {
       // 50 ms: a process lost by hand is announced within that (plus its tick in flight).
-      observer.poll(std::chrono::milliseconds(50), tick, failures, faulted);
+      observer.poll(std::chrono::milliseconds(50), tick, failed_messages, faulted);
       noteFirstTick(result, tick, started);
       for (const auto& f : faulted)
         for (const auto& [pid, slot] : running)
@@ -476,7 +489,6 @@ ClusterResult runProcesses(const ClusterOptions& options) {
         outcome.log_path = options.run_dir + "/logs/" + slots[slot].logStem() + "-from-" + std::to_string(first_tick) + ".log";
         processes.start(slot, outcome.log_path, first_tick);
       }
-      if (!failures.empty() && result.failure.empty()) result.failure = failures.front();
       if (g_interrupt_signal.load() != 0) markInterrupted(result);
       if (Clock::now() - options.started > options.timeout)
         result.failure = "timed out after " + std::to_string(options.timeout.count()) + " s";
@@ -570,11 +582,12 @@ ClusterResult runThreads(const ClusterOptions& options) {
     }
     ProgressDisplay progress(options.scenario.run.ticks, options.show_progress);
     std::int32_t tick = 0;
-    std::vector<std::string> failures;
+    // A role thread's failure reaches the launcher as its exception, never as a sample.
+    std::map<std::string, std::string> failed_messages;
     std::vector<StatusObserver::Faulted> faulted;  // role threads enact their faults themselves
     std::optional<Clock::time_point> stop_seen;
     while (finished.load() < slots.size()) {
-      observer.poll(std::chrono::milliseconds(200), tick, failures, faulted);
+      observer.poll(std::chrono::milliseconds(200), tick, failed_messages, faulted);
       noteFirstTick(result, tick, started);
       // A role thread still in set-up (a topology or truth of 10^7 items being built) cannot see
       // the stop request, and a thread cannot be killed: after the same grace a process gets

@@ -22,6 +22,7 @@
 #include "common/dds/entity.hpp"
 #include "common/dds/process_main.hpp"
 #include "common/dds/role_runtime.hpp"
+#include "common/printable.hpp"
 #include "launcher/run_description.hpp"
 #include "launcher/run_directory.hpp"
 #include "launcher/watch_state.hpp"
@@ -256,7 +257,7 @@ class Watcher {
 
       status_reader.take([&](const wsn_msg_ProcessStatus& s) {
         if (s.run_id != run_.identity.run_id) return;
-        state.onStatus({s.role, s.index, processState(s.state), s.tick, s.message}, now);
+        state.onStatus({common::printable(s.role), s.index, processState(s.state), s.tick, common::printable(s.message)}, now);
       });
       track_reader.take([&](const wsn_msg_GlobalTrackBatch& batch) {
         if (batch.run_id != run_.identity.run_id) return;

@@ -233,8 +233,9 @@ void waitForClusterReady(const Participant& participant, const RunTopics& topics
     waitset.wait(until(deadline));  // status samples and a stop request wake it
     throwIfStopped(context);
     reader.take([&](const wsn_msg_ProcessStatus& s) {
-      if (s.run_id != context.run_id) return;
-      if (s.state == wsn_msg_FAILED) throw RoleAborted(std::string(s.role) + " failed: " + s.message);
+      // A FAILED sample is only a claim (any program on the domain can write one): a role that
+      // really failed ends its process or thread, and the launcher stops the others.
+      if (s.run_id != context.run_id || s.state == wsn_msg_FAILED) return;
       if (s.state != wsn_msg_STARTING) ready.emplace(s.role, s.index);
     });
   }

@@ -399,6 +399,24 @@ PY
     grep -q "restart of supernode 2 at tick 80: [1-9][0-9]* tracks taken back" mp.stdout ||
       { cat mp.stdout >&2; fail "the summary does not report the restart"; }
     no_leftovers ;;
+  fake_status)
+    # A program that is not a role claims, with terminal escapes, that supernode 1 FAILED: the
+    # launcher waits for supernode 1's process to fail, which it does not, so the run completes
+    # with the outputs of an undisturbed run, and nothing prints the escape byte.
+    "$wsntrack" run "$scenario" --seed 3 --tick-interval 0.05 --no-plot --out "$PWD/r" >r.stdout 2>r.stderr & launcher=$!
+    for _ in $(seq 1 300); do grep -q '"status": "running"' r/run.json 2>/dev/null && break; sleep 0.1; done
+    domain=$(sed -n 's/^  "domain": \([0-9]*\),$/\1/p' r/run.json); run_id=$(run_json "$PWD/r" run_id)
+    viewer=$(sed -n 's/.*"viewer_participant_indices": \[\([0-9]*\),.*/\1/p' r/run.json)
+    [ -n "$domain" ] && [ -n "$run_id" ] && [ -n "$viewer" ] || { cat r/run.json >&2; fail "run.json lacks domain, run_id or viewer slots"; }
+    CYCLONEDDS_URI="file://$PWD/r/cyclonedds.xml" WSN_PARTICIPANT_INDEX="$viewer" timeout 60 "$bin/wsn_fake_status" \
+      "$domain" "$run_id" supernode 1 $'\e[2J\e[31mboom\e[0m' >fake.out 2>fake.err || { cat fake.err >&2; fail "the fake status was not written"; }
+    grep -q "wrote a FAILED status for supernode 1 to [1-9]" fake.out || { cat fake.out >&2; fail "no reader took the fake status"; }
+    wait_bounded "$launcher" 120
+    [ "$rc" -eq 0 ] || { cat r.stderr >&2; fail "a fake FAILED status ended the run (exit $rc)"; }
+    run_ok "$PWD/clean" --seed 3 --no-plot
+    same_outputs "$PWD/r" "$PWD/clean"
+    ! grep -q $'\e' r.stdout r.stderr r/logs/*.log || fail "an escape byte from the fake status reached the output"
+    no_leftovers ;;
   stopped_role)
     # SIGSTOP of one supernode (by hand, not by the scenario). Stopped for 3 s, well inside its DDS
     # lease, it is re-admitted: the run completes with the outputs of a run nobody stopped. Stopped
