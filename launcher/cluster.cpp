@@ -350,6 +350,16 @@ std::vector<std::size_t> supernodeSlots(const std::vector<RoleSlot>& slots) {
   return supernode_slots;
 }
 
+/// What the roles of a failed process said of their failure in FAILED samples, when they said it:
+/// ": why" (a role's own message names it; in a group, each is named), or nothing.
+std::string saidWhy(const std::map<std::string, std::string>& failed_messages, const RoleSlot& slot) {
+  std::string why;
+  for (std::uint32_t k = 0; k < slot.count; ++k)
+    if (const auto it = failed_messages.find(slot.role + " " + std::to_string(slot.index + k)); it != failed_messages.end())
+      why += (why.empty() ? ": " : "; ") + (slot.count > 1 ? it->first + ": " : "") + it->second;
+  return why;
+}
+
 /// Whether losing the process of `slot` by hand leaves a run that can go on: every role it holds.
 bool survivable(HandLosses& losses, const RoleSlot& slot) {
   for (std::uint32_t k = 0; k < slot.count; ++k)
@@ -412,15 +422,6 @@ ClusterResult runProcesses(const ClusterOptions& options) {
   std::vector<std::size_t> lost_now;  // slots lost by hand since the last announcement
   HandLosses hand_losses(options.scenario);
   std::map<std::string, std::string> failed_messages;  // role name -> its FAILED sample's message
-  // What the roles of a failed process said of their failure, when they said it (a role's own
-  // message names it; in a group, each is named).
-  const auto saidWhy = [&](const RoleSlot& slot) {
-    std::string why;
-    for (std::uint32_t k = 0; k < slot.count; ++k)
-      if (const auto it = failed_messages.find(slot.role + " " + std::to_string(slot.index + k)); it != failed_messages.end())
-        why += (why.empty() ? ": " : "; ") + (slot.count > 1 ? it->first + ": " : "") + it->second;
-    return why;
-  };
   auto reap = [&](bool block) {
     int status = 0;
     struct rusage usage {};
@@ -453,7 +454,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
       // every process of the group): their exit codes say nothing about a fault.
       else if (outcome.exit_code != 0 && result.failure.empty() && g_interrupt_signal.load() == 0)
         result.failure = outcome.name + " " + exitDescription(outcome) + startedBy(slots[slot_index], options) +
-                         saidWhy(slots[slot_index]) + "; log " + outcome.log_path + ":\n" + tailOf(outcome.log_path, 8);
+                         saidWhy(failed_messages, slots[slot_index]) + "; log " + outcome.log_path + ":\n" + tailOf(outcome.log_path, 8);
       if (block) break;
     }
   };
