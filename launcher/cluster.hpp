@@ -96,7 +96,8 @@ static_assert(2 * (kMaxParticipants + dds::kViewerSlots + 1) + 11 < 250 + 10,
 
 /// Supernode processes when the scenario leaves run.supernode_processes at 0: discovery grows
 /// with the participants (every one announces its endpoints to every other), and at 10^6 sensors
-/// 64 supernode processes took 12 s to start where 16 took 2.2 s (docs/PERFORMANCE.md).
+/// 64 supernode processes took 12-13 s to start where 16 processes of 4 took 2.3 s (medians of 3,
+/// docs/PERFORMANCE.md).
 inline constexpr std::int32_t kDefaultSupernodeProcesses = 16;
 
 /// The processes the scenario's supernodes run in: run.supernode_processes, or when 0 one per

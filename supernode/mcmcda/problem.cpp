@@ -183,15 +183,12 @@ void Problem::buildSuccessors() {
         found.clear();
         for (std::int32_t b = band_of(o.x - reach); b <= std::min(bands - 1, band_of(o.x + reach)); ++b) {
           const std::size_t row = t * static_cast<std::size_t>(bands + 1) + static_cast<std::size_t>(b);
-          auto it = std::lower_bound(entries.begin() + static_cast<std::ptrdiff_t>(band_begin[row]),
-                                     entries.begin() + static_cast<std::ptrdiff_t>(band_begin[row + 1]), o.y - reach,
+          const auto end = entries.begin() + static_cast<std::ptrdiff_t>(band_begin[row + 1]);
+          auto it = std::lower_bound(entries.begin() + static_cast<std::ptrdiff_t>(band_begin[row]), end, o.y - reach,
                                      [](const Entry& e, double y) { return e.y < y; });
           // linked(i, j) with the gap known to be d: not an anchor, within d * v-bar.
-          for (; it != entries.begin() + static_cast<std::ptrdiff_t>(band_begin[row + 1]) && it->y <= o.y + reach; ++it) {
-            const double dx = it->x - o.x;
-            const double dy = it->y - o.y;
-            if (!it->anchor && dx * dx + dy * dy <= reach * reach) found.push_back(it->index);
-          }
+          for (; it != end && it->y <= o.y + reach; ++it)
+            if (!it->anchor && withinReach(it->x - o.x, it->y - o.y, reach)) found.push_back(it->index);
         }
         std::sort(found.begin(), found.end());  // index order, as the moves expect
         succ_.insert(succ_.end(), found.begin(), found.end());

@@ -107,11 +107,10 @@ class Problem {
     const auto& b = observations_[static_cast<std::size_t>(j)];
     const std::int32_t gap = b.tick - a.tick;
     if (b.anchor || gap < 1 || gap > params_.max_gap) return false;
-    const double reach = params_.max_speed * gap;
-    const double dx = b.x - a.x;
-    const double dy = b.y - a.y;
-    return dx * dx + dy * dy <= reach * reach;
+    return withinReach(b.x - a.x, b.y - a.y, params_.max_speed * gap);
   }
+  /// The distance test of linked(): an offset (dx, dy) within `reach`.
+  static bool withinReach(double dx, double dy, double reach) { return dx * dx + dy * dy <= reach * reach; }
   /// Candidate successors of i at gap d (1 <= d <= d-bar), in index order.
   std::span<const std::int32_t> successors(std::int32_t i, std::int32_t gap) const {
     const std::size_t k = static_cast<std::size_t>(i * params_.max_gap + gap);

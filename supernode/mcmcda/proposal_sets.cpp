@@ -7,18 +7,10 @@
 
 namespace wsn::supernode::mcmcda {
 
-void Sampler::touchFirst(std::int32_t first) {
-  if (!keep_sets_) return;
-  if (rebuild_merge_pairs_) return;
-  if (changed_firsts_.size() == change_capacity_) rebuild_merge_pairs_ = true;
-  else changed_firsts_.push_back(first);
-}
-
-void Sampler::touchSlot(std::int32_t slot) {
-  if (!keep_sets_) return;
-  if (rebuild_merge_pairs_) return;
-  if (changed_slots_.size() == change_capacity_) rebuild_merge_pairs_ = true;
-  else changed_slots_.push_back(slot);
+void Sampler::noteChange(std::vector<std::int32_t>& changes, std::int32_t item) {
+  if (!keep_sets_ || rebuild_merge_pairs_) return;
+  if (changes.size() == change_capacity_) rebuild_merge_pairs_ = true;
+  else changes.push_back(item);
 }
 
 void Sampler::taken(std::int32_t j) {
@@ -61,7 +53,7 @@ std::int32_t Sampler::mergePairsFrom(std::int32_t slot) const {
   if (slot >= track_count_) return 0;
   std::int32_t count = 0;
   for (const std::int32_t j : problem_.successors(tracks_[static_cast<std::size_t>(slot)].obs.back()))
-    if (track_of_[static_cast<std::size_t>(j)] >= 0 && position_[static_cast<std::size_t>(j)] == 0) ++count;
+    if (startsTrack(j)) ++count;
   return count;
 }
 
@@ -99,10 +91,8 @@ std::int32_t Sampler::mergePairCount() {
   }
   rescanned_pairs_.clear();
   for (std::int32_t u = 0; u < track_count_; ++u)
-    for (const std::int32_t j : problem_.successors(tracks_[static_cast<std::size_t>(u)].obs.back())) {
-      const std::int32_t v = track_of_[static_cast<std::size_t>(j)];
-      if (v >= 0 && position_[static_cast<std::size_t>(j)] == 0) rescanned_pairs_.push_back({u, v});
-    }
+    for (const std::int32_t j : problem_.successors(tracks_[static_cast<std::size_t>(u)].obs.back()))
+      if (startsTrack(j)) rescanned_pairs_.push_back({u, track_of_[static_cast<std::size_t>(j)]});
   return static_cast<std::int32_t>(rescanned_pairs_.size());
 }
 
@@ -111,20 +101,22 @@ std::array<std::int32_t, 2> Sampler::pickMergePair(std::int32_t k) {
   const auto [u, offset] = merge_pairs_.select(k);
   std::int32_t left = offset;
   for (const std::int32_t j : problem_.successors(tracks_[static_cast<std::size_t>(u)].obs.back()))
-    if (track_of_[static_cast<std::size_t>(j)] >= 0 && position_[static_cast<std::size_t>(j)] == 0 && left-- == 0)
+    if (startsTrack(j) && left-- == 0)
       return {u, track_of_[static_cast<std::size_t>(j)]};
   throw std::logic_error("mcmcda: merge pair count out of step with the state");
 }
 
 std::vector<std::int32_t> Sampler::birthStarts() {
   std::vector<std::int32_t> out;
-  for (std::int32_t k = 0; k < birthStartCount(); ++k) out.push_back(pickBirthStart(k));
+  const std::int32_t count = birthStartCount();
+  for (std::int32_t k = 0; k < count; ++k) out.push_back(pickBirthStart(k));
   return out;
 }
 
 std::vector<std::array<std::int32_t, 2>> Sampler::mergePairs() {
   std::vector<std::array<std::int32_t, 2>> out;
-  for (std::int32_t k = 0; k < mergePairCount(); ++k) {
+  const std::int32_t count = mergePairCount();
+  for (std::int32_t k = 0; k < count; ++k) {
     const auto [u, v] = pickMergePair(k);
     out.push_back({tracks_[static_cast<std::size_t>(u)].obs.back(), tracks_[static_cast<std::size_t>(v)].obs.front()});
   }

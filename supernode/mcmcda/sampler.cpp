@@ -171,8 +171,8 @@ std::int32_t Sampler::addTrack(std::span<const std::int32_t> obs, double score) 
   auto& track = tracks_[static_cast<std::size_t>(slot)];
   track.obs.assign(obs.begin(), obs.end());
   track.score = score;
-  touchFirst(obs.front());
-  touchSlot(slot);
+  noteChange(changed_firsts_, obs.front());
+  noteChange(changed_slots_, slot);
   for (std::size_t m = 0; m < obs.size(); ++m) {
     track_of_[static_cast<std::size_t>(obs[m])] = slot;
     position_[static_cast<std::size_t>(obs[m])] = static_cast<std::int32_t>(m);
@@ -184,9 +184,9 @@ std::int32_t Sampler::addTrack(std::span<const std::int32_t> obs, double score) 
 
 void Sampler::removeTrack(std::int32_t slot) {
   auto& track = tracks_[static_cast<std::size_t>(slot)];
-  touchFirst(track.obs.front());
-  touchSlot(slot);
-  touchSlot(track_count_ - 1);  // its track moves into `slot`
+  noteChange(changed_firsts_, track.obs.front());
+  noteChange(changed_slots_, slot);
+  noteChange(changed_slots_, track_count_ - 1);  // its track moves into `slot`
   for (const std::int32_t i : track.obs) {
     track_of_[static_cast<std::size_t>(i)] = -1;
     position_[static_cast<std::size_t>(i)] = -1;
@@ -205,10 +205,10 @@ void Sampler::removeTrack(std::int32_t slot) {
 void Sampler::setTrack(std::int32_t slot, std::span<const std::int32_t> obs, double score) {
   auto& track = tracks_[static_cast<std::size_t>(slot)];
   if (track.obs.front() != obs.front()) {
-    touchFirst(track.obs.front());
-    touchFirst(obs.front());
+    noteChange(changed_firsts_, track.obs.front());
+    noteChange(changed_firsts_, obs.front());
   }
-  touchSlot(slot);
+  noteChange(changed_slots_, slot);
   // Observations in both the old and the new track stay taken throughout, so that the birth
   // starting points follow only the observations that really changed hands: the old track's are
   // marked as leaving first, and released only if the new track does not take them back. Only
