@@ -3,7 +3,7 @@
 every process, multi-process on this host, for the scale scenarios (10^4, 10^5, 10^6 sensors by
 default), and how they grow from one size to the next.
 
-    bench/scale.py [--bin build/bin] [--repeats 3] [--ticks T] [SCENARIO...]
+    bench/scale.py [--bin build/bin] [--repeats 3] [--ticks T] [--set KEY=VALUE]... [SCENARIO...]
 
 Each scenario is run --repeats times with `wsntrack run --no-plot`; the table gives the median
 over the repeats of the launcher's own figures: start-up (from the start of the first process
@@ -43,10 +43,12 @@ def parse_summary(text):
             "ticks_per_s": float(ticks_per_s.group(1)) if ticks_per_s else None, "rss": rss}
 
 
-def run_once(wsntrack, scenario, out, ticks):
+def run_once(wsntrack, scenario, out, ticks, sets):
     command = [str(wsntrack), "run", str(scenario), "--out", str(out), "--no-plot"]
     if ticks:
         command += ["--ticks", str(ticks)]
+    for text in sets:
+        command += ["--set", text]
     started = time.monotonic()
     done = subprocess.run(command, capture_output=True, text=True)
     wall = time.monotonic() - started
@@ -73,6 +75,9 @@ def main(argv):
     parser.add_argument("--bin", default=str(SOURCE / "build" / "bin"), help="directory of wsntrack (default: %(default)s)")
     parser.add_argument("--repeats", type=int, default=3, help="runs per scenario; the table gives medians (default: 3)")
     parser.add_argument("--ticks", type=int, default=0, help="override run.ticks (default: the scenario's)")
+    parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="sets",
+                        help="a scenario value for every run, as `wsntrack run --set` takes it "
+                             "(e.g. run.security=off); repeatable")
     args = parser.parse_args(argv)
     wsntrack = Path(args.bin) / "wsntrack"
     if not wsntrack.exists():
@@ -91,7 +96,7 @@ def main(argv):
             for k in range(args.repeats):
                 print(f"{scenario.stem}: run {k + 1}/{args.repeats} ...", file=sys.stderr, flush=True)
                 out = work / f"{scenario.stem}-{k}"
-                runs.append(run_once(wsntrack, scenario, out, args.ticks))
+                runs.append(run_once(wsntrack, scenario, out, args.ticks, args.sets))
                 if k > 0 and not same_outputs(work / f"{scenario.stem}-0", out):
                     sys.exit(f"scale.py: {scenario.stem}: run {k + 1}'s outputs differ from run 1's")
                 if k > 0:

@@ -119,13 +119,14 @@ def run_id():
 
 # --- throughput ------------------------------------------------------------------------------------
 
-def wsntrack_throughput(bench, size, seconds, raw, sample):
+def wsntrack_throughput(bench, size, seconds, raw, sample, batching):
     """Samples/s, serialized bytes and items per batch of one wsn_transport_bench throughput run;
-    `raw`: the subscriber takes without decoding, as ddsperf's does."""
+    `raw`: the subscriber takes without decoding, as ddsperf's does; `batching`: the writer packs
+    samples into datagrams until a flush, as ddsperf's does (the roles flush every write)."""
     rid = run_id()
     domain = bench.pick_domain(2)
     out = run_bounded([bench.exe, "throughput", "--bytes", str(size), "--seconds", str(seconds),
-                       "--domain", str(domain), "--run-id", str(rid), "--sample", sample] + (["--raw"] if raw else []),
+                       "--domain", str(domain), "--run-id", str(rid), "--sample", sample] + (["--raw"] if raw else []) + (["--batching"] if batching else []),
                       seconds + 60)
     match = re.search(r"^samples/s (\S+) MB/s (\S+) size (\d+) items (\d+)$", out, re.M)
     if not match:
@@ -172,14 +173,15 @@ def throughput(args):
             decoded, raw, theirs = [], [], []
             for k in range(args.repeats):
                 print(f"size {size}: run {k + 1}/{args.repeats} ...", file=sys.stderr, flush=True)
-                rate, bytes_, items = wsntrack_throughput(bench, size, args.seconds, False, args.sample)
+                rate, bytes_, items = wsntrack_throughput(bench, size, args.seconds, False, args.sample, args.batching)
                 decoded.append(rate)
-                raw.append(wsntrack_throughput(bench, size, args.seconds, True, args.sample)[0])
+                raw.append(wsntrack_throughput(bench, size, args.seconds, True, args.sample, args.batching)[0])
                 theirs.append(ddsperf_throughput(bench, bytes_, args.seconds, work))
             rows.append((size, bytes_, items, *map(statistics.median, (decoded, raw, theirs))))
     finally:
         shutil.rmtree(work, ignore_errors=True)
-    print(f"{args.sample} batches; medians of {args.repeats} runs of {args.seconds} s each; samples/s (MB/s = samples/s x serialized bytes / 10^6);"
+    writer = "batching writer" if args.batching else "a flush per write"
+    print(f"{args.sample} batches, {writer}; medians of {args.repeats} runs of {args.seconds} s each; samples/s (MB/s = samples/s x serialized bytes / 10^6);"
           " ratio: wsntrack decoded / ddsperf")
     print("| size | items | bytes | wsntrack decoded | wsntrack raw | ddsperf | ratio | ratio raw |")
     print("|---|---|---|---|---|---|---|---|")
@@ -306,6 +308,9 @@ def main(argv):
                     help="serialized sample sizes (default: 256 1k 4k 16k)")
     tp.add_argument("--sample", choices=["report", "boundary"], default="report",
                     help="report: a tile's ReportBatch; boundary: the flat SensorBoundary, to compare (default: report)")
+    tp.add_argument("--batching", action="store_true",
+                    help="wsntrack's writer packs samples into datagrams until a flush, as ddsperf's always does; "
+                         "without it, every write is sent at once, as the roles' writers do")
     tp.add_argument("--seconds", type=int, default=10, help="publishing time per run, at least 3 (default: 10)")
     ls = modes.add_parser("lockstep", parents=[shared], help="wsntrack's lockstep against a plain barrier")
     ls.add_argument("--processes", nargs="+", type=int, default=[8, 16, 32, 64, 70], help="N (default: 8 16 32 64 70)")

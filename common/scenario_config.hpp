@@ -260,6 +260,12 @@ struct MetricsConfig {
   friend bool operator==(const MetricsConfig&, const MetricsConfig&) = default;
 };
 
+/// Whether a run's participants authenticate and are held to the run's permissions (DDS
+/// Security, docs/SECURITY.md).
+enum class RunSecurity { kOn, kOff };
+/// How a secured run protects each RTPS message: a MAC (sign), or AES-GCM encryption with its MAC.
+enum class MessageProtection { kSign, kEncrypt };
+
 /// Run length, seed and process layout.
 struct RunConfig {
   std::int32_t ticks = 100;  ///< T
@@ -269,6 +275,8 @@ struct RunConfig {
   /// Processes the supernodes run in (multi-process runs): each holds a group of consecutive
   /// supernodes as threads on one DDS participant. 0: derived (supernodeProcesses()).
   std::int32_t supernode_processes = 0;
+  RunSecurity security = RunSecurity::kOn;
+  MessageProtection message_protection = MessageProtection::kEncrypt;
   friend bool operator==(const RunConfig&, const RunConfig&) = default;
 };
 

@@ -404,6 +404,15 @@ const FieldTable<RunConfig>& run() {
                      "participant (a supernode the faults kill or pause runs alone). 0: one per supernode up to "
                      "16 supernodes, else 16, as discovery grows with the participants. The results do not "
                      "depend on it"),
+          choice<C>("security", &C::security, {"on", "off"},
+                    "DDS Security: on, every participant authenticates with credentials the launcher makes for "
+                    "the run and may only write its role's topics, so nothing else on the host can join, inject "
+                    "or read the run (docs/SECURITY.md); off, any program on the host can. `wsntrack run "
+                    "--security` overrides it. The results do not depend on it"),
+          choice<C>("message_protection", &C::message_protection, {"sign", "encrypt"},
+                    "with security on, how every message is protected: encrypt (AES-GCM and a MAC: nothing "
+                    "unauthenticated gets in, nor can anything on the host read it) or sign (the MAC alone). They "
+                    "cost the same (docs/SECURITY.md)"),
       }};
   return table;
 }

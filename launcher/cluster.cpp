@@ -29,6 +29,8 @@
 #include "common/dds/entity.hpp"
 #include "common/dds/process_main.hpp"
 #include "common/dds/role_runtime.hpp"
+#include "common/dds/security.hpp"
+#include "launcher/hosts.hpp"
 #include "launcher/fault_signals.hpp"
 #include "launcher/stopped_processes.hpp"
 #include "launcher/run_description.hpp"
@@ -165,17 +167,20 @@ class ProgressDisplay {
 /// The launcher's own DDS observer of the status topic.
 class StatusObserver {
  public:
+  /// Joins with the configuration the run directory holds for the launcher's host, as the
+  /// launcher's own identity (a secured run's in-process roles share its participant's domain,
+  /// and so the identity with every role's rights).
   StatusObserver(const ClusterOptions& options, int participant_index)
       : domain_(static_cast<dds_domainid_t>(options.identity.domain),
-                dds::cycloneConfigFor(dds::cycloneConfigTemplate(
-                                          options.identity.run_id,
-                                          participantCount(options.scenario, options.in_process, options.hosts),
-                                          cycloneNetworkOf(options.hosts, 0)),
-                                      participant_index)),
+                dds::cycloneConfigFor(dds::readConfigFile(hostConfigFile(options.run_dir, options.hosts, 0)),
+                                      participant_index,
+                                      options.in_process ? dds::kInProcessIdentity : dds::kLauncherIdentity)),
         participant_(domain_.id()),
-        topics_(participant_),
-        reader_(participant_, topics_.process_status, dds::Qos::lastValueTransientLocal(dds::Endpoint::kViewer)),
-        writer_(participant_, topics_.process_status, dds::Qos::lastValueTransientLocal(dds::Endpoint::kViewer)),
+        // Its own topic only: under DDS Security a participant may create only the topics its
+        // identity may read or write.
+        status_topic_(participant_, dds::topic_names::kProcessStatus),
+        reader_(participant_, status_topic_, dds::Qos::lastValueTransientLocal(dds::Endpoint::kViewer)),
+        writer_(participant_, status_topic_, dds::Qos::lastValueTransientLocal(dds::Endpoint::kViewer)),
         condition_(reader_),
         waitset_(participant_),
         run_id_(options.identity.run_id) {
@@ -222,7 +227,7 @@ class StatusObserver {
  private:
   dds::Domain domain_;
   dds::Participant participant_;
-  dds::RunTopics topics_;
+  dds::Topic<wsn_msg_ProcessStatus> status_topic_;
   dds::Reader<wsn_msg_ProcessStatus> reader_;
   dds::Writer<wsn_msg_ProcessStatus> writer_;
   dds::ReadCondition condition_;

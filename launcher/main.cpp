@@ -19,6 +19,7 @@
 #include "launcher/plot_job.hpp"
 #include "launcher/resource_estimate.hpp"
 #include "launcher/run_arguments.hpp"
+#include "launcher/run_credentials.hpp"
 #include "launcher/run_directory.hpp"
 #include "launcher/run_summary.hpp"
 #include "launcher/setup_guard.hpp"
@@ -265,9 +266,14 @@ int commandRun(const std::vector<std::string>& command_line) {
   // Another host's processes start wherever its start command leaves them (ssh: the home directory).
   if (cluster.hosts.multiHost()) cluster.run_dir = std::filesystem::absolute(cluster.run_dir).lexically_normal().string();
   guard.phase("preparing the run directory");
+  // The credentials go however the command ends once the directory is this run's (the set-up
+  // guard removes them if a signal ends set-up).
+  launcher::CredentialsRemoval credentials(args.keep_credentials);
+  guard.keepCredentials(args.keep_credentials);
   try {
     cluster.identity =
         launcher::claimRunDirectory(cluster.run_dir, scenario, cluster.in_process, args.overwrite, cluster.hosts);
+    credentials.arm(cluster.run_dir);
     {
       const std::lock_guard lock(guard.runJsonMutex());
       launcher::writeRunDescription(cluster.run_dir, launcher::describeRun(cluster));
@@ -294,6 +300,7 @@ int commandRun(const std::vector<std::string>& command_line) {
   cluster.abandon = [&](const launcher::ClusterResult& stuck) {
     auto result = stuck;
     result.failure += " (role threads did not stop within 3 s, still in set-up or stuck: the process ends without them)";
+    credentials.remove();
     std::_Exit(failRun(cluster.run_dir, result));
   };
   guard.handOver();

@@ -14,7 +14,8 @@ namespace po = boost::program_options;
 constexpr const char* kRunUsage =
     "Usage: wsntrack run SCENARIO [--seed N] [--out DIR [--overwrite]] [--nodes N] [--ticks T]\n"
     "                    [--set KEY=VALUE]... [--in-process] [--timeout S] [--stall-timeout S]\n"
-    "                    [--tick-interval S] [--hosts FILE]\n"
+    "                    [--tick-interval S] [--hosts FILE] [--security on|off]\n"
+    "                    [--keep-credentials]\n"
     "                    [--quiet] [--no-plot] [--plot-format png|svg]\n\n"
     "Starts every process of the cluster on this host — sensor-node tiles, the network\n"
     "model, one supernode per tracking group and the aggregator — over Cyclone DDS on\n"
@@ -29,8 +30,9 @@ constexpr const char* kRunUsage =
     "--set KEY=VALUE changes one value as an edit of the file would: values the loader\n"
     "derives (sensor_model.beta) follow it, and the result passes every check of\n"
     "'wsntrack validate'. The --set options apply in order, e.g. --set network.pte=0.4\n"
-    "--set tracker.params.max_speed=4; --seed, --nodes and --ticks follow them as overrides\n"
-    "of run.seed, run.node_processes and run.ticks. The run directory's scenario.yaml\n"
+    "--set tracker.params.max_speed=4; --seed, --nodes, --ticks and --security follow them as\n"
+    "overrides of run.seed, run.node_processes, run.ticks and run.security. The run\n"
+    "directory's scenario.yaml\n"
     "records the result.\n\n"
     "Exit status: 0 when every process ran to the last tick; 1 when one failed, timed out or\n"
     "stalled (the summary names it, with its log); 130 (SIGINT, Ctrl-C) or 143 (SIGTERM) when\n"
@@ -48,6 +50,12 @@ po::options_description runOptions(RunArguments& a) {
       "nodes", po::value<std::string>(),
       "number of sensor-node processes (tiles); overrides run.node_processes")(
       "ticks", po::value<std::string>(), "number of ticks T; overrides run.ticks")(
+      "security", po::value<std::string>()->value_name("on|off"),
+      "DDS Security (overrides run.security; default on): the run's processes authenticate with "
+      "credentials made for this run, and nothing else on the host can join, inject or abort it "
+      "(docs/SECURITY.md)")(
+      "keep-credentials", "keep the run's keys and certificates (RUN_DIR/credentials) after the run, "
+      "for debugging; they are removed otherwise")(
       "set", po::value(&a.sets)->value_name("KEY=VALUE"), kSetHelp)(
       "in-process", "run every role as a thread of this process (still over DDS)")(
       "hosts", po::value(&a.hosts_file)->value_name("FILE"),
@@ -94,6 +102,8 @@ RunArguments parseRunArguments(const std::vector<std::string>& args) {
   a.seed = optionText(vm, "seed");
   a.nodes = optionText(vm, "nodes");
   a.ticks = optionText(vm, "ticks");
+  a.security = optionText(vm, "security");
+  a.keep_credentials = vm.count("keep-credentials") != 0;
   a.overwrite = vm.count("overwrite") != 0;
   a.in_process = vm.count("in-process") != 0;
   a.quiet = vm.count("quiet") != 0;
@@ -135,7 +145,8 @@ std::vector<RunOverride> runOverrides(const RunArguments& a) {
   }
   for (const auto& [option, key, value] : {std::tuple{"--seed", "run.seed", a.seed},
                                            std::tuple{"--nodes", "run.node_processes", a.nodes},
-                                           std::tuple{"--ticks", "run.ticks", a.ticks}})
+                                           std::tuple{"--ticks", "run.ticks", a.ticks},
+                                           std::tuple{"--security", "run.security", a.security}})
     if (value) {
       const std::string typed = std::string(option) + " " + *value;
       overrides.push_back({{key, *value, typed}, typed});

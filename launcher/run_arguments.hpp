@@ -25,6 +25,8 @@ struct RunArguments {
   std::optional<std::string> seed;   ///< --seed, as typed
   std::optional<std::string> nodes;  ///< --nodes, as typed
   std::optional<std::string> ticks;  ///< --ticks, as typed
+  std::optional<std::string> security;  ///< --security, as typed (on or off)
+  bool keep_credentials = false;        ///< --keep-credentials
   bool in_process = false;
   std::string hosts_file;  ///< --hosts: spread the processes over the hosts it lists
   double timeout_s = 1800;

@@ -22,6 +22,7 @@
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
 #include "launcher/cluster.hpp"
+#include "launcher/run_credentials.hpp"
 #include "scenario/writer.hpp"
 
 namespace wsn::launcher {
@@ -186,9 +187,13 @@ void createRunDirectory(const std::string& path, bool overwrite) {
 void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario, const RunIdentity& identity,
                     int participants, const HostPlan& hosts) {
   common::writeTextFile(run_dir + "/scenario.yaml", scenario::resolvedScenarioYaml(scenario));
+  dds::CycloneSecurity security;
+  if (scenario.run.security == common::RunSecurity::kOn)
+    security.credentials_dir =
+        writeRunCredentials(run_dir, identity.run_id, identity.domain, scenario.run.message_protection);
   for (std::size_t h = 0; h < std::max<std::size_t>(hosts.hosts().size(), 1); ++h)
-    common::writeTextFile(hostConfigFile(run_dir, hosts, h),
-                          dds::cycloneConfigTemplate(identity.run_id, participants, cycloneNetworkOf(hosts, h)));
+    common::writeTextFile(hostConfigFile(run_dir, hosts, h), dds::cycloneConfigTemplate(identity.run_id, participants,
+                                                                                       cycloneNetworkOf(hosts, h), security));
 
   const common::Truth truth(truthConfig(scenario));
   common::CsvFile csv(run_dir + "/truth.csv", "tick,target,x,y,vx,vy,class");

@@ -47,7 +47,8 @@ void createRunDirectory(const std::string& path, bool overwrite);
 /// Writes scenario.yaml (resolved), truth.csv and cyclonedds.xml for `participants` processes (on a
 /// run over several hosts: the launcher's host's, and cyclonedds-NAME.xml for each other host), and
 /// sensors.csv (sensor,x,y: true positions) when the layout is random: a grid follows from
-/// scenario.yaml alone, and writing it would cost up to 10^7 rows.
+/// scenario.yaml alone, and writing it would cost up to 10^7 rows. With run.security on, first the
+/// run's credentials (launcher/run_credentials.hpp), which the configurations then name.
 void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario, const RunIdentity& identity,
                     int participants, const HostPlan& hosts = {});
 

@@ -99,7 +99,11 @@ std::string runStartLine(const common::Scenario& scenario, int domain, bool in_p
   std::ostringstream out;
   out << "wsntrack: " << scenario.name << " (seed " << scenario.run.seed << ", " << scenario.run.ticks << " ticks) on "
       << scenario.run.node_processes << " node tiles, " << scenario.supernodes.size() << " supernodes, engine "
-      << scenario.tracker.engine << ", domain " << domain << (in_process ? ", in-process" : "");
+      << scenario.tracker.engine << ", domain " << domain << (in_process ? ", in-process" : "")
+      << (scenario.run.security == common::RunSecurity::kOn
+              ? (scenario.run.message_protection == common::MessageProtection::kSign ? ", DDS Security (signed)"
+                                                                                    : ", DDS Security (encrypted)")
+              : ", DDS Security off");
   if (hosts.multiHost()) {
     out << ", over " << hosts.hosts().size() << " hosts (";
     for (std::size_t h = 0; h < hosts.hosts().size(); ++h)

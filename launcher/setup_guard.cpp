@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "launcher/cluster.hpp"
+#include "launcher/run_credentials.hpp"
 #include "launcher/run_description.hpp"
 #include "launcher/run_summary.hpp"
 
@@ -61,6 +62,11 @@ void SetupGuard::stopSetUp(int signal_number) {
       markRun(run_dir_, kRunFailed, why);
     } catch (const std::exception& error) {
       note = std::string("wsntrack run: warning: ") + error.what() + "\n";
+    }
+    try {
+      if (!keep_credentials_) removeRunCredentials(run_dir_);
+    } catch (const std::exception& error) {
+      note += std::string("wsntrack run: warning: ") + error.what() + "\n";
     }
   }
   const int status = signal_number != 0 ? 128 + signal_number : 1;

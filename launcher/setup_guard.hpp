@@ -32,6 +32,12 @@ class SetupGuard {
     std::lock_guard lock(mutex_);
     return !run_dir_.empty();
   }
+  /// Whether a stop leaves the run's credentials in place (--keep-credentials); it removes them
+  /// otherwise, as the finished run would.
+  void keepCredentials(bool keep) {
+    std::lock_guard lock(mutex_);
+    keep_credentials_ = keep;
+  }
   /// Held while the launcher writes run.json itself, so that a stop never interleaves with it.
   std::mutex& runJsonMutex() { return mutex_; }
   /// The cluster's supervision takes over signals and the deadline: the guard stops watching.
@@ -46,6 +52,7 @@ class SetupGuard {
   std::mutex mutex_;
   std::string phase_;
   std::string run_dir_;
+  bool keep_credentials_ = false;
   std::atomic<bool> done_{false};
   std::thread thread_;
 };

@@ -22,6 +22,7 @@
 #include "common/dds/entity.hpp"
 #include "common/dds/process_main.hpp"
 #include "common/dds/role_runtime.hpp"
+#include "common/dds/security.hpp"
 #include "common/printable.hpp"
 #include "launcher/run_description.hpp"
 #include "launcher/run_directory.hpp"
@@ -197,7 +198,7 @@ class Watcher {
       const int index = run_.first_viewer_index + slot;
       if (!dds::cyclonePortsFree(run_.identity.domain, index)) continue;
       try {
-        dds::Domain domain(static_cast<dds_domainid_t>(run_.identity.domain), dds::cycloneConfigFor(config, index));
+        dds::Domain domain(static_cast<dds_domainid_t>(run_.identity.domain), dds::cycloneConfigFor(config, index, dds::kViewerIdentity));
         participant_index_ = index;
         return domain;
       } catch (const dds::DdsError&) {
@@ -221,13 +222,16 @@ class Watcher {
       return kWatchFailed;
     }
     dds::Participant participant(domain->id());
-    dds::RunTopics topics(participant);
+    // The viewer's topics only: under DDS Security its identity may create no others.
+    dds::Topic<wsn_msg_ProcessStatus> status_topic(participant, dds::topic_names::kProcessStatus);
+    dds::Topic<wsn_msg_GlobalTrackBatch> track_topic(participant, dds::topic_names::kGlobalTrackBatch);
+    dds::Topic<wsn_msg_TickMetrics> metrics_topic(participant, dds::topic_names::kTickMetrics);
     // Reliable readers, so that no tick is skipped for a lost packet; they never hold the run
     // back, since Cyclone acknowledges on arrival, and they are not counted by its start barrier.
-    dds::Reader<wsn_msg_ProcessStatus> status_reader(participant, topics.process_status,
+    dds::Reader<wsn_msg_ProcessStatus> status_reader(participant, status_topic,
                               dds::Qos::lastValueTransientLocal(dds::Endpoint::kViewer));
-    dds::Reader<wsn_msg_GlobalTrackBatch> track_reader(participant, topics.global_track_batch, dds::Qos::reliableKeepAll(dds::Endpoint::kViewer));
-    dds::Reader<wsn_msg_TickMetrics> metrics_reader(participant, topics.tick_metrics, dds::Qos::reliableKeepAll(dds::Endpoint::kViewer));
+    dds::Reader<wsn_msg_GlobalTrackBatch> track_reader(participant, track_topic, dds::Qos::reliableKeepAll(dds::Endpoint::kViewer));
+    dds::Reader<wsn_msg_TickMetrics> metrics_reader(participant, metrics_topic, dds::Qos::reliableKeepAll(dds::Endpoint::kViewer));
     dds::ReadCondition status_ready(status_reader), tracks_ready(track_reader), metrics_ready(metrics_reader);
     dds::WaitSet waitset(participant);
     waitset.attach(status_ready.handle(), 0);

@@ -19,7 +19,47 @@ int spdpIntervalSeconds(int participants) {
   return static_cast<int>(std::clamp(seconds, 1LL, static_cast<long long>(kMaxSpdpIntervalSeconds)));
 }
 
-std::string cycloneConfigTemplate(std::uint64_t run_id, int participants, const CycloneNetwork& network) {
+const std::string& securityPluginDirectory() {
+  static const std::string directory = WSN_DDS_SECURITY_PLUGIN_DIR;
+  return directory;
+}
+
+namespace {
+
+/// The Security element of a secured run's configuration: Cyclone's three built-in plugins by
+/// full path (Debian keeps them out of the loader's path), the run's CA as identity and
+/// permissions CA, and the participant's own certificate and key through the identity placeholder.
+std::string securitySection(const CycloneSecurity& security) {
+  if (securityPluginDirectory().empty())
+    throw std::runtime_error("this build of wsntrack found no Cyclone DDS security plugins "
+                             "(libdds_security_auth.so, from Debian's libddsc0debian); run with --security off");
+  const std::string dir = "file:" + security.credentials_dir + "/";
+  const std::string identity = kIdentityPlaceholder;
+  const auto library = [](const char* name, const char* init, const char* finalize) {
+    return std::string("<Library path=\"") + securityPluginDirectory() + "/libdds_security_" + name +
+           ".so\" initFunction=\"" + init + "\" finalizeFunction=\"" + finalize + "\"/>";
+  };
+  std::ostringstream xml;
+  xml << "    <Security>\n"
+      << "      <Authentication>" << library("auth", "init_authentication", "finalize_authentication") << "\n"
+      << "        <IdentityCA>" << dir << "ca.pem</IdentityCA>\n"
+      << "        <IdentityCertificate>" << dir << identity << ".cert.pem</IdentityCertificate>\n"
+      << "        <PrivateKey>" << dir << identity << ".key.pem</PrivateKey>\n"
+      << "      </Authentication>\n"
+      << "      <Cryptographic>" << library("crypto", "init_crypto", "finalize_crypto") << "</Cryptographic>\n"
+      << "      <AccessControl>" << library("ac", "init_access_control", "finalize_access_control") << "\n"
+      << "        <PermissionsCA>" << dir << "ca.pem</PermissionsCA>\n"
+      << "        <Governance>" << dir << "governance.p7s</Governance>\n"
+      << "        <Permissions>" << dir << "permissions.p7s</Permissions>\n"
+      << "      </AccessControl>\n"
+      << "    </Security>\n";
+  return xml.str();
+}
+
+}  // namespace
+
+std::string cycloneConfigTemplate(std::uint64_t run_id, int participants, const CycloneNetwork& network,
+                                  const CycloneSecurity& security) {
   std::ostringstream xml;
   std::string interface = "<NetworkInterface name=\"lo\"/>";
   if (!network.interface_address.empty()) interface = "<NetworkInterface address=\"" + network.interface_address + "\"/>";
@@ -46,20 +86,33 @@ std::string cycloneConfigTemplate(std::uint64_t run_id, int participants, const 
       // lowered whenever a reader asks for retransmits, as a restarted process does when it joins)
       // then blocked every write of the run for those 10 s; a fixed 8 MB per writer rides that out
       // and costs nothing while readers keep up.
+      // A burst of fragmented samples (a batch over the 1344-byte fragment size) overflowed the
+      // 1 MB receive buffer Cyclone asks for: each lost fragment waits for a heartbeat and a
+      // NACK to be repaired, the writer stalls meanwhile, and 4 kB batches went 10x slower than
+      // 1 kB ones. Asking for more (max: whatever the kernel's net.core.rmem_max allows, never
+      // an error) took them 3x faster (docs/PERFORMANCE.md, "Transport and lockstep").
       << "    <Internal>\n"
+      << "      <SocketReceiveBufferSize max=\"" << kSocketReceiveBufferBytes << " B\"/>\n"
       << "      <Watermarks><WhcAdaptive>false</WhcAdaptive><WhcHigh>8 MB</WhcHigh><WhcHighInit>8 MB</WhcHighInit></Watermarks>\n"
       << "    </Internal>\n"
+      << (security.on() ? securitySection(security) : std::string())
       << "  </Domain>\n"
       << "</CycloneDDS>\n";
   return xml.str();
 }
 
-std::string cycloneConfigFor(const std::string& config_template, int participant_index) {
+std::string cycloneConfigFor(const std::string& config_template, int participant_index, const std::string& identity) {
   std::string xml = config_template;
   const std::string placeholder = kParticipantIndexPlaceholder;
   const auto at = xml.find(placeholder);
   if (at == std::string::npos) throw std::invalid_argument("Cyclone configuration has no participant-index placeholder");
   xml.replace(at, placeholder.size(), std::to_string(participant_index));
+  if (!identity.empty()) {
+    const std::string identity_placeholder = kIdentityPlaceholder;
+    for (auto pos = xml.find(identity_placeholder); pos != std::string::npos;
+         pos = xml.find(identity_placeholder, pos + identity.size()))
+      xml.replace(pos, identity_placeholder.size(), identity);
+  }
   return xml;
 }
 

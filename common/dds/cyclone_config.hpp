@@ -13,6 +13,11 @@ namespace wsn::dds {
 /// Placeholder in the stored template that each process replaces by its participant index.
 inline constexpr const char* kParticipantIndexPlaceholder = "${WSN_PARTICIPANT_INDEX}";
 
+/// Placeholder in a secured run's template for the identity whose credentials a participant
+/// presents: each process replaces it by its own (cycloneConfigFor); a viewer that reads the
+/// stored file as it is (examples/, through CYCLONEDDS_URI) presents the read-only viewer's.
+inline constexpr const char* kIdentityPlaceholder = "${WSN_IDENTITY:-viewer}";
+
 /// Participant indices kept free for live viewers (wsntrack watch, examples/): a run with
 /// `participants` processes (the launcher included, indices 0 .. participants - 1) leaves
 /// participants .. participants + kViewerSlots - 1 to them, inside MaxAutoParticipantIndex so
@@ -25,6 +30,17 @@ struct CycloneNetwork {
   std::vector<std::string> peers{"127.0.0.1"};   ///< every address a participant of the run may have
 };
 
+/// A secured run's credentials (launcher/run_credentials.hpp writes them); an empty directory
+/// means security off.
+struct CycloneSecurity {
+  std::string credentials_dir;  ///< absolute: ca.pem, governance.p7s, permissions.p7s, IDENTITY.{cert,key}.pem
+  bool on() const { return !credentials_dir.empty(); }
+};
+
+/// Where this build found Cyclone DDS's security plugins (libdds_security_{auth,crypto,ac}.so);
+/// empty when it found none, and then no run can be secured.
+const std::string& securityPluginDirectory();
+
 /// Participant announcements (SPDP) the run's participants may send in a second, all together.
 /// Each participant announces itself to every peer port (participants + viewer slots) once per
 /// interval: at one second, 74 participants (64 supernodes) sent 5,700 datagrams a second;
@@ -32,6 +48,10 @@ struct CycloneNetwork {
 inline constexpr long long kSpdpAnnouncementsPerSecond = 1000;
 /// Cyclone announces at least every lease duration - 2 s (10 s - 2 s) whatever the setting.
 inline constexpr int kMaxSpdpIntervalSeconds = 8;
+
+/// The receive buffer each socket asks the kernel for (it gives at most net.core.rmem_max, and
+/// a smaller one is no error): 4 MiB holds a tick's burst of fragmented batches.
+inline constexpr long long kSocketReceiveBufferBytes = 4LL << 20;
 
 /// How often each participant announces itself, in whole seconds: 1 s while the run is small, so
 /// that a lost announcement on a loaded host (sanitizers, parallel runs) is repaired within a
@@ -41,10 +61,16 @@ int spdpIntervalSeconds(int participants);
 
 /// The XML template for a run with `participants` processes (the launcher included; on a run
 /// over several hosts, the most on any one host).
-std::string cycloneConfigTemplate(std::uint64_t run_id, int participants, const CycloneNetwork& network = {});
+/// With `security` on, every participant authenticates with the run's credentials and is held
+/// to the run's governance and permissions (common/dds/security.hpp); throws std::runtime_error
+/// when this build has no security plugins.
+std::string cycloneConfigTemplate(std::uint64_t run_id, int participants, const CycloneNetwork& network = {},
+                                  const CycloneSecurity& security = {});
 
-/// The template with the placeholder replaced by `participant_index`.
-std::string cycloneConfigFor(const std::string& config_template, int participant_index);
+/// The template with the participant-index placeholder replaced by `participant_index` and, when
+/// `identity` is not empty, the identity placeholder by `identity` (a secured run's credentials).
+std::string cycloneConfigFor(const std::string& config_template, int participant_index,
+                             const std::string& identity = "");
 
 /// UDP unicast ports Cyclone uses on `domain` for participant `index` (discovery, data).
 std::pair<int, int> cyclonePorts(int domain, int index);

@@ -1,4 +1,5 @@
 #include "common/dds/process_main.hpp"
+#include "common/dds/security.hpp"
 
 #include <pthread.h>
 #include <unistd.h>
@@ -267,7 +268,7 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
                                     "restart of " + role + " " + std::to_string(context.index) + " at that tick");
     }
     if (count > 1) checkGroup(context, count, role);
-    Domain domain_handle(context.domain, cycloneConfigFor(readConfigFile(cyclone_config), participant_index));
+    Domain domain_handle(context.domain, cycloneConfigFor(readConfigFile(cyclone_config), participant_index, roleIdentity(role)));
     if (count == 1) runner(context);
     else runGroup(context, count, stop_source, role, runner);
     return 0;

@@ -26,10 +26,11 @@ same_outputs() {
   for f in tracks.csv tracks_supernode.csv observations.csv truth.csv network.json; do
     cmp -s "$a/$f" "$b/$f" || fail "$f differs between $a and $b"
   done
-  # The resolved scenario records the process layout, which is meant to differ; nothing else may.
-  diff <(grep -v -e 'node_processes:' -e 'supernode_processes:' "$a/scenario.yaml") \
-       <(grep -v -e 'node_processes:' -e 'supernode_processes:' "$b/scenario.yaml") >/dev/null \
-    || fail "scenario.yaml differs between $a and $b beyond the process layout"
+  # The resolved scenario records the process layout and security, which are meant to differ;
+  # nothing else may.
+  local layout=(-e 'node_processes:' -e 'supernode_processes:' -e 'security:')
+  diff <(grep -v "${layout[@]}" "$a/scenario.yaml") <(grep -v "${layout[@]}" "$b/scenario.yaml") >/dev/null \
+    || fail "scenario.yaml differs between $a and $b beyond the process layout and security"
   diff <(deterministic_metrics "$a") <(deterministic_metrics "$b") >/dev/null || fail "metrics.json differs between $a and $b"
 }
 
@@ -400,10 +401,11 @@ PY
       { cat mp.stdout >&2; fail "the summary does not report the restart"; }
     no_leftovers ;;
   fake_status)
-    # A program that is not a role claims, with terminal escapes, that supernode 1 FAILED: the
-    # launcher waits for supernode 1's process to fail, which it does not, so the run completes
-    # with the outputs of an undisturbed run, and nothing prints the escape byte.
-    "$wsntrack" run "$scenario" --seed 3 --tick-interval 0.05 --no-plot --out "$PWD/r" >r.stdout 2>r.stderr & launcher=$!
+    # Security off (what it still exposes): a program that is not a role claims, with terminal
+    # escapes, that supernode 1 FAILED: the launcher waits for supernode 1's process to fail, which
+    # it does not, so the run completes with the outputs of an undisturbed run, and nothing prints
+    # the escape byte.
+    "$wsntrack" run "$scenario" --seed 3 --tick-interval 0.05 --no-plot --security off --out "$PWD/r" >r.stdout 2>r.stderr & launcher=$!
     for _ in $(seq 1 300); do grep -q '"status": "running"' r/run.json 2>/dev/null && break; sleep 0.1; done
     domain=$(sed -n 's/^  "domain": \([0-9]*\),$/\1/p' r/run.json); run_id=$(run_json "$PWD/r" run_id)
     viewer=$(sed -n 's/.*"viewer_participant_indices": \[\([0-9]*\),.*/\1/p' r/run.json)
@@ -416,6 +418,32 @@ PY
     run_ok "$PWD/clean" --seed 3 --no-plot
     same_outputs "$PWD/r" "$PWD/clean"
     ! grep -q $'\e' r.stdout r.stderr r/logs/*.log || fail "an escape byte from the fake status reached the output"
+    no_leftovers ;;
+  secured_status)
+    # Security on (the default): the same stranger with the run's own file presents the viewer's
+    # credentials, which may not write status; with a copy of the file stripped of them it presents
+    # none, and no role's reader matches it. Either way the run completes as an undisturbed one, and
+    # its credentials are gone at the end.
+    "$wsntrack" run "$scenario" --seed 3 --tick-interval 0.05 --no-plot --out "$PWD/r" >r.stdout 2>r.stderr & launcher=$!
+    for _ in $(seq 1 300); do grep -q '"status": "running"' r/run.json 2>/dev/null && break; sleep 0.1; done
+    domain=$(sed -n 's/^  "domain": \([0-9]*\),$/\1/p' r/run.json); run_id=$(run_json "$PWD/r" run_id)
+    viewer=$(sed -n 's/.*"viewer_participant_indices": \[\([0-9]*\),.*/\1/p' r/run.json)
+    [ -n "$domain" ] && [ -n "$run_id" ] && [ -n "$viewer" ] || { cat r/run.json >&2; fail "run.json lacks domain, run_id or viewer slots"; }
+    [ "$(stat -c %a r/credentials)" = 700 ] || fail "the credentials directory is not private: $(stat -c %a r/credentials)"
+    for f in r/credentials/*; do [ "$(stat -c %a "$f")" = 600 ] || fail "$f is not private: $(stat -c %a "$f")"; done
+    grep -q "<Security>" r/cyclonedds.xml || fail "the run's configuration has no Security section"
+    CYCLONEDDS_URI="file://$PWD/r/cyclonedds.xml" WSN_PARTICIPANT_INDEX="$viewer" timeout 60 "$bin/wsn_fake_status" \
+      "$domain" "$run_id" supernode 1 boom 5 >viewer.out 2>viewer.err && fail "the viewer's credentials wrote a status"
+    grep -qi "not allowed by security" viewer.err || { cat viewer.err >&2; fail "the viewer was not refused by its permissions"; }
+    sed '/<Security>/,/<\/Security>/d' r/cyclonedds.xml >stranger.xml
+    CYCLONEDDS_URI="file://$PWD/stranger.xml" WSN_PARTICIPANT_INDEX="$((viewer + 1))" timeout 60 "$bin/wsn_fake_status" \
+      "$domain" "$run_id" supernode 1 boom 5 >stranger.out 2>stranger.err && fail "a participant without credentials wrote a status"
+    grep -q "no status reader within 5 s" stranger.err || { cat stranger.err >&2; fail "a participant without credentials matched a reader"; }
+    wait_bounded "$launcher" 120
+    [ "$rc" -eq 0 ] || { cat r.stderr >&2; fail "the secured run exited $rc"; }
+    [ ! -e r/credentials ] || fail "the run's credentials are still there after it ended"
+    run_ok "$PWD/clean" --seed 3 --no-plot --security off
+    same_outputs "$PWD/r" "$PWD/clean"
     no_leftovers ;;
   stopped_role)
     # SIGSTOP of one supernode (by hand, not by the scenario). Stopped for 3 s, well inside its DDS

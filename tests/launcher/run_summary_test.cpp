@@ -165,9 +165,14 @@ TEST_CASE("the start line says what runs where", "[launcher][run_summary]") {
   s.run.node_processes = 4;
   s.supernodes.resize(2);
   s.tracker.engine = "gnn";
-  CHECK(runStartLine(s, 17, false) == "wsntrack: oh (seed 3, 20 ticks) on 4 node tiles, 2 supernodes, engine gnn, domain 17\n");
-  CHECK(runStartLine(s, 17, true) ==
-        "wsntrack: oh (seed 3, 20 ticks) on 4 node tiles, 2 supernodes, engine gnn, domain 17, in-process\n");
+  CHECK(runStartLine(s, 17, false) ==
+        "wsntrack: oh (seed 3, 20 ticks) on 4 node tiles, 2 supernodes, engine gnn, domain 17, DDS Security (encrypted)\n");
+  s.run.message_protection = common::MessageProtection::kSign;
+  CHECK(runStartLine(s, 17, true) == "wsntrack: oh (seed 3, 20 ticks) on 4 node tiles, 2 supernodes, engine gnn, "
+                                     "domain 17, in-process, DDS Security (signed)\n");
+  s.run.security = common::RunSecurity::kOff;
+  CHECK(runStartLine(s, 17, false) ==
+        "wsntrack: oh (seed 3, 20 ticks) on 4 node tiles, 2 supernodes, engine gnn, domain 17, DDS Security off\n");
 }
 
 

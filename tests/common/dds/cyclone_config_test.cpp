@@ -43,3 +43,11 @@ TEST_CASE("the configuration template carries the derived announcement interval"
   CHECK(cycloneConfigTemplate(1, 5).find("<SPDPInterval>1 s</SPDPInterval>") != std::string::npos);
   CHECK(cycloneConfigTemplate(1, 74).find("<SPDPInterval>6 s</SPDPInterval>") != std::string::npos);
 }
+
+TEST_CASE("the configuration asks for a larger receive buffer as a maximum only", "[dds]") {
+  const std::string xml = cycloneConfigTemplate(1, 5);
+  // A min would make Cyclone fail to start on a kernel whose rmem_max is below it (Debian's
+  // default is 208 KiB); a max is a request the kernel may cap.
+  CHECK(xml.find("<SocketReceiveBufferSize max=\"4194304 B\"/>") != std::string::npos);
+  CHECK(xml.find("SocketReceiveBufferSize min") == std::string::npos);
+}
