@@ -19,6 +19,7 @@
 #include "launcher/plot_job.hpp"
 #include "launcher/resource_estimate.hpp"
 #include "launcher/run_arguments.hpp"
+#include "launcher/rejections.hpp"
 #include "launcher/run_credentials.hpp"
 #include "launcher/run_directory.hpp"
 #include "launcher/run_summary.hpp"
@@ -182,7 +183,8 @@ int commandReplay(const std::vector<std::string>& args) {
 /// The files a run that succeeded has written: a run is complete only with every one of them.
 constexpr const char* kRunOutputs[] = {"scenario.yaml",        "truth.csv",          "observations.csv",
                                        "network.json",         "tracks_supernode.csv", "tracks.csv",
-                                       "tracks_settled.csv",   "metrics_per_tick.csv", "metrics.json"};
+                                       "tracks_settled.csv",   "metrics_per_tick.csv", "metrics.json",
+                                       "rejected.json"};
 
 /// Marks run.json; a run.json that cannot be rewritten (deleted under the run) is a warning, not a
 /// second failure.
@@ -305,6 +307,12 @@ int commandRun(const std::vector<std::string>& command_line) {
   };
   guard.handOver();
   auto result = launcher::runCluster(cluster);
+  try {
+    launcher::gatherRejections(cluster.run_dir);
+  } catch (const std::exception& error) {
+    if (result.ok) result.failure = std::string("cannot write rejected.json: ") + error.what();
+    result.ok = false;
+  }
   if (result.ok) {
     for (const char* name : kRunOutputs)
       if (!std::filesystem::exists(cluster.run_dir + "/" + name)) {

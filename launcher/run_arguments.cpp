@@ -22,7 +22,7 @@ constexpr const char* kRunUsage =
     "loopback (or, with --hosts, over the hosts a file lists, by unicast between their\n"
     "addresses), shows progress, and prints a summary. Outputs (run directory):\n"
     "  scenario.yaml  truth.csv  observations.csv  tracks_supernode.csv  tracks.csv\n"
-    "  tracks_settled.csv  network.json  metrics.json  logs/<role>-<index>.log\n"
+    "  tracks_settled.csv  network.json  metrics.json  rejected.json  logs/<role>-<index>.log\n"
     "  sensors.csv (random layout)\n"
     "  plots/{tracks,cardinality,ospa}.png (or .svg; and detections.png with ADMAN sensors):\n"
     "  drawn after the run by plot_run.py with /usr/bin/python3 and matplotlib unless\n"

@@ -92,7 +92,11 @@ RunFigures parseRunFigures(const std::string& metrics_json, const std::string& n
 }
 
 RunFigures readRunFigures(const std::string& run_dir) {
-  return parseRunFigures(readFile(run_dir + "/metrics.json"), readFile(run_dir + "/network.json"));
+  auto figures = parseRunFigures(readFile(run_dir + "/metrics.json"), readFile(run_dir + "/network.json"));
+  const auto rejected = nlohmann::json::parse(readFile(run_dir + "/rejected.json"), nullptr, false);
+  if (!rejected.is_discarded() && rejected.contains("total") && rejected["total"].is_number())
+    figures.samples_rejected = rejected["total"].get<double>();
+  return figures;
 }
 
 std::string runStartLine(const common::Scenario& scenario, int domain, bool in_process, const HostPlan& hosts) {
@@ -138,6 +142,8 @@ std::string runSummary(const std::string& run_dir, const RunFigures& f, const Cl
   if (f.reports_lost_dead_supernode) row(out, "lost to dead supernodes", show(f.reports_lost_dead_supernode, 0));
   for (const auto& fault : f.faults) row(out, "fault", fault);
   row(out, "dropped (older than ws)", show(f.dropped_stale, 0));
+  if (f.samples_rejected && *f.samples_rejected > 0)
+    row(out, "samples rejected", show(f.samples_rejected, 0) + " (not from this run or out of bounds: rejected.json)");
   if (result.first_tick_s > 0.0) row(out, "start-up (to tick 1)", show(result.first_tick_s, 3) + " s");
   row(out, "wall time (tick loop)", show(f.wall_s, 3) + " s");
   row(out, "ticks/s (tick loop)", show(f.ticks_per_s, 1));

@@ -36,6 +36,8 @@ struct RunFigures {
   /// One line per fault of the scenario (metrics.json's faults): what it was and, for a supernode
   /// that died, how many of its tracks the adopters carried on and after how many ticks.
   std::vector<std::string> faults;
+  /// Samples and items the roles refused at the edge (rejected.json's total).
+  std::optional<double> samples_rejected;
 };
 
 /// The figures of the texts of metrics.json and network.json ("" for a missing file); a text that

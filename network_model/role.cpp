@@ -1,6 +1,7 @@
 #include "network_model/role.hpp"
 
 #include "common/dds/codec.hpp"
+#include "common/edge_checks.hpp"
 #include "common/output.hpp"
 #include "common/sensor_layout.hpp"
 #include "network_model/live_topologies.hpp"
@@ -31,12 +32,25 @@ void runNetworkRole(const dds::RoleContext& context) {
     RestartedReaders restarted(participant, context, plan);
 
     TickInbox<std::vector<common::Report>> inbox;
+    // Every batch and report is checked before it counts: a first batch of a producer and tick is
+    // kept, a later one never displaces it, and whatever is refused is counted (rejected.json).
+    const common::EdgeBounds bounds = common::edgeBounds(scenario, layout.size());
+    common::RejectionLog rejections;
+    const std::string topic = topic_names::kReportBatch;
     loop.watch(report_reader, [&] {
       report_reader.take([&](const wsn_msg_ReportBatch& batch) {
-        if (batch.run_id != context.run_id || batch.tile >= static_cast<std::uint32_t>(context.shape.tiles) ||
-            !plan.tileLive(static_cast<std::int32_t>(batch.tile), batch.tick))
-          return;
-        inbox.put(batch.tick, batch.tile, decode(batch.reports, batch.tick));
+        using common::RejectReason;
+        if (batch.run_id != context.run_id) return rejections.add(topic, RejectReason::kForeignRun);
+        if (batch.tile >= static_cast<std::uint32_t>(context.shape.tiles))
+          return rejections.add(topic, RejectReason::kProducerOutOfRange);
+        if (batch.tick < 1 || batch.tick > bounds.ticks) return rejections.add(topic, RejectReason::kTickOutOfRange);
+        if (!plan.tileLive(static_cast<std::int32_t>(batch.tile), batch.tick)) return;  // the scenario's faults
+        if (batch.reports._length > bounds.max_reports) return rejections.add(topic, RejectReason::kTooLong);
+        if (inbox.has(batch.tick, batch.tile) || batch.tick <= inbox.consumedThrough())
+          return rejections.add(topic, RejectReason::kDuplicate);
+        auto reports = decode(batch.reports, batch.tick);
+        common::dropRejectedReports(reports, bounds, topic, rejections);
+        inbox.put(batch.tick, batch.tile, std::move(reports));
       });
     });
     // A process killed by hand: a tile is silent from the first tick whose reports did not come,
@@ -97,6 +111,7 @@ void runNetworkRole(const dds::RoleContext& context) {
     report.silent_tile_ticks = faults_seen.silent_tile_ticks;
     report.rehomes = std::move(faults_seen.rehomes);
     common::writeTextFile(context.run_dir + "/network.json", networkJson(report));
+    writeRejections(context, rejections);
     progress.waitForCompleted(ticks);
     status.done(ticks);
   });

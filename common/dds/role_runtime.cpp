@@ -1,9 +1,11 @@
 #include "common/dds/role_runtime.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <set>
 #include <sstream>
 
+#include "common/output.hpp"
 #include "wsntrack.h"
 
 namespace wsn::dds {
@@ -354,6 +356,16 @@ void runRole(const RoleContext& context,
   StatusPublisher status(participant, topics, context);
   status.starting();
   runWithStatus(status, [&] { body(participant, topics, status); });
+}
+
+void writeRejections(const RoleContext& context, const common::RejectionLog& log) {
+  if (log.total() == 0) return;
+  const std::string dir = context.run_dir + "/" + kRejectionsDirectory;
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error) throw std::runtime_error(dir + ": cannot create (" + error.message() + ")");
+  common::writeTextFile(dir + "/" + context.role + "-" + std::to_string(context.index) + ".json",
+                        log.json(context.role, context.index));
 }
 
 }  // namespace wsn::dds

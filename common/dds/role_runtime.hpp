@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "common/dds/entity.hpp"
+#include "common/edge_checks.hpp"
 #include "common/scenario_config.hpp"
 #include "wsntrack.h"
 
@@ -204,6 +205,8 @@ class TickInbox {
     return node.empty() ? std::map<std::uint32_t, BatchT>{} : std::move(node.mapped());
   }
   std::uint64_t rejected() const { return rejected_; }
+  /// The last tick taken or skipped: a batch of it or before comes too late.
+  std::int32_t consumedThrough() const { return consumed_through_; }
   /// The first tick from `from` on whose batch of `producer` has not arrived.
   std::int32_t firstMissing(std::uint32_t producer, std::int32_t from) const {
     std::int32_t t = std::max(from, consumed_through_ + 1);
@@ -276,6 +279,13 @@ class RoleLoop {
   std::vector<dds_entity_t> watched_readers_;  // parallel to conditions_
   std::vector<std::function<void()>> drains_;
 };
+
+/// The subdirectory of the run directory where each role leaves what it refused.
+inline constexpr const char* kRejectionsDirectory = "rejected";
+
+/// Writes `log` to RUN_DIR/rejected/ROLE-INDEX.json when it counted anything (the launcher gathers
+/// the files into rejected.json at the end of the run).
+void writeRejections(const RoleContext& context, const common::RejectionLog& log);
 
 /// Blocks until every writer matched `expected` role readers (viewers do not count: see
 /// Endpoint) and every reader matched `expected` writers, so that nothing published afterwards

@@ -445,6 +445,36 @@ PY
     run_ok "$PWD/clean" --seed 3 --no-plot --security off
     same_outputs "$PWD/r" "$PWD/clean"
     no_leftovers ;;
+  hostile_reports)
+    # Security off: a stranger forges tile 0's report batches of ticks 80-95 (ahead of the tile's
+    # own) with NaN, infinite and 1e308 positions and an unknown sensor, and batches of tick 0, of
+    # tick T + 5, of a tile the run does not have and of another run. The run completes; nothing
+    # forged reaches observations.csv; the network model counts each refusal, and the tile's own
+    # batches of those ticks as duplicates (the first batch of a tile and tick is kept).
+    "$wsntrack" run "$scenario" --seed 3 --tick-interval 0.05 --no-plot --security off --out "$PWD/r" >r.stdout 2>r.stderr & launcher=$!
+    for _ in $(seq 1 300); do grep -q '"status": "running"' r/run.json 2>/dev/null && break; sleep 0.1; done
+    domain=$(sed -n 's/^  "domain": \([0-9]*\),$/\1/p' r/run.json); run_id=$(run_json "$PWD/r" run_id)
+    viewer=$(sed -n 's/.*"viewer_participant_indices": \[\([0-9]*\),.*/\1/p' r/run.json)
+    [ -n "$domain" ] && [ -n "$run_id" ] && [ -n "$viewer" ] || { cat r/run.json >&2; fail "run.json lacks domain, run_id or viewer slots"; }
+    CYCLONEDDS_URI="file://$PWD/r/cyclonedds.xml" WSN_PARTICIPANT_INDEX="$viewer" timeout 60 "$bin/wsn_hostile_reports" \
+      "$domain" "$run_id" 100 80 95 >hostile.out 2>hostile.err || { cat hostile.err >&2; fail "the forged batches were not written"; }
+    wait_bounded "$launcher" 120
+    [ "$rc" -eq 0 ] || { cat r.stderr >&2; fail "forged report batches ended the run (exit $rc)"; }
+    count() {  # count REASON: rejected.json's count of wsn_report_batch refusals for REASON
+      python3 -c "import json,sys; d=json.load(open('r/rejected.json')); print(sum(i['count'] for p in d['processes'] for i in p.get('rejected', []) if i['topic']=='wsn_report_batch' and i['reason']==sys.argv[1]))" "$1"
+    }
+    [ "$(count not_finite)" -eq 32 ] || fail "not_finite: $(count not_finite), expected 2 in each of 16 batches"
+    [ "$(count out_of_region)" -eq 16 ] || fail "out_of_region: $(count out_of_region), expected 16"
+    [ "$(count sensor_out_of_range)" -eq 16 ] || fail "sensor_out_of_range: $(count sensor_out_of_range), expected 16"
+    [ "$(count tick_out_of_range)" -eq 2 ] || fail "tick_out_of_range: $(count tick_out_of_range), expected 2"
+    [ "$(count producer_out_of_range)" -eq 1 ] || fail "producer_out_of_range: $(count producer_out_of_range), expected 1"
+    [ "$(count foreign_run)" -eq 1 ] || fail "foreign_run: $(count foreign_run), expected 1"
+    [ "$(count duplicate)" -ge 1 ] || fail "tile 0's own batches of the forged ticks were not counted as duplicates"
+    grep -q "samples rejected" r.stdout || { cat r.stdout >&2; fail "the summary does not say samples were rejected"; }
+    ! grep -q -i -E "nan|inf|e\+" r/observations.csv || fail "a forged value reached observations.csv"
+    ! awk -F, 'NR > 1 && $3 >= 10000' r/observations.csv | grep -q . || fail "a forged sensor id reached observations.csv"
+    [ ! -e r/rejected ] || fail "the roles' files of rejections were not gathered"
+    no_leftovers ;;
   stopped_role)
     # SIGSTOP of one supernode (by hand, not by the scenario). Stopped for 3 s, well inside its DDS
     # lease, it is re-admitted: the run completes with the outputs of a run nobody stopped. Stopped

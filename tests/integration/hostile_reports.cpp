@@ -1,0 +1,83 @@
+// A program that is not a role of the run joins its domain with security off and writes report
+// batches as a node tile would, each with something wrong: non-finite and absurd positions, a
+// sensor the run does not have, a tick outside the run, a tile the run does not have, another run's
+// id. The cluster test `hostile_reports` checks that none of it reaches the outputs and that the
+// network model counts every refusal in rejected.json. Joins as the example viewer does
+// (CYCLONEDDS_URI, WSN_PARTICIPANT_INDEX).
+//
+// Usage: wsn_hostile_reports DOMAIN RUN_ID TICKS FIRST_TICK LAST_TICK
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "common/dds/codec.hpp"
+#include "common/dds/entity.hpp"
+#include "common/dds/role_runtime.hpp"
+
+namespace {
+
+namespace dds = wsn::dds;
+
+wsn_msg_Report report(std::uint32_t sensor, double x, double y) {
+  wsn_msg_Report r{};
+  r.sensor = sensor;
+  r.x = x;
+  r.y = y;
+  r.target = -1;
+  r.measurement.kind = wsn_msg_MEASUREMENT_POSITION;
+  return r;
+}
+
+void write(dds::Writer<wsn_msg_ReportBatch>& writer, std::uint64_t run_id, std::uint32_t tile, std::int32_t tick,
+           std::vector<wsn_msg_Report>& reports) {
+  wsn_msg_ReportBatch batch{};
+  batch.run_id = run_id;
+  batch.tile = tile;
+  batch.tick = tick;
+  batch.reports = dds::sequenceView<dds_sequence_wsn_msg_Report>(reports);
+  writer.write(batch);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 6) {
+    std::fprintf(stderr, "usage: wsn_hostile_reports DOMAIN RUN_ID TICKS FIRST_TICK LAST_TICK\n");
+    return 2;
+  }
+  try {
+    const auto domain = static_cast<dds_domainid_t>(std::stol(argv[1]));
+    const std::uint64_t run_id = std::stoull(argv[2], nullptr, 16);
+    const std::int32_t ticks = std::stoi(argv[3]), first = std::stoi(argv[4]), last = std::stoi(argv[5]);
+    const dds::Participant participant(domain);
+    const dds::Topic<wsn_msg_ReportBatch> topic(participant, dds::topic_names::kReportBatch);
+    dds::Writer<wsn_msg_ReportBatch> writer(participant, topic, dds::Qos::reliableKeepAll());
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (writer.matchedReaders() < 1) {
+      if (std::chrono::steady_clock::now() > deadline) throw std::runtime_error("no report reader within 30 s");
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double inf = std::numeric_limits<double>::infinity();
+    // Tile 0's batches of FIRST_TICK .. LAST_TICK, ahead of the tile's own: four bad reports each.
+    std::vector<wsn_msg_Report> bad{report(1, nan, 10.0), report(2, 10.0, -inf), report(3, 1e308, -1e308),
+                                    report(2000000000u, 10.0, 10.0)};
+    for (std::int32_t t = first; t <= last; ++t) write(writer, run_id, 0, t, bad);
+    // One batch each that is wrong as a whole.
+    std::vector<wsn_msg_Report> plausible{report(1, 10.0, 10.0)};
+    write(writer, run_id, 0, 0, plausible);           // before the first tick
+    write(writer, run_id, 0, ticks + 5, plausible);   // after the last
+    write(writer, run_id, 999, first, plausible);     // a tile the run does not have
+    write(writer, run_id ^ 1, 0, first, plausible);   // another run
+    writer.waitForAcknowledgements(std::chrono::seconds(10));
+    std::printf("wrote %d forged report batches to %d readers\n", last - first + 1 + 4, writer.matchedReaders());
+    return 0;
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "wsn_hostile_reports: %s\n", error.what());
+    return 1;
+  }
+}
