@@ -14,6 +14,7 @@
 #include "aggregator/run_files.hpp"
 #include "aggregator/run_scorer.hpp"
 #include "common/dds/codec.hpp"
+#include "common/edge_checks.hpp"
 #include "common/output.hpp"
 #include "common/provenance.hpp"
 #include "common/truth.hpp"
@@ -262,14 +263,26 @@ void runAggregatorRole(const dds::RoleContext& context) {
     LiveRolesDone roles_done(participant, topics, context);
     TickInbox<SupernodeBatch> inbox;
     const auto supernodes = static_cast<std::uint32_t>(context.shape.supernodes);
+    // Every batch and track is checked before it counts (common/edge_checks.hpp); refusals are
+    // counted for rejected.json.
+    const common::EdgeBounds bounds = common::edgeBounds(scenario);
+    common::RejectionLog rejections;
     loop.watch(track_reader, [&] {
       track_reader.take([&](const wsn_msg_TrackBatch& batch) {
-        if (batch.run_id != context.run_id || batch.supernode >= supernodes) return;
-        if (!plan.supernodeLive(static_cast<std::int32_t>(batch.supernode), batch.tick)) return;
+        const std::string topic = topic_names::kTrackBatch;
+        if (const auto why = common::checkBatchHeader(batch.run_id, context.run_id, batch.supernode, supernodes, batch.tick,
+                                                      bounds.ticks))
+          return rejections.add(topic, *why);
+        if (!plan.supernodeLive(static_cast<std::int32_t>(batch.supernode), batch.tick)) return;  // the faults
+        if (!inbox.accepts(batch.tick, batch.supernode)) return rejections.add(topic, common::RejectReason::kDuplicate);
+        const auto check = [&](const common::TrackEstimate& track) { return common::checkTrack(track, bounds); };
+        auto tracks = decode(batch.tracks);
+        common::dropRejected(tracks, check, topic, rejections);
+        auto settled = decodeSettled(batch.settled, batch.settled_first, batch.settled_last, scenario.tracker.window_size);
+        for (auto& tick_tracks : settled) common::dropRejected(tick_tracks, check, topic, rejections);
         inbox.put(batch.tick, batch.supernode,
-                  {decode(batch.tracks), batch.observations_in_window, batch.observations_dropped_stale,
-                   batch.handoffs_lost_partition, batch.settled_first,
-                   decodeSettled(batch.settled, batch.settled_first, batch.settled_last, scenario.tracker.window_size)});
+                  {std::move(tracks), batch.observations_in_window, batch.observations_dropped_stale,
+                   batch.handoffs_lost_partition, batch.settled_first, std::move(settled)});
       });
     });
     // A supernode killed by hand: its tracks stop at the first tick that did not come, and its last
@@ -340,6 +353,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
     RunInfo info{scenario.name, scenario.run.seed, ticks, scenario.tracker.engine, truth.targetCount(),
                  dropped_stale_total, scenario.aggregator.association, provenance, faults.json()};
     common::writeTextFile(context.run_dir + "/metrics.json", metricsJson(info, run_scores, wall_s, ticks_per_s));
+    writeRejections(context, rejections);
     status.done(ticks);
     roles_done.wait();
   });

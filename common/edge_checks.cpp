@@ -1,6 +1,9 @@
 #include "common/edge_checks.hpp"
 
+#include "common/sensor_layout.hpp"
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -30,6 +33,22 @@ std::optional<RejectReason> checkMeasurement(const Measurement& m) {
   return std::nullopt;
 }
 
+template <std::size_t N>
+std::optional<RejectReason> checkArray(const std::array<double, N>& values) {
+  return checkValues(std::vector<double>(values.begin(), values.end()));
+}
+
+/// A report or an observation: a sensor the run has, a finite position within the region and its
+/// margin, and a measurement that checkMeasurement accepts.
+template <typename Sensed>
+std::optional<RejectReason> checkSensed(const Sensed& m, const EdgeBounds& bounds) {
+  if (m.sensor >= bounds.sensors) return RejectReason::kSensorOutOfRange;
+  if (!std::isfinite(m.x) || !std::isfinite(m.y)) return RejectReason::kNotFinite;
+  if (!bounds.region.contains({m.x, m.y})) return RejectReason::kOutOfRegion;
+  if (m.measurement) return checkMeasurement(*m.measurement);
+  return std::nullopt;
+}
+
 }  // namespace
 
 const char* rejectReasonName(RejectReason reason) {
@@ -43,11 +62,13 @@ const char* rejectReasonName(RejectReason reason) {
     case RejectReason::kNotFinite: return "not_finite";
     case RejectReason::kOutOfRegion: return "out_of_region";
     case RejectReason::kMalformedMeasurement: return "malformed_measurement";
+    case RejectReason::kMisaddressed: return "misaddressed";
   }
   return "unknown";
 }
 
-EdgeBounds edgeBounds(const Scenario& scenario, std::uint64_t sensors) {
+EdgeBounds edgeBounds(const Scenario& scenario) {
+  const std::uint64_t sensors = sensorCount(scenario.sensors, scenario.region);
   EdgeBounds bounds;
   bounds.margin = std::max(scenario.region.width(), scenario.region.height()) + scenario.sensor_model.sensing_range +
                   6.0 * scenario.localisation.sigma;
@@ -55,15 +76,50 @@ EdgeBounds edgeBounds(const Scenario& scenario, std::uint64_t sensors) {
                        scenario.region.x_max + bounds.margin, scenario.region.y_max + bounds.margin};
   bounds.sensors = sensors;
   bounds.ticks = scenario.run.ticks;
-  bounds.max_reports = static_cast<std::size_t>(sensors);
+  bounds.max_reports = static_cast<std::size_t>(sensors) * kMaxReportsPerSensor;
   return bounds;
 }
 
+std::optional<RejectReason> checkBatchHeader(std::uint64_t run_id, std::uint64_t expected_run_id, std::uint32_t producer,
+                                             std::uint32_t producers, std::int32_t tick, std::int32_t ticks) {
+  if (run_id != expected_run_id) return RejectReason::kForeignRun;
+  if (producer >= producers) return RejectReason::kProducerOutOfRange;
+  if (tick < 1 || tick > ticks) return RejectReason::kTickOutOfRange;
+  return std::nullopt;
+}
+
 std::optional<RejectReason> checkReport(const Report& report, const EdgeBounds& bounds) {
-  if (report.sensor >= bounds.sensors) return RejectReason::kSensorOutOfRange;
-  if (!std::isfinite(report.x) || !std::isfinite(report.y)) return RejectReason::kNotFinite;
-  if (!bounds.region.contains({report.x, report.y})) return RejectReason::kOutOfRegion;
-  if (report.measurement) return checkMeasurement(*report.measurement);
+  return checkSensed(report, bounds);
+}
+
+std::optional<RejectReason> checkObservation(const Observation& observation, const EdgeBounds& bounds) {
+  if (observation.tick_generated < 1 || observation.tick_generated > observation.tick_delivered)
+    return RejectReason::kTickOutOfRange;
+  return checkSensed(observation, bounds);
+}
+
+std::optional<RejectReason> checkReading(const SensorReading& reading, const EdgeBounds& bounds) {
+  if (reading.sensor >= bounds.sensors) return RejectReason::kSensorOutOfRange;
+  return checkValues({reading.z});
+}
+
+std::optional<RejectReason> checkTrack(const TrackEstimate& track, const EdgeBounds& bounds) {
+  if (const auto why = checkValues({track.x, track.y, track.vx, track.vy})) return why;
+  if (const auto why = checkArray(track.covariance)) return why;
+  if (const auto why = checkValues(track.class_probabilities)) return why;
+  if (track.stop_probability && !std::isfinite(*track.stop_probability)) return RejectReason::kNotFinite;
+  if (!bounds.region.contains({track.x, track.y})) return RejectReason::kOutOfRegion;
+  if (track.last_seen_tick < 0 || track.last_seen_tick > bounds.ticks) return RejectReason::kTickOutOfRange;
+  return std::nullopt;
+}
+
+std::optional<RejectReason> checkHandoff(const TrackHandoff& handoff, const EdgeBounds& bounds, std::uint32_t supernodes) {
+  if (handoff.to_supernode >= supernodes) return RejectReason::kMisaddressed;
+  if (handoff.last_tick < 1 || handoff.last_tick > bounds.ticks) return RejectReason::kTickOutOfRange;
+  if (const auto why = checkArray(handoff.state)) return why;
+  if (const auto why = checkArray(handoff.covariance)) return why;
+  if (const auto why = checkValues(handoff.class_probabilities)) return why;
+  if (!bounds.region.contains({handoff.state[0], handoff.state[1]})) return RejectReason::kOutOfRegion;
   return std::nullopt;
 }
 
@@ -97,11 +153,7 @@ std::string RejectionLog::json(const std::string& role, std::uint32_t index) con
 
 void dropRejectedReports(std::vector<Report>& reports, const EdgeBounds& bounds, const std::string& topic,
                          RejectionLog& log) {
-  std::erase_if(reports, [&](const Report& report) {
-    const auto why = checkReport(report, bounds);
-    if (why) log.add(topic, *why);
-    return why.has_value();
-  });
+  dropRejected(reports, [&](const Report& report) { return checkReport(report, bounds); }, topic, log);
 }
 
 }  // namespace wsn::common

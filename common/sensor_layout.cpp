@@ -13,6 +13,14 @@ GridShape gridShape(const Rect& region, double spacing) {
           static_cast<std::uint32_t>(std::floor(region.height() / spacing + 1e-9))};
 }
 
+std::uint64_t sensorCount(const SensorLayoutConfig& config, const Rect& region) {
+  switch (config.kind) {
+    case SensorLayoutConfig::Kind::kList: return config.list.size();
+    case SensorLayoutConfig::Kind::kGrid: return gridShape(region, config.spacing).sensors();
+    default: return config.count;
+  }
+}
+
 SensorFieldConfig sensorFieldConfig(const Scenario& scenario) {
   return {scenario.region, scenario.sensors, scenario.localisation.sigma, scenario.sensor_model.sensing_range,
           scenario.run.seed};

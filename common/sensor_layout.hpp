@@ -30,6 +30,9 @@ struct GridShape {
 };
 GridShape gridShape(const Rect& region, double spacing);
 
+/// The number of sensors `config` places over `region` (ids 0 .. n - 1), without placing them.
+std::uint64_t sensorCount(const SensorLayoutConfig& config, const Rect& region);
+
 /// The sensor-field config of `scenario`: split off at the role edge.
 SensorFieldConfig sensorFieldConfig(const Scenario& scenario);
 

@@ -143,7 +143,7 @@ std::string runSummary(const std::string& run_dir, const RunFigures& f, const Cl
   for (const auto& fault : f.faults) row(out, "fault", fault);
   row(out, "dropped (older than ws)", show(f.dropped_stale, 0));
   if (f.samples_rejected && *f.samples_rejected > 0)
-    row(out, "samples rejected", show(f.samples_rejected, 0) + " (not from this run or out of bounds: rejected.json)");
+    row(out, "samples rejected", show(f.samples_rejected, 0) + " (by topic and reason: rejected.json)");
   if (result.first_tick_s > 0.0) row(out, "start-up (to tick 1)", show(result.first_tick_s, 3) + " s");
   row(out, "wall time (tick loop)", show(f.wall_s, 3) + " s");
   row(out, "ticks/s (tick loop)", show(f.ticks_per_s, 1));

@@ -34,20 +34,18 @@ void runNetworkRole(const dds::RoleContext& context) {
     TickInbox<std::vector<common::Report>> inbox;
     // Every batch and report is checked before it counts: a first batch of a producer and tick is
     // kept, a later one never displaces it, and whatever is refused is counted (rejected.json).
-    const common::EdgeBounds bounds = common::edgeBounds(scenario, layout.size());
+    const common::EdgeBounds bounds = common::edgeBounds(scenario);
     common::RejectionLog rejections;
     const std::string topic = topic_names::kReportBatch;
     loop.watch(report_reader, [&] {
       report_reader.take([&](const wsn_msg_ReportBatch& batch) {
         using common::RejectReason;
-        if (batch.run_id != context.run_id) return rejections.add(topic, RejectReason::kForeignRun);
-        if (batch.tile >= static_cast<std::uint32_t>(context.shape.tiles))
-          return rejections.add(topic, RejectReason::kProducerOutOfRange);
-        if (batch.tick < 1 || batch.tick > bounds.ticks) return rejections.add(topic, RejectReason::kTickOutOfRange);
+        if (const auto why = common::checkBatchHeader(batch.run_id, context.run_id, batch.tile,
+                                                      static_cast<std::uint32_t>(context.shape.tiles), batch.tick, bounds.ticks))
+          return rejections.add(topic, *why);
         if (!plan.tileLive(static_cast<std::int32_t>(batch.tile), batch.tick)) return;  // the scenario's faults
         if (batch.reports._length > bounds.max_reports) return rejections.add(topic, RejectReason::kTooLong);
-        if (inbox.has(batch.tick, batch.tile) || batch.tick <= inbox.consumedThrough())
-          return rejections.add(topic, RejectReason::kDuplicate);
+        if (!inbox.accepts(batch.tick, batch.tile)) return rejections.add(topic, RejectReason::kDuplicate);
         auto reports = decode(batch.reports, batch.tick);
         common::dropRejectedReports(reports, bounds, topic, rejections);
         inbox.put(batch.tick, batch.tile, std::move(reports));

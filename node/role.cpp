@@ -1,6 +1,7 @@
 #include "node/role.hpp"
 
 #include "common/dds/codec.hpp"
+#include "common/edge_checks.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
 #include "node/sensor_model_registry.hpp"
@@ -27,13 +28,24 @@ void runNodeRole(const dds::RoleContext& context) {
 
     auto plan = context.faultPlan();
     TickInbox<std::vector<common::SensorReading>> boundary_inbox;
+    // Every batch and reading is checked before it counts (common/edge_checks.hpp); refusals are
+    // counted for rejected.json.
+    const common::EdgeBounds bounds = common::edgeBounds(context.scenario);
+    common::RejectionLog rejections;
     loop.watch(boundary_reader, [&] {
       boundary_reader.take([&](const wsn_msg_SensorBoundary& batch) {
-        if (batch.run_id != context.run_id || batch.tile == context.index ||
-            batch.tile >= static_cast<std::uint32_t>(context.shape.tiles) ||
-            !plan.tileLive(static_cast<std::int32_t>(batch.tile), batch.tick))
-          return;
-        boundary_inbox.put(batch.tick, batch.tile, decode(batch.readings));
+        const std::string topic = topic_names::kSensorBoundary;
+        if (const auto why = common::checkBatchHeader(batch.run_id, context.run_id, batch.tile,
+                                                      static_cast<std::uint32_t>(context.shape.tiles), batch.tick, bounds.ticks))
+          return rejections.add(topic, *why);
+        // Its own readings (the reader hears its own writer), and a tile the faults silenced.
+        if (batch.tile == context.index || !plan.tileLive(static_cast<std::int32_t>(batch.tile), batch.tick)) return;
+        if (batch.readings._length > bounds.sensors) return rejections.add(topic, common::RejectReason::kTooLong);
+        if (!boundary_inbox.accepts(batch.tick, batch.tile)) return rejections.add(topic, common::RejectReason::kDuplicate);
+        auto readings = decode(batch.readings);
+        common::dropRejected(readings, [&](const common::SensorReading& r) { return common::checkReading(r, bounds); },
+                             topic, rejections);
+        boundary_inbox.put(batch.tick, batch.tile, std::move(readings));
       });
     });
 
@@ -93,6 +105,7 @@ void runNodeRole(const dds::RoleContext& context) {
       report_sample.reports = sequenceView<dds_sequence_wsn_msg_Report>(reports.items);
       report_writer.write(report_sample);
     }
+    writeRejections(context, rejections);
     progress.waitForCompleted(ticks);
     status.done(ticks);
   });

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "common/dds/codec.hpp"
+#include "common/edge_checks.hpp"
 #include "supernode/supernode_tracker.hpp"
 
 namespace wsn::supernode {
@@ -124,6 +125,90 @@ void publishTick(dds::Writer<wsn_msg_TrackBatch>& track_writer, dds::Writer<wsn_
   handoff_writer->write(handoff_sample);
 }
 
+/// What a supernode reads, checked at the edge (common/edge_checks.hpp) and filed per tick: its
+/// deliveries, its neighbours' handoffs and the aggregator's re-homed tracks. Refusals are counted
+/// for rejected.json; a sample of a tick before a restarted supernode's first is no refusal.
+class CheckedInputs {
+ public:
+  CheckedInputs(const dds::RoleContext& context, const common::FaultPlan& plan, const HandoffLinks& links,
+                LateOrphans& late_orphans)
+      : context_(context),
+        plan_(plan),
+        links_(links),
+        late_orphans_(late_orphans),
+        bounds_(common::edgeBounds(context.scenario)),
+        supernodes_(static_cast<std::uint32_t>(context.shape.supernodes)),
+        first_(context.first_tick) {
+    deliveries.skipThrough(first_ - 1);
+    handoffs.skipThrough(first_ - 2);
+    orphans.skipThrough(first_ - 1);
+  }
+
+  void delivery(const wsn_msg_DeliveryBatch& batch) {
+    const std::string topic = dds::topic_names::kDeliveryBatch;
+    if (const auto why = common::checkBatchHeader(batch.run_id, context_.run_id, 0, 1, batch.tick, bounds_.ticks))
+      return rejections.add(topic, *why);
+    if (batch.supernode != context_.index) return rejections.add(topic, RejectReason::kMisaddressed);
+    if (batch.tick < first_) return;  // before a restart: ticks this process takes no part in
+    if (batch.observations._length > bounds_.max_reports) return rejections.add(topic, RejectReason::kTooLong);
+    if (!deliveries.accepts(batch.tick, 0)) return rejections.add(topic, RejectReason::kDuplicate);
+    auto observations = dds::decode(batch.observations, batch.tick);
+    common::dropRejected(observations, [&](const common::Observation& o) { return common::checkObservation(o, bounds_); },
+                         topic, rejections);
+    deliveries.put(batch.tick, 0, std::move(observations));
+  }
+
+  void handoff(const wsn_msg_HandoffBatch& batch) {
+    const std::string topic = dds::topic_names::kHandoffBatch;
+    if (const auto why = header(batch)) return rejections.add(topic, *why);
+    if (!links_.borders(batch.from_supernode)) return rejections.add(topic, RejectReason::kMisaddressed);
+    if (!plan_.supernodeLive(static_cast<std::int32_t>(batch.from_supernode), batch.tick)) return;  // the faults
+    if (batch.tick < first_ - 1) return;  // before a restart
+    if (!handoffs.accepts(batch.tick, batch.from_supernode)) return rejections.add(topic, RejectReason::kDuplicate);
+    handoffs.put(batch.tick, batch.from_supernode, checked(batch, topic));
+  }
+
+  void rehome(const wsn_msg_HandoffBatch& batch) {
+    const std::string topic = dds::topic_names::kRehomeBatch;
+    if (const auto why = header(batch)) return rejections.add(topic, *why);
+    if (batch.tick < first_) return;  // before a restart
+    if (plan_.supernodeDies(static_cast<std::int32_t>(batch.from_supernode), batch.tick)) {
+      if (!orphans.accepts(batch.tick, batch.from_supernode)) return rejections.add(topic, RejectReason::kDuplicate);
+      orphans.put(batch.tick, batch.from_supernode, checked(batch, topic));
+    } else {  // a supernode lost by hand
+      late_orphans_.add(batch.from_supernode, checked(batch, topic));
+    }
+  }
+
+  dds::TickInbox<std::vector<common::Observation>> deliveries;
+  dds::TickInbox<std::vector<common::TrackHandoff>> handoffs;
+  dds::TickInbox<std::vector<common::TrackHandoff>> orphans;
+  common::RejectionLog rejections;
+
+ private:
+  using RejectReason = common::RejectReason;
+
+  std::optional<RejectReason> header(const wsn_msg_HandoffBatch& batch) const {
+    return common::checkBatchHeader(batch.run_id, context_.run_id, batch.from_supernode, supernodes_, batch.tick,
+                                    bounds_.ticks);
+  }
+
+  std::vector<common::TrackHandoff> checked(const wsn_msg_HandoffBatch& batch, const std::string& topic) {
+    auto items = dds::decode(batch.handoffs);
+    common::dropRejected(items, [&](const common::TrackHandoff& h) { return common::checkHandoff(h, bounds_, supernodes_); },
+                         topic, rejections);
+    return items;
+  }
+
+  const dds::RoleContext& context_;
+  const common::FaultPlan& plan_;
+  const HandoffLinks& links_;
+  LateOrphans& late_orphans_;
+  const common::EdgeBounds bounds_;
+  const std::uint32_t supernodes_;
+  const std::int32_t first_;
+};
+
 /// A restarted supernode's start barrier: its writers must reach the live processes, not the dead
 /// ones whose endpoints linger until their lease ends, so it waits for their readers by name; its
 /// producers wait for its own readers (RestartedReaders).
@@ -161,7 +246,6 @@ void runSupernodeRole(const dds::RoleContext& context) {
   runRole(context, [&](const Participant& participant, const RunTopics& topics, StatusPublisher& status) {
     const auto& scenario = context.scenario;
     const std::uint32_t self = context.index;
-    const auto supernodes = static_cast<std::uint32_t>(context.shape.supernodes);
     auto plan = context.faultPlan();
     // A restarted supernode starts afresh at its first tick; the others at tick 1.
     auto tracker = std::make_unique<SupernodeTracker>(supernodeConfig(scenario, self), context.first_tick);
@@ -176,38 +260,16 @@ void runSupernodeRole(const dds::RoleContext& context) {
     PipelineProgress progress(participant, topics, context, loop);
     RestartedReaders restarted(participant, context, plan);
 
-    TickInbox<std::vector<common::Observation>> deliveries;
-    TickInbox<std::vector<common::TrackHandoff>> handoffs;
-    TickInbox<std::vector<common::TrackHandoff>> orphans;
     // A restarted supernode reads from its first tick on: the handoffs of the tick before it, the
     // rest of that tick.
     const std::int32_t first = context.first_tick;
-    deliveries.skipThrough(first - 1);
-    handoffs.skipThrough(first - 2);
-    orphans.skipThrough(first - 1);
-    loop.watch(delivery_reader, [&] {
-      delivery_reader.take([&](const wsn_msg_DeliveryBatch& batch) {
-        if (batch.run_id != context.run_id || batch.supernode != self) return;
-        deliveries.put(batch.tick, 0, decode(batch.observations, batch.tick));
-      });
-    });
-    loop.watch(links.reader, [&] {
-      links.reader.take([&](const wsn_msg_HandoffBatch& batch) {
-        if (batch.run_id != context.run_id || !links.borders(batch.from_supernode) || batch.from_supernode >= supernodes ||
-            !plan.supernodeLive(static_cast<std::int32_t>(batch.from_supernode), batch.tick))
-          return;
-        handoffs.put(batch.tick, batch.from_supernode, decode(batch.handoffs));
-      });
-    });
-    loop.watch(rehome_reader, [&] {
-      rehome_reader.take([&](const wsn_msg_HandoffBatch& batch) {
-        if (batch.run_id != context.run_id || batch.from_supernode >= supernodes) return;
-        if (plan.supernodeDies(static_cast<std::int32_t>(batch.from_supernode), batch.tick))
-          orphans.put(batch.tick, batch.from_supernode, decode(batch.handoffs));
-        else  // a supernode lost by hand
-          late_orphans.add(batch.from_supernode, decode(batch.handoffs));
-      });
-    });
+    CheckedInputs inputs(context, plan, links, late_orphans);
+    loop.watch(delivery_reader, [&] { delivery_reader.take([&](const wsn_msg_DeliveryBatch& b) { inputs.delivery(b); }); });
+    loop.watch(links.reader, [&] { links.reader.take([&](const wsn_msg_HandoffBatch& b) { inputs.handoff(b); }); });
+    loop.watch(rehome_reader, [&] { rehome_reader.take([&](const wsn_msg_HandoffBatch& b) { inputs.rehome(b); }); });
+    auto& deliveries = inputs.deliveries;
+    auto& handoffs = inputs.handoffs;
+    auto& orphans = inputs.orphans;
     // A neighbour killed by hand: its handoffs stop at the first tick that did not come. Another
     // supernode's loss changes nothing here (it never sends to this one), so its tick is now.
     std::int32_t t = first;
@@ -269,6 +331,7 @@ void runSupernodeRole(const dds::RoleContext& context) {
       publishTick(track_writer, links.writerOrNull(), links.neighbours, restarted, context.run_id, self, output,
                   handoffs_lost_partition);
     }
+    writeRejections(context, inputs.rejections);
     progress.waitForCompleted(ticks);
     status.done(ticks);
   });

@@ -205,8 +205,9 @@ class TickInbox {
     return node.empty() ? std::map<std::uint32_t, BatchT>{} : std::move(node.mapped());
   }
   std::uint64_t rejected() const { return rejected_; }
-  /// The last tick taken or skipped: a batch of it or before comes too late.
-  std::int32_t consumedThrough() const { return consumed_through_; }
+  /// Whether a batch of `tick` from `producer` would be filed: the first of its producer and tick,
+  /// and of a tick not yet taken or skipped.
+  bool accepts(std::int32_t tick, std::uint32_t producer) const { return tick > consumed_through_ && !has(tick, producer); }
   /// The first tick from `from` on whose batch of `producer` has not arrived.
   std::int32_t firstMissing(std::uint32_t producer, std::int32_t from) const {
     std::int32_t t = std::max(from, consumed_through_ + 1);

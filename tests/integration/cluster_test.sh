@@ -37,6 +37,16 @@ same_outputs() {
 # shellcheck source=common.sh
 . "$(dirname "$0")/common.sh"
 
+# joined_run DIR: waits until the run in DIR is running and sets domain, run_id and viewer (its
+# first viewer slot) from its run.json, for a stranger to join it.
+joined_run() {
+  local dir="$1"
+  for _ in $(seq 1 300); do grep -q '"status": "running"' "$dir/run.json" 2>/dev/null && break; sleep 0.1; done
+  domain=$(sed -n 's/^  "domain": \([0-9]*\),$/\1/p' "$dir/run.json"); run_id=$(run_json "$PWD/$dir" run_id)
+  viewer=$(sed -n 's/.*"viewer_participant_indices": \[\([0-9]*\),.*/\1/p' "$dir/run.json")
+  [ -n "$domain" ] && [ -n "$run_id" ] && [ -n "$viewer" ] || { cat "$dir/run.json" >&2; fail "run.json lacks domain, run_id or viewer slots"; }
+}
+
 # run.json's string value of key $2 in run directory $1 (one key per line, as the launcher writes it).
 run_json() { sed -n "s/^  \"$2\": \"\(.*\)\",\{0,1\}$/\1/p" "$1/run.json"; }
 
@@ -406,10 +416,7 @@ PY
     # it does not, so the run completes with the outputs of an undisturbed run, and nothing prints
     # the escape byte.
     "$wsntrack" run "$scenario" --seed 3 --tick-interval 0.05 --no-plot --security off --out "$PWD/r" >r.stdout 2>r.stderr & launcher=$!
-    for _ in $(seq 1 300); do grep -q '"status": "running"' r/run.json 2>/dev/null && break; sleep 0.1; done
-    domain=$(sed -n 's/^  "domain": \([0-9]*\),$/\1/p' r/run.json); run_id=$(run_json "$PWD/r" run_id)
-    viewer=$(sed -n 's/.*"viewer_participant_indices": \[\([0-9]*\),.*/\1/p' r/run.json)
-    [ -n "$domain" ] && [ -n "$run_id" ] && [ -n "$viewer" ] || { cat r/run.json >&2; fail "run.json lacks domain, run_id or viewer slots"; }
+    joined_run r
     CYCLONEDDS_URI="file://$PWD/r/cyclonedds.xml" WSN_PARTICIPANT_INDEX="$viewer" timeout 60 "$bin/wsn_fake_status" \
       "$domain" "$run_id" supernode 1 $'\e[2J\e[31mboom\e[0m' >fake.out 2>fake.err || { cat fake.err >&2; fail "the fake status was not written"; }
     grep -q "wrote a FAILED status for supernode 1 to [1-9]" fake.out || { cat fake.out >&2; fail "no reader took the fake status"; }
@@ -425,10 +432,7 @@ PY
     # none, and no role's reader matches it. Either way the run completes as an undisturbed one, and
     # its credentials are gone at the end.
     "$wsntrack" run "$scenario" --seed 3 --tick-interval 0.05 --no-plot --out "$PWD/r" >r.stdout 2>r.stderr & launcher=$!
-    for _ in $(seq 1 300); do grep -q '"status": "running"' r/run.json 2>/dev/null && break; sleep 0.1; done
-    domain=$(sed -n 's/^  "domain": \([0-9]*\),$/\1/p' r/run.json); run_id=$(run_json "$PWD/r" run_id)
-    viewer=$(sed -n 's/.*"viewer_participant_indices": \[\([0-9]*\),.*/\1/p' r/run.json)
-    [ -n "$domain" ] && [ -n "$run_id" ] && [ -n "$viewer" ] || { cat r/run.json >&2; fail "run.json lacks domain, run_id or viewer slots"; }
+    joined_run r
     [ "$(stat -c %a r/credentials)" = 700 ] || fail "the credentials directory is not private: $(stat -c %a r/credentials)"
     for f in r/credentials/*; do [ "$(stat -c %a "$f")" = 600 ] || fail "$f is not private: $(stat -c %a "$f")"; done
     grep -q "<Security>" r/cyclonedds.xml || fail "the run's configuration has no Security section"
@@ -452,10 +456,7 @@ PY
     # forged reaches observations.csv; the network model counts each refusal, and the tile's own
     # batches of those ticks as duplicates (the first batch of a tile and tick is kept).
     "$wsntrack" run "$scenario" --seed 3 --tick-interval 0.05 --no-plot --security off --out "$PWD/r" >r.stdout 2>r.stderr & launcher=$!
-    for _ in $(seq 1 300); do grep -q '"status": "running"' r/run.json 2>/dev/null && break; sleep 0.1; done
-    domain=$(sed -n 's/^  "domain": \([0-9]*\),$/\1/p' r/run.json); run_id=$(run_json "$PWD/r" run_id)
-    viewer=$(sed -n 's/.*"viewer_participant_indices": \[\([0-9]*\),.*/\1/p' r/run.json)
-    [ -n "$domain" ] && [ -n "$run_id" ] && [ -n "$viewer" ] || { cat r/run.json >&2; fail "run.json lacks domain, run_id or viewer slots"; }
+    joined_run r
     CYCLONEDDS_URI="file://$PWD/r/cyclonedds.xml" WSN_PARTICIPANT_INDEX="$viewer" timeout 60 "$bin/wsn_hostile_reports" \
       "$domain" "$run_id" 100 80 95 >hostile.out 2>hostile.err || { cat hostile.err >&2; fail "the forged batches were not written"; }
     wait_bounded "$launcher" 120
