@@ -24,6 +24,7 @@
 #include "common/dds/role_runtime.hpp"
 #include "common/dds/security.hpp"
 #include "common/printable.hpp"
+#include "launcher/run_credentials.hpp"
 #include "launcher/run_description.hpp"
 #include "launcher/run_directory.hpp"
 #include "launcher/watch_state.hpp"
@@ -212,6 +213,13 @@ class Watcher {
     if (const auto address = dds::cycloneInterfaceAddress(config); !address.empty() && !dds::hasLocalAddress(address)) {
       std::cerr << "wsntrack watch: this run's launcher host uses address " << address
                 << ", which no interface here has: watch from that host (in its network namespace, if it is one)\n";
+      return kWatchFailed;
+    }
+    // A secured run's credentials go when it ends: say so rather than that every slot is taken.
+    if (config.find("<Security>") != std::string::npos &&
+        !std::filesystem::exists(std::filesystem::path(options_.run_dir) / kCredentialsDirectory)) {
+      std::cerr << "wsntrack watch: " << options_.run_dir << "/" << kCredentialsDirectory
+                << " is gone: the run has ended (a secured run's credentials are removed at its end)\n";
       return kWatchFailed;
     }
     auto domain = joinDomain(config);

@@ -217,6 +217,19 @@ EOF
     [ "$rc" -eq 1 ] || { cat err.txt >&2; fail "watch on a killed run exited $rc, expected 1"; }
     grep -q "launcher (pid $launcher) exited before the run finished" err.txt || { cat err.txt >&2; fail "unclear message for a killed run"; }
 
+    # A secured run whose credentials are gone while run.json still says running (as once its
+    # launcher removed them): the watch says so instead of calling every viewer slot taken.
+    "$wsntrack" run "$scenario" --ticks 300 --tick-interval 0.02 --quiet --no-plot --out "$PWD/nocreds" \
+      >/dev/null 2>nocreds.err & launcher=$!; started_pids+=("$launcher")
+    for _ in $(seq 1 300); do [ -f "$PWD/nocreds/logs/aggregator-0.log" ] && break; sleep 0.1; done
+    sleep 1; rm -rf "$PWD/nocreds/credentials"
+    "$wsntrack" watch "$PWD/nocreds" --timeout 5 >out.txt 2>err.txt & watcher=$!; started_pids+=("$watcher")
+    wait_bounded "$watcher" 20 "wsntrack watch"
+    [ "$rc" -eq 1 ] || { cat err.txt >&2; fail "watch on a run without its credentials exited $rc, expected 1"; }
+    grep -q "credentials is gone: the run has ended" err.txt || { cat err.txt >&2; fail "unclear message for a run without credentials"; }
+    wait_bounded "$launcher" 60 "the run without credentials"
+    [ "$rc" -eq 0 ] || { cat nocreds.err >&2; fail "the run whose credentials were removed mid-run exited $rc"; }
+
     # The example on a run nobody serves: it gives up after its timeout.
     domain=$(json_value "$PWD/killed" domain); run_id=$(json_value "$PWD/killed" run_id)
     CYCLONEDDS_URI="file://$PWD/killed/cyclonedds.xml" WSN_PARTICIPANT_INDEX=$(json_value "$PWD/killed" participants) \
