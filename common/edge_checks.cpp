@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <span>
 #include <cmath>
 #include <sstream>
 
@@ -13,7 +14,7 @@ namespace {
 bool bounded(double v) { return std::isfinite(v) && std::fabs(v) <= kMaxMagnitude; }
 
 /// Not finite, or beyond any bound, for the values of a measurement.
-std::optional<RejectReason> checkValues(const std::vector<double>& values) {
+std::optional<RejectReason> checkValues(std::span<const double> values) {
   for (const double v : values) {
     if (!std::isfinite(v)) return RejectReason::kNotFinite;
     if (std::fabs(v) > kMaxMagnitude) return RejectReason::kOutOfRegion;
@@ -27,15 +28,11 @@ std::optional<RejectReason> checkMeasurement(const Measurement& m) {
   if (!std::isfinite(m.clutter_density)) return RejectReason::kNotFinite;
   if (!bounded(m.clutter_density)) return RejectReason::kOutOfRegion;
   if (m.sensor) {
-    if (const auto why = checkValues({m.sensor->x, m.sensor->y, m.sensor->heading, m.sensor->height})) return why;
+    const std::array<double, 4> pose{m.sensor->x, m.sensor->y, m.sensor->heading, m.sensor->height};
+    if (const auto why = checkValues(pose)) return why;
   }
   if (!wellFormed(m)) return RejectReason::kMalformedMeasurement;
   return std::nullopt;
-}
-
-template <std::size_t N>
-std::optional<RejectReason> checkArray(const std::array<double, N>& values) {
-  return checkValues(std::vector<double>(values.begin(), values.end()));
 }
 
 /// A report or an observation: a sensor the run has, a finite position within the region and its
@@ -100,12 +97,13 @@ std::optional<RejectReason> checkObservation(const Observation& observation, con
 
 std::optional<RejectReason> checkReading(const SensorReading& reading, const EdgeBounds& bounds) {
   if (reading.sensor >= bounds.sensors) return RejectReason::kSensorOutOfRange;
-  return checkValues({reading.z});
+  return checkValues(std::span<const double>(&reading.z, 1));
 }
 
 std::optional<RejectReason> checkTrack(const TrackEstimate& track, const EdgeBounds& bounds) {
-  if (const auto why = checkValues({track.x, track.y, track.vx, track.vy})) return why;
-  if (const auto why = checkArray(track.covariance)) return why;
+  const std::array<double, 4> state{track.x, track.y, track.vx, track.vy};
+  if (const auto why = checkValues(state)) return why;
+  if (const auto why = checkValues(track.covariance)) return why;
   if (const auto why = checkValues(track.class_probabilities)) return why;
   if (track.stop_probability && !std::isfinite(*track.stop_probability)) return RejectReason::kNotFinite;
   if (!bounds.region.contains({track.x, track.y})) return RejectReason::kOutOfRegion;
@@ -116,8 +114,8 @@ std::optional<RejectReason> checkTrack(const TrackEstimate& track, const EdgeBou
 std::optional<RejectReason> checkHandoff(const TrackHandoff& handoff, const EdgeBounds& bounds, std::uint32_t supernodes) {
   if (handoff.to_supernode >= supernodes) return RejectReason::kMisaddressed;
   if (handoff.last_tick < 1 || handoff.last_tick > bounds.ticks) return RejectReason::kTickOutOfRange;
-  if (const auto why = checkArray(handoff.state)) return why;
-  if (const auto why = checkArray(handoff.covariance)) return why;
+  if (const auto why = checkValues(handoff.state)) return why;
+  if (const auto why = checkValues(handoff.covariance)) return why;
   if (const auto why = checkValues(handoff.class_probabilities)) return why;
   if (!bounds.region.contains({handoff.state[0], handoff.state[1]})) return RejectReason::kOutOfRegion;
   return std::nullopt;

@@ -181,10 +181,10 @@ class StatusPublisher {
 template <typename BatchT>
 class TickInbox {
  public:
-  /// Files a batch; returns false (and counts it) for a duplicate or a tick already consumed.
+  /// Files a batch; returns false for a duplicate or a tick already consumed (the role counts it in
+  /// its common::RejectionLog, with the reason).
   bool put(std::int32_t tick, std::uint32_t producer, BatchT batch) {
     if (tick <= consumed_through_ || pending_[tick].count(producer) != 0) {
-      ++rejected_;
       return false;
     }
     pending_[tick].emplace(producer, std::move(batch));
@@ -204,7 +204,6 @@ class TickInbox {
     consumed_through_ = std::max(consumed_through_, tick);
     return node.empty() ? std::map<std::uint32_t, BatchT>{} : std::move(node.mapped());
   }
-  std::uint64_t rejected() const { return rejected_; }
   /// Whether a batch of `tick` from `producer` would be filed: the first of its producer and tick,
   /// and of a tick not yet taken or skipped.
   bool accepts(std::int32_t tick, std::uint32_t producer) const { return tick > consumed_through_ && !has(tick, producer); }
@@ -232,7 +231,6 @@ class TickInbox {
  private:
   std::map<std::int32_t, std::map<std::uint32_t, BatchT>> pending_;
   std::int32_t consumed_through_ = 0;
-  std::uint64_t rejected_ = 0;
 };
 
 /// A guard condition triggered when `stop` is requested (at once if it already was): attached to a
