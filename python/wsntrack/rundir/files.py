@@ -185,8 +185,9 @@ def read_metrics_summary(run_dir):
         document = read_json(run_dir / "metrics.json")
         metrics = document.get("metrics", {})
         summary = {k: metrics.get(k) for k in ("eps_k", "eps_x", "ospa_mean") if isinstance(metrics.get(k), (int, float))}
+        listed = document.get("faults")  # a list of faults; anything else ({"faults": 5}) has none to mark
         faults = [(f["during"]["first_tick"], f["during"]["last_tick"], str(f.get("what", f.get("action", "fault"))))
-                  for f in document.get("faults") or []
+                  for f in (listed if isinstance(listed, list) else [])
                   if isinstance(f, dict) and isinstance(f.get("during"), dict)
                   and all(isinstance(f["during"].get(k), int) for k in ("first_tick", "last_tick"))]
         if faults:

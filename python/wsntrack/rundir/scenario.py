@@ -74,6 +74,8 @@ def parse_yaml(text, path, where=None):
             _note_lines(loader, node, (), where, set())
     except yaml.YAMLError as error:
         raise InputError(_yaml_error(error, path, text)) from None
+    except RecursionError:  # PyYAML's composer recurses once per level of nesting
+        raise InputError(f"{path}: malformed YAML (nested deeper than the reader follows)") from None
     finally:
         if loader is not None:
             loader.dispose()

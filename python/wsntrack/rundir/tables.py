@@ -128,3 +128,7 @@ def read_json(path):
         raise InputError(f"{path}:{error.lineno}: malformed JSON ({error.msg})") from None
     except (OSError, UnicodeDecodeError) as error:
         raise InputError(f"{path}: cannot read ({error})") from None
+    except (ValueError, RecursionError) as error:
+        # An integer of more digits than Python converts (4300), or arrays nested deeper than its
+        # parser recurses: found by tests/tools/readers_property_test.py.
+        raise InputError(f"{path}: malformed JSON ({error})") from None

@@ -80,6 +80,8 @@ def load_spec(path):
         raise SpecError(path, mark.line + 1 if mark else None, f"malformed YAML: {error.problem or error}") from None
     except yaml.YAMLError as error:
         raise SpecError(path, None, f"malformed YAML: {error}") from None
+    except RecursionError:  # PyYAML's composer recurses once per level of nesting
+        raise SpecError(path, None, "malformed YAML: nested deeper than the reader follows") from None
     return SpecReader(path, yaml).read(root)
 
 
@@ -212,8 +214,11 @@ class SpecReader:
         given = Path(text)
         candidates = [given] if given.is_absolute() else [self.path.parent / given, REPO / given]
         for candidate in candidates:
-            if candidate.is_file():
-                return candidate.resolve()
+            try:
+                if candidate.is_file():
+                    return candidate.resolve()
+            except OSError as error:  # a name too long for the file system: found by readers_property_test.py
+                self.fail(node, f"scenario: no file {text} ({error.strerror})")
         self.fail(node, f"scenario: no file {text} " +
                   ("" if given.is_absolute() else
                    f"beside the spec (in {self.path.parent.resolve()}) or in the repository ({REPO})"))
