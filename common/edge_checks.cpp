@@ -60,6 +60,7 @@ const char* rejectReasonName(RejectReason reason) {
     case RejectReason::kOutOfRegion: return "out_of_region";
     case RejectReason::kMalformedMeasurement: return "malformed_measurement";
     case RejectReason::kMisaddressed: return "misaddressed";
+    case RejectReason::kUnauthenticated: return "unauthenticated";
   }
   return "unknown";
 }

@@ -124,6 +124,7 @@ dds::RoleContext contextFor(const RoleSlot& slot, const ClusterOptions& options,
   context.stall_timeout = std::chrono::milliseconds(static_cast<long>(options.stall_timeout_s * 1000));
   context.tick_interval = std::chrono::microseconds(std::llround(options.tick_interval_s * 1e6));
   context.stop = std::move(stop);
+  context.status_key = options.status_key;
   return context;
 }
 
@@ -179,10 +180,13 @@ class StatusObserver {
         // Its own topic only: under DDS Security a participant may create only the topics its
         // identity may read or write.
         status_topic_(participant_, dds::topic_names::kProcessStatus),
-        reader_(participant_, status_topic_, dds::Qos::lastValueTransientLocal(dds::Endpoint::kViewer)),
+        // Every sample, not the last of each process: each refused one is counted.
+        reader_(participant_, status_topic_, dds::Qos::lastValueTransientLocal(dds::Endpoint::kViewer).keepingAll()),
         writer_(participant_, status_topic_, dds::Qos::lastValueTransientLocal(dds::Endpoint::kViewer)),
         condition_(reader_),
         waitset_(participant_),
+        key_(options.status_key),
+        run_dir_(options.run_dir),
         run_id_(options.identity.run_id) {
     waitset_.attach(condition_.handle(), 0);
   }
@@ -196,13 +200,18 @@ class StatusObserver {
 
   /// Waits up to `timeout` for status samples; returns the aggregator's latest tick and collects
   /// the roles that announced a fault and, by role name ("supernode 2"), the messages of FAILED
-  /// samples, made printable. A FAILED sample is only a claim: anything on the domain can write
-  /// one, so the run fails when the named process does, and the message then says why.
+  /// samples, made printable. Only samples signed with the run's status key count; the others are
+  /// counted in RUN_DIR/rejected (writeRejections). Even a signed FAILED sample is only the reason:
+  /// the run fails when the named process does.
   void poll(std::chrono::milliseconds timeout, std::int32_t& aggregator_tick,
             std::map<std::string, std::string>& failed_messages, std::vector<Faulted>& faulted) {
     waitset_.wait(timeout);
     reader_.take([&](const wsn_msg_ProcessStatus& s) {
       if (s.run_id != run_id_) return;
+      if (!key_.authentic(s)) {
+        rejections_.add(dds::topic_names::kProcessStatus, common::RejectReason::kUnauthenticated);
+        return;
+      }
       if (s.state == wsn_msg_FAILED)
         failed_messages.emplace(common::printable(s.role) + " " + std::to_string(s.index), common::printable(s.message));
       if (s.state == wsn_msg_FAULTED) faulted.push_back({s.role, s.index, s.tick});
@@ -221,8 +230,12 @@ class StatusObserver {
     sample.state = wsn_msg_FAULTED;
     sample.tick = 0;
     sample.message = const_cast<char*>(why.c_str());
+    key_.sign(sample);
     writer_.write(sample);
   }
+
+  /// Leaves the count of refused status samples in the run directory, for rejected.json.
+  void writeRejections() const { dds::writeRejections(run_dir_, "launcher", 0, rejections_); }
 
  private:
   dds::Domain domain_;
@@ -232,6 +245,9 @@ class StatusObserver {
   dds::Writer<wsn_msg_ProcessStatus> writer_;
   dds::ReadCondition condition_;
   dds::WaitSet waitset_;
+  dds::StatusKey key_;
+  std::string run_dir_;
+  common::RejectionLog rejections_;
   std::uint64_t run_id_;
 };
 
@@ -251,7 +267,9 @@ void noteFirstTick(ClusterResult& result, std::int32_t tick, Clock::time_point s
 
 /// A started role process. A process on another host holds the read end of a pipe as its standard
 /// input (its lifeline, --stdin-lifeline): `lifeline` is the write end, which the launcher keeps open
-/// while the process runs and which the kernel closes when the launcher dies.
+/// while the process runs and which the kernel closes when the launcher dies. Every process reads
+/// the run's status key from the first line of that pipe (--status-key-on-stdin): a pipe only the
+/// launcher writes, unlike the command line (/proc/PID/cmdline) or a file.
 struct Spawned {
   pid_t pid = -1;
   int lifeline = -1;
@@ -281,7 +299,7 @@ Spawned spawn(const RoleSlot& slot, const ClusterOptions& options, const std::st
     args.push_back(std::to_string(first_tick));
   }
   const bool remote = options.hosts.startsRemotely(slot.role, slot.index);
-  int lifeline[2] = {-1, -1};
+  args.push_back("--status-key-on-stdin");
   if (remote) {
     // The launcher cannot signal a process behind ssh: the role enacts the scenario's faults itself
     // and ends when its standard input does.
@@ -290,8 +308,9 @@ Spawned spawn(const RoleSlot& slot, const ClusterOptions& options, const std::st
     args.push_back(hostConfigFile(options.run_dir, options.hosts, slot.host));
     const auto& start = options.hosts.hosts().at(slot.host).start;
     args.insert(args.begin(), start.begin(), start.end());
-    if (::pipe2(lifeline, O_CLOEXEC) != 0) throw std::runtime_error(std::string("pipe failed: ") + std::strerror(errno));
   }
+  int lifeline[2] = {-1, -1};
+  if (::pipe2(lifeline, O_CLOEXEC) != 0) throw std::runtime_error(std::string("pipe failed: ") + std::strerror(errno));
   const pid_t launcher = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) {
@@ -310,7 +329,7 @@ Spawned spawn(const RoleSlot& slot, const ClusterOptions& options, const std::st
       ::dup2(fd, 2);
       ::close(fd);
     }
-    if (remote) ::dup2(lifeline[0], 0);  // dup2 clears close-on-exec on the copy
+    ::dup2(lifeline[0], 0);  // dup2 clears close-on-exec on the copy
     // Cyclone opens its sockets without close-on-exec: the launcher's observer's ports must not
     // stay bound for as long as any role lives.
     ::close_range(3, ~0U, 0);
@@ -322,7 +341,17 @@ Spawned spawn(const RoleSlot& slot, const ClusterOptions& options, const std::st
     std::fprintf(stderr, "cannot execute %s: %s\n", argv[0], std::strerror(errno));
     ::_exit(127);
   }
-  if (remote) ::close(lifeline[0]);
+  // 65 bytes into an empty pipe: within PIPE_BUF, so the write is whole and does not block; the
+  // read end is still open here, so a child that died at once cannot make it raise SIGPIPE.
+  const std::string key_line = options.status_key.hex() + "\n";
+  const bool written = ::write(lifeline[1], key_line.data(), key_line.size()) == static_cast<ssize_t>(key_line.size());
+  ::close(lifeline[0]);
+  if (!remote) {
+    ::close(lifeline[1]);
+    lifeline[1] = -1;
+  }
+  // A process that did not get its key fails at start (its standard input ended), and says so.
+  if (!written) std::fprintf(stderr, "wsntrack run: could not hand %s its status key: %s\n", slot.name().c_str(), std::strerror(errno));
   return {pid, lifeline[1]};
 }
 
@@ -500,6 +529,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
         result.failure = "timed out after " + std::to_string(options.timeout.count()) + " s";
     }
     progress.finish();
+    observer.writeRejections();
   } catch (const std::exception& error) {
     if (result.failure.empty()) result.failure = std::string("launcher: ") + error.what();
   }
@@ -618,6 +648,7 @@ ClusterResult runThreads(const ClusterOptions& options) {
     }
     progress.finish();
     for (auto& thread : threads) thread.join();
+    observer.writeRejections();
   } catch (const std::exception& error) {
     fail(std::string("launcher: ") + error.what());
     for (auto& thread : threads)

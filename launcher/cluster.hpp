@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/dds/cyclone_config.hpp"
+#include "common/dds/status_auth.hpp"
 #include "common/scenario_config.hpp"
 #include "launcher/hosts.hpp"
 #include "launcher/run_description.hpp"
@@ -31,6 +32,9 @@ struct ClusterOptions {
   double tick_interval_s = 0.0;  ///< --tick-interval: real-time pacing of the sources (0: none)
   bool show_progress = true;
   std::string provenance_json;  ///< common::provenanceJson, written into run.json (and so metrics.json)
+  /// Signs the launcher's and the roles' status samples (common/dds/status_auth.hpp); reaches a role
+  /// process as the first line of its standard input, never through a file or its command line.
+  dds::StatusKey status_key = dds::StatusKey::generate();
   /// In-process mode: called (from the supervising thread) when role threads have not ended within
   /// the stop grace after a failure, timeout or signal, with the result so far. Threads cannot be
   /// killed, so it must report, mark the run failed and end the process (_exit): it must not return.

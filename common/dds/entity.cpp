@@ -96,6 +96,11 @@ Qos&& Qos::inPartition(const std::string& name) && {
   return std::move(*this);
 }
 
+Qos&& Qos::keepingAll() && {
+  dds_qset_history(qos_, DDS_HISTORY_KEEP_ALL, 0);
+  return std::move(*this);
+}
+
 Qos&& Qos::inPartitions(const std::vector<std::string>& names) && {
   std::vector<const char*> pointers;
   for (const auto& name : names) pointers.push_back(name.c_str());

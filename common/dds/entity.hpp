@@ -85,6 +85,8 @@ class Qos {
   Qos&& inPartition(const std::string& name) &&;
   /// The same with several partitions: the endpoint matches those of any of them.
   Qos&& inPartitions(const std::vector<std::string>& names) &&;
+  /// KEEP_ALL history instead: a reader that must see every sample of an instance, not only its last.
+  Qos&& keepingAll() &&;
 
  private:
   dds_qos_t* qos_;

@@ -180,6 +180,7 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
   std::string cyclone_config;
   bool faults_in_role = false;
   bool stdin_lifeline = false;
+  bool status_key_on_stdin = false;
 
   po::options_description options("Options");
   options.add_options()("help,h", "show this help and exit")(
@@ -200,7 +201,9 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
       "faults-in-role", "enact the scenario's kills and pauses of this process in the role itself (exit status 3 "
       "for a kill) instead of awaiting the launcher's signals: for a process the launcher cannot signal")(
       "stdin-lifeline", "end, as for SIGTERM, when standard input reaches its end: a process started over ssh "
-      "ends with the launcher's connection");
+      "ends with the launcher's connection")(
+      "status-key-on-stdin", "read the run's status key (64 hex digits) from the first line of standard input: "
+      "status samples are signed with it, and only samples signed with it are acted on");
   if (indexed)
     options.add_options()("index", po::value(&index)->required(), "tile or supernode index of this process")(
         "first-tick", po::value(&context.first_tick)->default_value(1),
@@ -222,6 +225,7 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
     po::notify(vm);
     faults_in_role = vm.count("faults-in-role") != 0;
     stdin_lifeline = vm.count("stdin-lifeline") != 0;
+    status_key_on_stdin = vm.count("status-key-on-stdin") != 0;
     if (cyclone_config.empty()) cyclone_config = context.run_dir + "/cyclonedds.xml";
     const char* end = run_id_hex.data() + run_id_hex.size();
     const auto [stop, error] = std::from_chars(run_id_hex.data(), end, context.run_id, 16);
@@ -258,6 +262,8 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
   try {
     // Before the domain: Cyclone's threads must inherit the blocked signals.
     const StopSignals stop_signals(stop_source, "wsntrack-" + role + " " + std::to_string(context.index));
+    // The key first: a remote process's standard input is its lifeline after that line.
+    if (status_key_on_stdin) context.status_key = StatusKey::readLine(0);
     if (stdin_lifeline) endWithStandardInput();
     context.scenario = load_scenario(context.run_dir + "/scenario.yaml");
     context.shape.supernodes = static_cast<std::int32_t>(context.scenario.supernodes.size());

@@ -45,6 +45,7 @@ RunTopics::RunTopics(const Participant& participant)
 
 StatusPublisher::StatusPublisher(const Participant& participant, const RunTopics& topics, const RoleContext& context)
     : writer_(participant, topics.process_status, Qos::lastValueTransientLocal()),
+      key_(context.status_key),
       run_id_(context.run_id),
       role_(context.role),
       index_(context.index) {}
@@ -57,6 +58,7 @@ void StatusPublisher::publish(int state, std::int32_t tick, const std::string& m
   sample.state = static_cast<wsn_msg_ProcessState>(state);
   sample.tick = tick;
   sample.message = const_cast<char*>(message.c_str());
+  key_.sign(sample);
   writer_.write(sample);
 }
 
@@ -235,9 +237,9 @@ void waitForClusterReady(const Participant& participant, const RunTopics& topics
     waitset.wait(until(deadline));  // status samples and a stop request wake it
     throwIfStopped(context);
     reader.take([&](const wsn_msg_ProcessStatus& s) {
-      // A FAILED sample is only a claim (any program on the domain can write one): a role that
-      // really failed ends its process or thread, and the launcher stops the others.
-      if (s.run_id != context.run_id || s.state == wsn_msg_FAILED) return;
+      // A FAILED sample is only a claim: a role that really failed ends its process or thread, and
+      // the launcher stops the others.
+      if (s.run_id != context.run_id || s.state == wsn_msg_FAILED || !context.status_key.authentic(s)) return;
       if (s.state != wsn_msg_STARTING) ready.emplace(s.role, s.index);
     });
   }
@@ -266,7 +268,8 @@ void LiveRolesDone::wait() {
   while (!waiting.empty() && Clock::now() < deadline && !context.stop.stop_requested()) {
     waitset_.wait(until(deadline));
     reader_.take([&](const wsn_msg_ProcessStatus& s) {
-      if (s.run_id == context.run_id && (s.state == wsn_msg_DONE || announcesLoss(s))) waiting.erase({s.role, s.index});
+      if (s.run_id == context.run_id && (s.state == wsn_msg_DONE || announcesLoss(s)) && context.status_key.authentic(s))
+        waiting.erase({s.role, s.index});
     });
   }
 }
@@ -324,7 +327,7 @@ LostProcesses::LostProcesses(const Participant& participant, const RunTopics& to
     : loop_(loop), reader_(participant, topics.process_status, Qos::lastValueTransientLocal()) {
   loop_.watch(reader_, [this, &context, on_lost = std::move(on_lost)] {
     reader_.take([&](const wsn_msg_ProcessStatus& s) {
-      if (s.run_id != context.run_id || !announcesLoss(s)) return;
+      if (s.run_id != context.run_id || !announcesLoss(s) || !context.status_key.authentic(s)) return;
       const std::string role = s.role;
       if ((role != "node" && role != "supernode") || !seen_.emplace(role, s.index).second) return;
       on_lost(role == "node" ? common::FaultRole::kNode : common::FaultRole::kSupernode, static_cast<std::int32_t>(s.index));
@@ -359,13 +362,17 @@ void runRole(const RoleContext& context,
 }
 
 void writeRejections(const RoleContext& context, const common::RejectionLog& log) {
+  writeRejections(context.run_dir, context.role, context.index, log);
+}
+
+void writeRejections(const std::string& run_dir, const std::string& role, std::uint32_t index,
+                     const common::RejectionLog& log) {
   if (log.total() == 0) return;
-  const std::string dir = context.run_dir + "/" + kRejectionsDirectory;
+  const std::string dir = run_dir + "/" + kRejectionsDirectory;
   std::error_code error;
   std::filesystem::create_directories(dir, error);
   if (error) throw std::runtime_error(dir + ": cannot create (" + error.message() + ")");
-  common::writeTextFile(dir + "/" + context.role + "-" + std::to_string(context.index) + ".json",
-                        log.json(context.role, context.index));
+  common::writeTextFile(dir + "/" + role + "-" + std::to_string(index) + ".json", log.json(role, index));
 }
 
 }  // namespace wsn::dds

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "common/dds/entity.hpp"
+#include "common/dds/status_auth.hpp"
 #include "common/edge_checks.hpp"
 #include "common/scenario_config.hpp"
 #include "wsntrack.h"
@@ -120,6 +121,9 @@ struct RoleContext {
   /// A participant shared by the role threads of one process (a group of supernodes, started with
   /// --count), or null: the role makes its own.
   const Participant* shared_participant = nullptr;
+  /// The run's status key (status_auth.hpp): signs this role's status samples, and a status sample
+  /// that is not signed with it is not acted on. None for a role started by hand.
+  StatusKey status_key;
 
   /// The scenario's faults as every role applies them (common/faults.hpp).
   common::FaultPlan faultPlan() const { return {scenario.faults, shape.tiles, shape.supernodes}; }
@@ -172,6 +176,7 @@ class StatusPublisher {
  private:
   void publish(int state, std::int32_t tick, const std::string& message);
   Writer<wsn_msg_ProcessStatus> writer_;
+  StatusKey key_;
   std::uint64_t run_id_;
   std::string role_;
   std::uint32_t index_;
@@ -285,6 +290,9 @@ inline constexpr const char* kRejectionsDirectory = "rejected";
 /// Writes `log` to RUN_DIR/rejected/ROLE-INDEX.json when it counted anything (the launcher gathers
 /// the files into rejected.json at the end of the run).
 void writeRejections(const RoleContext& context, const common::RejectionLog& log);
+/// As above, for a writer that is not a role (the launcher, which counts forged status samples).
+void writeRejections(const std::string& run_dir, const std::string& role, std::uint32_t index,
+                     const common::RejectionLog& log);
 
 /// Blocks until every writer matched `expected` role readers (viewers do not count: see
 /// Endpoint) and every reader matched `expected` writers, so that nothing published afterwards

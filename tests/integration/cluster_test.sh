@@ -411,20 +411,31 @@ PY
       { cat mp.stdout >&2; fail "the summary does not report the restart"; }
     no_leftovers ;;
   fake_status)
-    # Security off (what it still exposes): a program that is not a role claims, with terminal
-    # escapes, that supernode 1 FAILED: the launcher waits for supernode 1's process to fail, which
-    # it does not, so the run completes with the outputs of an undisturbed run, and nothing prints
-    # the escape byte.
-    "$wsntrack" run "$scenario" --seed 3 --tick-interval 0.05 --no-plot --security off --out "$PWD/r" >r.stdout 2>r.stderr & launcher=$!
+    # Security off (what it still exposes): a program that is not a role, and so has no status key,
+    # claims in supernode 1's name, with terminal escapes, that it FAILED, that it is lost (which
+    # would make its neighbours take its region), that it reached a fault the scenario lacks (which
+    # made the launcher fail the run), and that it is done; and that the network model is done and
+    # the aggregator at the last tick. The launcher and the roles act on none of it: the run
+    # completes with the outputs of an undisturbed run, nothing prints the escape byte, and the
+    # launcher counts each of the 7 claims in rejected.json.
+    "$wsntrack" run "$scenario" --seed 3 --tick-interval 0.1 --no-plot --security off --out "$PWD/r" >r.stdout 2>r.stderr & launcher=$!
     joined_run r
-    CYCLONEDDS_URI="file://$PWD/r/cyclonedds.xml" WSN_PARTICIPANT_INDEX="$viewer" timeout 60 "$bin/wsn_fake_status" \
-      "$domain" "$run_id" supernode 1 $'\e[2J\e[31mboom\e[0m' >fake.out 2>fake.err || { cat fake.err >&2; fail "the fake status was not written"; }
-    grep -q "wrote a FAILED status for supernode 1 to [1-9]" fake.out || { cat fake.out >&2; fail "no reader took the fake status"; }
+    claim() {  # claim ROLE INDEX STATE:TICK,...
+      CYCLONEDDS_URI="file://$PWD/r/cyclonedds.xml" WSN_PARTICIPANT_INDEX="$viewer" timeout 60 "$bin/wsn_fake_status" \
+        "$domain" "$run_id" "$1" "$2" $'\e[2J\e[31mboom\e[0m' 30 "$3" >fake.out 2>fake.err || { cat fake.err >&2; fail "the fake status was not written"; }
+      grep -q "status claims for $1 $2 to [1-9]" fake.out || { cat fake.out >&2; fail "no reader took the fake status"; }
+    }
+    claim supernode 1 FAILED:1,FAULTED:0,FAULTED:7,DONE:100
+    claim network 0 DONE:100,FAULTED:0
+    claim aggregator 0 RUNNING:100
     wait_bounded "$launcher" 120
-    [ "$rc" -eq 0 ] || { cat r.stderr >&2; fail "a fake FAILED status ended the run (exit $rc)"; }
+    [ "$rc" -eq 0 ] || { cat r.stderr >&2; fail "fake status claims ended the run (exit $rc)"; }
     run_ok "$PWD/clean" --seed 3 --no-plot
     same_outputs "$PWD/r" "$PWD/clean"
     ! grep -q $'\e' r.stdout r.stderr r/logs/*.log || fail "an escape byte from the fake status reached the output"
+    refused=$(python3 -c "import json; d=json.load(open('r/rejected.json')); print(sum(i['count'] for p in d['processes'] if p['role']=='launcher' for i in p['rejected'] if (i['topic'], i['reason'])==('wsn_process_status', 'unauthenticated')))")
+    [ "$refused" -eq 7 ] || { cat r/rejected.json >&2; fail "the launcher counted $refused unauthenticated status samples, expected 7"; }
+    grep -q "samples rejected *7" r.stdout || { cat r.stdout >&2; fail "the summary does not count the 7 refused claims"; }
     no_leftovers ;;
   secured_status)
     # Security on (the default): the same stranger with the run's own file presents the viewer's
