@@ -23,6 +23,18 @@
 namespace wsn::aggregator {
 namespace {
 
+/// Why a track batch is refused before anything in it counts: its header, or more settled ticks
+/// than a window holds, on which decodeSettled would throw and end this process (a forged batch
+/// found by fuzz/samples_fuzzer.cpp).
+std::optional<common::RejectReason> trackBatchRefusal(const wsn_msg_TrackBatch& batch, std::uint64_t run_id,
+                                                      std::uint32_t supernodes, const common::EdgeBounds& bounds,
+                                                      std::int32_t window) {
+  if (const auto why = common::checkBatchHeader(batch.run_id, run_id, batch.supernode, supernodes, batch.tick, bounds.ticks))
+    return why;
+  if (!dds::settledSpanFits(batch.settled_first, batch.settled_last, window)) return common::RejectReason::kTooLong;
+  return std::nullopt;
+}
+
 struct SupernodeBatch {
   std::vector<common::TrackEstimate> tracks;
   std::uint32_t observations_in_window = 0;
@@ -266,12 +278,12 @@ void runAggregatorRole(const dds::RoleContext& context) {
     // Every batch and track is checked before it counts (common/edge_checks.hpp); refusals are
     // counted for rejected.json.
     const common::EdgeBounds bounds = common::edgeBounds(scenario);
-    common::RejectionLog rejections;
+    RejectionsRecord rejections_record(context);  // on disk also if the role fails
+    common::RejectionLog& rejections = rejections_record.log();
     loop.watch(track_reader, [&] {
       track_reader.take([&](const wsn_msg_TrackBatch& batch) {
         const std::string topic = topic_names::kTrackBatch;
-        if (const auto why = common::checkBatchHeader(batch.run_id, context.run_id, batch.supernode, supernodes, batch.tick,
-                                                      bounds.ticks))
+        if (const auto why = trackBatchRefusal(batch, context.run_id, supernodes, bounds, scenario.tracker.window_size))
           return rejections.add(topic, *why);
         if (!plan.supernodeLive(static_cast<std::int32_t>(batch.supernode), batch.tick)) return;  // the faults
         if (!inbox.accepts(batch.tick, batch.supernode)) return rejections.add(topic, common::RejectReason::kDuplicate);
@@ -353,7 +365,7 @@ void runAggregatorRole(const dds::RoleContext& context) {
     RunInfo info{scenario.name, scenario.run.seed, ticks, scenario.tracker.engine, truth.targetCount(),
                  dropped_stale_total, scenario.aggregator.association, provenance, faults.json()};
     common::writeTextFile(context.run_dir + "/metrics.json", metricsJson(info, run_scores, wall_s, ticks_per_s));
-    writeRejections(context, rejections);
+    rejections_record.write();
     status.done(ticks);
     roles_done.wait();
   });

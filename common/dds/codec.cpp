@@ -233,11 +233,23 @@ Encoded<wsn_msg_SettledTrack> encodeSettled(std::int32_t first,
   return encoded;
 }
 
+namespace {
+
+std::int64_t settledSpan(std::int32_t first, std::int32_t last) {
+  return last >= first ? static_cast<std::int64_t>(last) - first + 1 : 0;
+}
+
+}  // namespace
+
+bool settledSpanFits(std::int32_t first, std::int32_t last, std::int32_t max_ticks) {
+  return settledSpan(first, last) <= max_ticks;
+}
+
 std::vector<std::vector<common::TrackEstimate>> decodeSettled(const dds_sequence_wsn_msg_SettledTrack& seq,
                                                               std::int32_t first, std::int32_t last,
                                                               std::int32_t max_ticks) {
-  const std::int64_t span = last >= first ? static_cast<std::int64_t>(last) - first + 1 : 0;
-  if (span > max_ticks)
+  const std::int64_t span = settledSpan(first, last);
+  if (!settledSpanFits(first, last, max_ticks))
     throw std::length_error("settled ticks " + std::to_string(first) + " .. " + std::to_string(last) + " span " +
                             std::to_string(span) + " ticks, more than the window's " + std::to_string(max_ticks));
   std::vector<std::vector<common::TrackEstimate>> by_tick(static_cast<std::size_t>(span));

@@ -67,9 +67,13 @@ std::vector<common::TrackEstimate> decode(const dds_sequence_wsn_msg_TrackEstima
 /// The settled estimate of ticks first .. first + by_tick.size() - 1 as flat (tick, track) items.
 Encoded<wsn_msg_SettledTrack> encodeSettled(std::int32_t first,
                                             const std::vector<std::vector<common::TrackEstimate>>& by_tick);
+/// Whether the settled ticks first .. last span at most max_ticks ticks (none when last < first): a
+/// batch settles at most a window's worth, so a receiver refuses a batch for which this is false.
+bool settledSpanFits(std::int32_t first, std::int32_t last, std::int32_t max_ticks);
+
 /// The tracks of each tick first .. last (empty when last < first); items outside are ignored.
-/// Throws std::length_error when the range spans more than max_ticks ticks (a batch settles at
-/// most a window's worth), so a malformed sample cannot make it allocate without bound.
+/// Throws std::length_error unless settledSpanFits (a receiver checks that first and refuses the
+/// batch), so a malformed sample cannot make it allocate without bound.
 std::vector<std::vector<common::TrackEstimate>> decodeSettled(const dds_sequence_wsn_msg_SettledTrack& seq,
                                                               std::int32_t first, std::int32_t last,
                                                               std::int32_t max_ticks);

@@ -263,3 +263,19 @@ TEST_CASE("the settled tracks of several ticks cross the wire by tick, empty tic
   CHECK(wsn::dds::decodeSettled(seq, 6, 5, 10).empty());
   CHECK_THROWS_AS(wsn::dds::decodeSettled(seq, 1, 11, 10), std::length_error);
 }
+
+TEST_CASE("a track batch settling more ticks than a window is refused before it is decoded") {
+  // Found by fuzz/samples_fuzzer.cpp: a TrackBatch with settled ticks 0 .. 121638912 made the
+  // aggregator's decodeSettled throw, which ended the aggregator and the run. Receivers now check
+  // settledSpanFits first and count the batch as too long. Window 10: ticks 3 .. 12 are 10 ticks.
+  CHECK(wsn::dds::settledSpanFits(3, 12, 10));
+  CHECK_FALSE(wsn::dds::settledSpanFits(3, 13, 10));
+  CHECK_FALSE(wsn::dds::settledSpanFits(0, 121638912, 10));
+  // The widest span the wire can say, which 32-bit arithmetic would overflow: 2^32 ticks.
+  CHECK_FALSE(wsn::dds::settledSpanFits(INT32_MIN, INT32_MAX, 10));
+  // Nothing settles (last < first), whatever the numbers.
+  CHECK(wsn::dds::settledSpanFits(INT32_MAX, INT32_MIN, 10));
+  CHECK(wsn::dds::settledSpanFits(6, 5, 0));
+  const dds_sequence_wsn_msg_SettledTrack none{};
+  CHECK_THROWS_AS(wsn::dds::decodeSettled(none, 0, 121638912, 10), std::length_error);
+}
