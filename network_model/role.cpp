@@ -35,7 +35,8 @@ void runNetworkRole(const dds::RoleContext& context) {
     // Every batch and report is checked before it counts: a first batch of a producer and tick is
     // kept, a later one never displaces it, and whatever is refused is counted (rejected.json).
     const common::EdgeBounds bounds = common::edgeBounds(scenario);
-    common::RejectionLog rejections;
+    RejectionsRecord rejections_record(context);  // on disk also if the role fails
+    common::RejectionLog& rejections = rejections_record.log();
     const std::string topic = topic_names::kReportBatch;
     loop.watch(report_reader, [&] {
       report_reader.take([&](const wsn_msg_ReportBatch& batch) {
@@ -109,7 +110,7 @@ void runNetworkRole(const dds::RoleContext& context) {
     report.silent_tile_ticks = faults_seen.silent_tile_ticks;
     report.rehomes = std::move(faults_seen.rehomes);
     common::writeTextFile(context.run_dir + "/network.json", networkJson(report));
-    writeRejections(context, rejections);
+    rejections_record.write();
     progress.waitForCompleted(ticks);
     status.done(ticks);
   });

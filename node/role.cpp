@@ -31,7 +31,8 @@ void runNodeRole(const dds::RoleContext& context) {
     // Every batch and reading is checked before it counts (common/edge_checks.hpp); refusals are
     // counted for rejected.json.
     const common::EdgeBounds bounds = common::edgeBounds(context.scenario);
-    common::RejectionLog rejections;
+    RejectionsRecord rejections_record(context);  // on disk also if the role fails
+    common::RejectionLog& rejections = rejections_record.log();
     loop.watch(boundary_reader, [&] {
       boundary_reader.take([&](const wsn_msg_SensorBoundary& batch) {
         const std::string topic = topic_names::kSensorBoundary;
@@ -105,7 +106,7 @@ void runNodeRole(const dds::RoleContext& context) {
       report_sample.reports = sequenceView<dds_sequence_wsn_msg_Report>(reports.items);
       report_writer.write(report_sample);
     }
-    writeRejections(context, rejections);
+    rejections_record.write();
     progress.waitForCompleted(ticks);
     status.done(ticks);
   });

@@ -132,7 +132,8 @@ class CheckedInputs {
  public:
   CheckedInputs(const dds::RoleContext& context, const common::FaultPlan& plan, const HandoffLinks& links,
                 LateOrphans& late_orphans)
-      : context_(context),
+      : record(context),
+        context_(context),
         plan_(plan),
         links_(links),
         late_orphans_(late_orphans),
@@ -183,7 +184,8 @@ class CheckedInputs {
   dds::TickInbox<std::vector<common::Observation>> deliveries;
   dds::TickInbox<std::vector<common::TrackHandoff>> handoffs;
   dds::TickInbox<std::vector<common::TrackHandoff>> orphans;
-  common::RejectionLog rejections;
+  dds::RejectionsRecord record;  // on disk also if the role fails
+  common::RejectionLog& rejections = record.log();
 
  private:
   using RejectReason = common::RejectReason;
@@ -331,7 +333,7 @@ void runSupernodeRole(const dds::RoleContext& context) {
       publishTick(track_writer, links.writerOrNull(), links.neighbours, restarted, context.run_id, self, output,
                   handoffs_lost_partition);
     }
-    writeRejections(context, inputs.rejections);
+    inputs.record.write();
     progress.waitForCompleted(ticks);
     status.done(ticks);
   });

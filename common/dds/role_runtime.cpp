@@ -1,6 +1,7 @@
 #include "common/dds/role_runtime.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <set>
 #include <sstream>
@@ -363,6 +364,20 @@ void runRole(const RoleContext& context,
 
 void writeRejections(const RoleContext& context, const common::RejectionLog& log) {
   writeRejections(context.run_dir, context.role, context.index, log);
+}
+
+void RejectionsRecord::write() {
+  written_ = true;
+  writeRejections(context_, log_);
+}
+
+RejectionsRecord::~RejectionsRecord() {
+  if (written_) return;
+  try {
+    writeRejections(context_, log_);
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "%s %u: could not record its refusals: %s\n", context_.role.c_str(), context_.index, error.what());
+  }
 }
 
 void writeRejections(const std::string& run_dir, const std::string& role, std::uint32_t index,

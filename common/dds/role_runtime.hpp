@@ -290,6 +290,24 @@ inline constexpr const char* kRejectionsDirectory = "rejected";
 /// Writes `log` to RUN_DIR/rejected/ROLE-INDEX.json when it counted anything (the launcher gathers
 /// the files into rejected.json at the end of the run).
 void writeRejections(const RoleContext& context, const common::RejectionLog& log);
+/// A role's record of refusals that reaches the run directory however the role ends: write() at
+/// the end of a run (an error fails the role), or the destructor when the role fails first, so that
+/// a failed run's rejected.json still counts what was refused before it failed.
+class RejectionsRecord {
+ public:
+  explicit RejectionsRecord(const RoleContext& context) : context_(context) {}
+  RejectionsRecord(const RejectionsRecord&) = delete;
+  RejectionsRecord& operator=(const RejectionsRecord&) = delete;
+  ~RejectionsRecord();
+  common::RejectionLog& log() { return log_; }
+  void write();
+
+ private:
+  const RoleContext& context_;
+  common::RejectionLog log_;
+  bool written_ = false;
+};
+
 /// As above, for a writer that is not a role (the launcher, which counts forged status samples).
 void writeRejections(const std::string& run_dir, const std::string& role, std::uint32_t index,
                      const common::RejectionLog& log);

@@ -5,7 +5,7 @@
 // network model counts every refusal in rejected.json. Joins as the example viewer does
 // (CYCLONEDDS_URI, WSN_PARTICIPANT_INDEX).
 //
-// Usage: wsn_hostile_reports DOMAIN RUN_ID TICKS FIRST_TICK LAST_TICK
+// Usage: wsn_hostile_reports DOMAIN RUN_ID TICKS FIRST_TICK LAST_TICK [WAIT_S]
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -45,20 +45,21 @@ void write(dds::Writer<wsn_msg_ReportBatch>& writer, std::uint64_t run_id, std::
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 6) {
-    std::fprintf(stderr, "usage: wsn_hostile_reports DOMAIN RUN_ID TICKS FIRST_TICK LAST_TICK\n");
+  if (argc != 6 && argc != 7) {
+    std::fprintf(stderr, "usage: wsn_hostile_reports DOMAIN RUN_ID TICKS FIRST_TICK LAST_TICK [WAIT_S]\n");
     return 2;
   }
   try {
     const auto domain = static_cast<dds_domainid_t>(std::stol(argv[1]));
     const std::uint64_t run_id = std::stoull(argv[2], nullptr, 16);
     const std::int32_t ticks = std::stoi(argv[3]), first = std::stoi(argv[4]), last = std::stoi(argv[5]);
+    const int wait_s = argc == 7 ? std::stoi(argv[6]) : 30;
     const dds::Participant participant(domain);
     const dds::Topic<wsn_msg_ReportBatch> topic(participant, dds::topic_names::kReportBatch);
     dds::Writer<wsn_msg_ReportBatch> writer(participant, topic, dds::Qos::reliableKeepAll());
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(wait_s);
     while (writer.matchedReaders() < 1) {
-      if (std::chrono::steady_clock::now() > deadline) throw std::runtime_error("no report reader within 30 s");
+      if (std::chrono::steady_clock::now() > deadline) throw std::runtime_error("no wsn_report_batch reader within " + std::to_string(wait_s) + " s");
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     const double nan = std::numeric_limits<double>::quiet_NaN();
