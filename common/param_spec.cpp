@@ -11,7 +11,8 @@ void resolveParams(const std::string& source_path, const std::string& section, c
                    const StatisticsSource& statistics, std::map<std::string, std::string>* derived) {
   const auto where = [&](int line) { return source_path + ":" + std::to_string(line) + ": "; };
   for (const auto& [name, param] : params) {
-    const auto it = std::find_if(specs.begin(), specs.end(), [&](const ParamSpec& p) { return p.name == name; });
+    // An init-capture: clang before 16 cannot capture a structured binding (the fuzzers' build).
+    const auto it = std::find_if(specs.begin(), specs.end(), [&wanted = name](const ParamSpec& p) { return p.name == wanted; });
     if (it == specs.end()) {
       std::string names;
       for (const auto& p : specs) names += (names.empty() ? "" : ", ") + p.name;

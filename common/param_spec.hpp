@@ -64,9 +64,12 @@ std::vector<ParamSpec> paramSpecs(const config::FieldTable<P>& table,
     if (const auto it = derivations.find(f.key); it != derivations.end()) spec.derivation = it->second;
     specs.push_back(std::move(spec));
   }
-  for (const auto& [key, derivation] : derivations)
+  // Not a structured binding: clang before 16 cannot capture one in a lambda (the fuzzers' build).
+  for (const auto& derivation : derivations) {
+    const std::string& key = derivation.first;
     if (std::none_of(specs.begin(), specs.end(), [&](const ParamSpec& p) { return p.name == key; }))
       throw std::logic_error("derivation for '" + key + "', which '" + table.section + "' does not have");
+  }
   return specs;
 }
 

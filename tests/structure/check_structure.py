@@ -79,7 +79,7 @@ LAYERS = [
     ["observation_model"],
     ["supernode"],
     ["aggregator"],
-    ["launcher", "bench", "examples"],
+    ["launcher", "bench", "examples", "fuzz"],
 ]
 
 CPP_SUFFIXES = (".cpp", ".hpp", ".h", ".c")
