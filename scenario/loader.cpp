@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "common/config/yaml_documents.hpp"
 #include "common/config/yaml_reader.hpp"
 #include "common/scenario_schema.hpp"
 #include "common/terrain.hpp"
@@ -440,20 +441,19 @@ Scenario readScenario(const YAML::Node& root, const std::string& file) {
 }  // namespace
 
 YAML::Node parseScenarioDocument(const std::string& yaml_text, const std::string& name_for_errors) {
-  std::vector<YAML::Node> documents;
+  common::config::YamlDocuments documents;
   try {
-    documents = YAML::LoadAll(yaml_text);
+    documents = common::config::readYamlDocuments(yaml_text);
   } catch (const YAML::ParserException& error) {
     const int line = error.mark.is_null() ? 1 : error.mark.line + 1;
     throw ScenarioError(name_for_errors + ":" + std::to_string(line) + ": invalid YAML: " + error.msg);
   } catch (const YAML::Exception& error) {
     throw ScenarioError(name_for_errors + ":1: invalid YAML: " + error.msg);
   }
-  for (std::size_t i = 1; i < documents.size(); ++i)
-    if (!documents[i].IsNull())
-      throw ScenarioError(name_for_errors + ":" + std::to_string(std::max(Reader::lineOf(documents[i]), 1)) +
-                          ": a scenario file holds one YAML document; found a second one here");
-  return documents.empty() ? YAML::Node() : documents.front();
+  if (documents.later_content_line > 0)
+    throw ScenarioError(name_for_errors + ":" + std::to_string(documents.later_content_line) +
+                        ": a scenario file holds one YAML document; found a second one here");
+  return documents.first;
 }
 
 Scenario scenarioFromDocument(const YAML::Node& root, const std::string& name_for_errors) {

@@ -13,6 +13,7 @@
 #include <system_error>
 #include <vector>
 
+#include "common/config/yaml_documents.hpp"
 #include "common/config/yaml_reader.hpp"
 #include "scenario/document.hpp"
 
@@ -63,18 +64,18 @@ std::vector<PathStep> keyPath(const ScenarioOverride& o) {
 
 /// The value as one YAML scalar, or null for an empty value.
 YAML::Node overrideValue(const ScenarioOverride& o) {
-  std::vector<YAML::Node> documents;
+  common::config::YamlDocuments documents;
   try {
-    documents = YAML::LoadAll(o.value);
+    documents = common::config::readYamlDocuments(o.value);
   } catch (const YAML::Exception& error) {
     throw OverrideError(o.text() + ": VALUE is not valid YAML (" + error.msg + "); quote it to make it a string");
   }
-  if (documents.empty()) return YAML::Node(YAML::NodeType::Null);
-  if (documents.size() > 1 || documents.front().IsMap() || documents.front().IsSequence())
+  if (documents.count == 0) return YAML::Node(YAML::NodeType::Null);
+  if (documents.count > 1 || documents.first.IsMap() || documents.first.IsSequence())
     throw OverrideError(o.text() + ": VALUE must be a single value such as 0.4 or gnn, got " +
-                        (documents.size() > 1 ? std::string("several YAML documents") : describe(documents.front())) +
+                        (documents.count > 1 ? std::string("several YAML documents") : describe(documents.first)) +
                         "; lists and mappings belong in the scenario file");
-  return documents.front();
+  return documents.first;
 }
 
 /// Sets path[i..] below `container` to `value`; `where` is the dotted path of `container`.

@@ -2,6 +2,7 @@
 // error with file and line, the resolved scenario.yaml that loads back to the same scenario
 // (writer.cpp), and the shipped scenarios as their papers describe them.
 #include "scenario/loader.hpp"
+#include "scenario/document.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -341,6 +342,15 @@ TEST_CASE("YAML syntax errors give file, line and yaml-cpp's message", "[scenari
   CHECK(errorOf("run:\n  ticks: *nowhere\n") == "s.yaml:2: invalid YAML: the referenced anchor is not defined");
   CHECK(errorOf("run: {ticks: 5}\n---\nrun: {ticks: 6}\n") ==
         "s.yaml:3: a scenario file holds one YAML document; found a second one here");
+}
+
+TEST_CASE("YAML on which yaml-cpp 0.7 stops making progress is an error, not a hang", "[scenario][errors]") {
+  // Found by fuzz/scenario_fuzzer.cpp: YAML::LoadAll loops without end, allocating, on a quoted or
+  // flow node followed by a comma at block level.
+  CHECK(errorOf("\"a\", b") == "s.yaml:1: invalid YAML: the YAML parser cannot go past this point");
+  CHECK(errorOf("[1], 2\n") == "s.yaml:1: invalid YAML: the YAML parser cannot go past this point");
+  // An empty document after the one with content is not a second one.
+  CHECK_NOTHROW(parseScenarioDocument("run: {ticks: 5}\n---\n", "s.yaml"));
 }
 
 TEST_CASE("a missing or unreadable file names the file and the reason", "[scenario][errors]") {
