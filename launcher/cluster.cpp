@@ -35,6 +35,7 @@
 #include "launcher/stopped_processes.hpp"
 #include "launcher/run_description.hpp"
 #include "launcher/run_summary.hpp"
+#include "launcher/status_observer.hpp"
 #include "network_model/role.hpp"
 #include "node/role.hpp"
 #include "supernode/role.hpp"
@@ -163,92 +164,6 @@ class ProgressDisplay {
   bool tty_;
   std::int32_t shown_ = 0;
   std::int32_t last_line_ = 0;
-};
-
-/// The launcher's own DDS observer of the status topic.
-class StatusObserver {
- public:
-  /// Joins with the configuration the run directory holds for the launcher's host, as the
-  /// launcher's own identity (a secured run's in-process roles share its participant's domain,
-  /// and so the identity with every role's rights).
-  StatusObserver(const ClusterOptions& options, int participant_index)
-      : domain_(static_cast<dds_domainid_t>(options.identity.domain),
-                dds::cycloneConfigFor(dds::readConfigFile(hostConfigFile(options.run_dir, options.hosts, 0)),
-                                      participant_index,
-                                      options.in_process ? dds::kInProcessIdentity : dds::kLauncherIdentity)),
-        participant_(domain_.id()),
-        // Its own topic only: under DDS Security a participant may create only the topics its
-        // identity may read or write.
-        status_topic_(participant_, dds::topic_names::kProcessStatus),
-        // Every sample, not the last of each process: each refused one is counted.
-        reader_(participant_, status_topic_, dds::Qos::lastValueTransientLocal(dds::Endpoint::kViewer).keepingAll()),
-        writer_(participant_, status_topic_, dds::Qos::lastValueTransientLocal(dds::Endpoint::kViewer)),
-        condition_(reader_),
-        waitset_(participant_),
-        key_(options.status_key),
-        run_dir_(options.run_dir),
-        run_id_(options.identity.run_id) {
-    waitset_.attach(condition_.handle(), 0);
-  }
-
-  /// A role that reached a kill or pause of the scenario's faults, for the launcher to enact.
-  struct Faulted {
-    std::string role;
-    std::uint32_t index = 0;
-    std::int32_t tick = 0;
-  };
-
-  /// Waits up to `timeout` for status samples; returns the aggregator's latest tick and collects
-  /// the roles that announced a fault and, by role name ("supernode 2"), the messages of FAILED
-  /// samples, made printable. Only samples signed with the run's status key count; the others are
-  /// counted in RUN_DIR/rejected (writeRejections). Even a signed FAILED sample is only the reason:
-  /// the run fails when the named process does.
-  void poll(std::chrono::milliseconds timeout, std::int32_t& aggregator_tick,
-            std::map<std::string, std::string>& failed_messages, std::vector<Faulted>& faulted) {
-    waitset_.wait(timeout);
-    reader_.take([&](const wsn_msg_ProcessStatus& s) {
-      if (s.run_id != run_id_) return;
-      if (!key_.authentic(s)) {
-        rejections_.add(dds::topic_names::kProcessStatus, common::RejectReason::kUnauthenticated);
-        return;
-      }
-      if (s.state == wsn_msg_FAILED)
-        failed_messages.emplace(common::printable(s.role) + " " + std::to_string(s.index), common::printable(s.message));
-      if (s.state == wsn_msg_FAULTED) faulted.push_back({s.role, s.index, s.tick});
-      if (std::strcmp(s.role, "aggregator") == 0 && (s.state == wsn_msg_RUNNING || s.state == wsn_msg_DONE))
-        aggregator_tick = std::max(aggregator_tick, s.tick);
-    });
-  }
-
-  /// Tells the roles that `role` `index` is gone outside the scenario's faults (FAULTED at tick 0,
-  /// under the lost role's key): they go on without it (dds::LostProcesses).
-  void announceLost(const std::string& role, std::uint32_t index, const std::string& why) {
-    wsn_msg_ProcessStatus sample{};
-    sample.run_id = run_id_;
-    sample.role = const_cast<char*>(role.c_str());
-    sample.index = index;
-    sample.state = wsn_msg_FAULTED;
-    sample.tick = 0;
-    sample.message = const_cast<char*>(why.c_str());
-    key_.sign(sample);
-    writer_.write(sample);
-  }
-
-  /// Leaves the count of refused status samples in the run directory, for rejected.json.
-  void writeRejections() const { dds::writeRejections(run_dir_, "launcher", 0, rejections_); }
-
- private:
-  dds::Domain domain_;
-  dds::Participant participant_;
-  dds::Topic<wsn_msg_ProcessStatus> status_topic_;
-  dds::Reader<wsn_msg_ProcessStatus> reader_;
-  dds::Writer<wsn_msg_ProcessStatus> writer_;
-  dds::ReadCondition condition_;
-  dds::WaitSet waitset_;
-  dds::StatusKey key_;
-  std::string run_dir_;
-  common::RejectionLog rejections_;
-  std::uint64_t run_id_;
 };
 
 std::string tailOf(const std::string& path, std::size_t lines) {

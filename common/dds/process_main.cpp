@@ -108,6 +108,13 @@ void endWithStandardInput() {
   }).detach();
 }
 
+/// What a process the launcher started reads from its standard input: the run's status key first,
+/// then, for a process on another host, nothing but its end (its lifeline).
+void readStandardInput(RoleContext& context, bool status_key_on_stdin, bool stdin_lifeline) {
+  if (status_key_on_stdin) context.status_key = StatusKey::readLine(0);
+  if (stdin_lifeline) endWithStandardInput();
+}
+
 /// A group (--count) takes only indices the scenario has, and none whose process the scenario's
 /// faults kill or pause: those are enacted on the whole process.
 void checkGroup(const RoleContext& context, int count, const std::string& role) {
@@ -262,9 +269,7 @@ int runRoleProcess(int argc, char** argv, const std::string& role, const std::st
   try {
     // Before the domain: Cyclone's threads must inherit the blocked signals.
     const StopSignals stop_signals(stop_source, "wsntrack-" + role + " " + std::to_string(context.index));
-    // The key first: a remote process's standard input is its lifeline after that line.
-    if (status_key_on_stdin) context.status_key = StatusKey::readLine(0);
-    if (stdin_lifeline) endWithStandardInput();
+    readStandardInput(context, status_key_on_stdin, stdin_lifeline);
     context.scenario = load_scenario(context.run_dir + "/scenario.yaml");
     context.shape.supernodes = static_cast<std::int32_t>(context.scenario.supernodes.size());
     if (context.first_tick != 1) {
