@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "common/dds/codec.hpp"
+#include "common/dds/packing.hpp"
 #include "common/dds/cyclone_config.hpp"
 #include "launcher/run_directory.hpp"
 #include "common/dds/entity.hpp"
@@ -62,7 +63,7 @@ struct Node {
 };
 
 /// The throughput's sample: the report batch of a node tile, N fused reports of Oh et al. eq. 6
-/// (position, the engine's noise), each carrying its measurement's four (empty) sequences.
+/// (position, the engine's noise), packed as the roles pack them (common/dds/packing.hpp).
 struct ReportPayload {
   using Sample = wsn_msg_ReportBatch;
   static constexpr const char* kTopic = dds::topic_names::kReportBatch;
@@ -73,16 +74,16 @@ struct ReportPayload {
   }
   /// Encodes the items into `sample`; the result owns what the sample points at.
   auto fill(Sample& sample) const {
-    auto encoded = dds::encode(items);
-    sample.reports = dds::sequenceView<dds_sequence_wsn_msg_Report>(encoded.items);
-    return encoded;
+    auto packed = dds::packReports(items);
+    sample.reports = packed.view();
+    return packed;
   }
   static void clear(Sample& sample) { sample.reports = {}; }
-  static std::size_t decode(const Sample& sample) { return dds::decode(sample.reports, sample.tick).size(); }
+  static std::size_t decode(const Sample& sample) { return dds::unpackReports(sample.reports, sample.tick).size(); }
 };
 
 /// A flat counterpart for comparison: a tile's boundary readings, plain {sensor, z} items, so that
-/// the cost of the report's nested type shows beside that of the path itself.
+/// the cost of the packed reports shows beside that of a plain IDL sequence.
 struct BoundaryPayload {
   using Sample = wsn_msg_SensorBoundary;
   static constexpr const char* kTopic = dds::topic_names::kSensorBoundary;

@@ -61,6 +61,7 @@ const char* rejectReasonName(RejectReason reason) {
     case RejectReason::kMalformedMeasurement: return "malformed_measurement";
     case RejectReason::kMisaddressed: return "misaddressed";
     case RejectReason::kUnauthenticated: return "unauthenticated";
+    case RejectReason::kMalformed: return "malformed";
   }
   return "unknown";
 }

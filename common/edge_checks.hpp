@@ -28,7 +28,8 @@ enum class RejectReason {
   kOutOfRegion,          ///< a position beyond the region and its margin, or a value beyond any bound
   kMalformedMeasurement, ///< a measurement of the wrong dimension, noise or pose
   kMisaddressed,         ///< for another supernode, or from one that does not border this one
-  kUnauthenticated       ///< a status sample not signed with the run's status key
+  kUnauthenticated,      ///< a status sample not signed with the run's status key
+  kMalformed             ///< packed items that do not decode (common/dds/packing.hpp)
 };
 
 /// "foreign_run", "producer_out_of_range", ...: the names rejected.json uses.

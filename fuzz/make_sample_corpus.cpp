@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/dds/codec.hpp"
+#include "common/dds/packing.hpp"
 #include "fuzz/sample_topics.hpp"
 
 namespace {
@@ -86,16 +87,14 @@ void writeNodeAndNetwork(CorpusWriter& corpus) {
                wsn_msg_SensorBoundary{kRunId, 1, 5, dds::sequenceView<dds_sequence_wsn_msg_SensorReading>(wire_readings)});
   corpus.write(BatchTopic::kSensorBoundary, "empty", wsn_msg_SensorBoundary{kRunId, 2, 1, {}});
 
-  auto encoded = dds::encode(reports(5));
-  corpus.write(BatchTopic::kReportBatch, "every-kind",
-               wsn_msg_ReportBatch{kRunId, 0, 5, dds::sequenceView<dds_sequence_wsn_msg_Report>(encoded.items)});
+  auto packed = dds::packReports(reports(5));
+  corpus.write(BatchTopic::kReportBatch, "every-kind", wsn_msg_ReportBatch{kRunId, 0, 5, packed.view()});
   corpus.write(BatchTopic::kReportBatch, "empty", wsn_msg_ReportBatch{kRunId, 3, 100, {}});
 
   std::vector<common::Observation> observations;
   for (const auto& r : reports(4)) observations.push_back(common::observationOf(r, 6));
-  auto wire_observations = dds::encode(observations);
-  corpus.write(BatchTopic::kDeliveryBatch, "every-kind",
-               wsn_msg_DeliveryBatch{kRunId, 2, 6, dds::sequenceView<dds_sequence_wsn_msg_Observation>(wire_observations.items)});
+  auto packed_observations = dds::packObservations(observations);
+  corpus.write(BatchTopic::kDeliveryBatch, "every-kind", wsn_msg_DeliveryBatch{kRunId, 2, 6, packed_observations.view()});
 }
 
 void writeSupernodeAndAggregator(CorpusWriter& corpus) {

@@ -13,6 +13,7 @@
 #include <dds/ddsi/ddsi_sertype.h>
 
 #include "common/dds/codec.hpp"
+#include "common/dds/packing.hpp"
 #include "common/dds/entity.hpp"
 #include "scenario/loader.hpp"
 #include "wsntrack.h"
@@ -184,8 +185,13 @@ std::size_t receive(BatchTopic topic, const void* sample, const EdgeContext& edg
       const auto& batch = *static_cast<const wsn_msg_ReportBatch*>(sample);
       if (const auto why = common::checkBatchHeader(batch.run_id, edge.run_id, batch.tile, edge.tiles, batch.tick, b.ticks))
         return log.add(name, *why), 0;
-      if (batch.reports._length > b.max_reports) return log.add(name, RejectReason::kTooLong), 0;
-      auto reports = dds::decode(batch.reports, batch.tick);
+      if (dds::packedCount(batch.reports) > b.max_reports) return log.add(name, RejectReason::kTooLong), 0;
+      std::vector<common::Report> reports;
+      try {
+        reports = dds::unpackReports(batch.reports, batch.tick);
+      } catch (const dds::PackingError&) {
+        return log.add(name, RejectReason::kMalformed), 0;
+      }
       common::dropRejectedReports(reports, b, name, log);
       return reports.size();
     }
@@ -194,8 +200,13 @@ std::size_t receive(BatchTopic topic, const void* sample, const EdgeContext& edg
       if (const auto why = common::checkBatchHeader(batch.run_id, edge.run_id, 0, 1, batch.tick, b.ticks))
         return log.add(name, *why), 0;
       if (batch.supernode >= edge.supernodes) return log.add(name, RejectReason::kMisaddressed), 0;
-      if (batch.observations._length > b.max_reports) return log.add(name, RejectReason::kTooLong), 0;
-      auto observations = dds::decode(batch.observations, batch.tick);
+      if (dds::packedCount(batch.observations) > b.max_reports) return log.add(name, RejectReason::kTooLong), 0;
+      std::vector<common::Observation> observations;
+      try {
+        observations = dds::unpackObservations(batch.observations, batch.tick);
+      } catch (const dds::PackingError&) {
+        return log.add(name, RejectReason::kMalformed), 0;
+      }
       return keep(observations, [&](const common::Observation& o) { return common::checkObservation(o, b); }, name, log);
     }
     case BatchTopic::kHandoffBatch: {

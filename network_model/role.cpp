@@ -1,6 +1,7 @@
 #include "network_model/role.hpp"
 
 #include "common/dds/codec.hpp"
+#include "common/dds/packing.hpp"
 #include "common/edge_checks.hpp"
 #include "common/output.hpp"
 #include "common/sensor_layout.hpp"
@@ -45,9 +46,14 @@ void runNetworkRole(const dds::RoleContext& context) {
                                                       static_cast<std::uint32_t>(context.shape.tiles), batch.tick, bounds.ticks))
           return rejections.add(topic, *why);
         if (!plan.tileLive(static_cast<std::int32_t>(batch.tile), batch.tick)) return;  // the scenario's faults
-        if (batch.reports._length > bounds.max_reports) return rejections.add(topic, RejectReason::kTooLong);
+        if (packedCount(batch.reports) > bounds.max_reports) return rejections.add(topic, RejectReason::kTooLong);
         if (!inbox.accepts(batch.tick, batch.tile)) return rejections.add(topic, RejectReason::kDuplicate);
-        auto reports = decode(batch.reports, batch.tick);
+        std::vector<common::Report> reports;
+        try {
+          reports = unpackReports(batch.reports, batch.tick);
+        } catch (const PackingError&) {
+          return rejections.add(topic, RejectReason::kMalformed);  // not filed: the tile's own batch still counts
+        }
         common::dropRejectedReports(reports, bounds, topic, rejections);
         inbox.put(batch.tick, batch.tile, std::move(reports));
       });
@@ -95,12 +101,12 @@ void runNetworkRole(const dds::RoleContext& context) {
       for (std::uint32_t j = 0; j < static_cast<std::uint32_t>(context.shape.supernodes); ++j) {
         if (!live[j]) continue;  // its deliveries were counted lost when they were routed
         restarted.waitFor(delivery_writers[j], t, j);
-        auto due = encode(router.deliveriesDue(t, j));
+        auto due = packObservations(router.deliveriesDue(t, j));
         wsn_msg_DeliveryBatch sample{};
         sample.run_id = context.run_id;
         sample.supernode = j;
         sample.tick = t;
-        sample.observations = sequenceView<dds_sequence_wsn_msg_Observation>(due.items);
+        sample.observations = due.view();
         delivery_writers[j].write(sample);
       }
     }

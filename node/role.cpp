@@ -1,6 +1,7 @@
 #include "node/role.hpp"
 
 #include "common/dds/codec.hpp"
+#include "common/dds/packing.hpp"
 #include "common/edge_checks.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/truth.hpp"
@@ -98,12 +99,12 @@ void runNodeRole(const dds::RoleContext& context) {
       }
       const std::vector<common::Report> tick_reports = sensors->report(t, foreign);
 
-      auto reports = encode(tick_reports);
+      auto reports = packReports(tick_reports);
       wsn_msg_ReportBatch report_sample{};
       report_sample.run_id = context.run_id;
       report_sample.tile = context.index;
       report_sample.tick = t;
-      report_sample.reports = sequenceView<dds_sequence_wsn_msg_Report>(reports.items);
+      report_sample.reports = reports.view();
       report_writer.write(report_sample);
     }
     rejections_record.write();

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "common/dds/codec.hpp"
+#include "common/dds/packing.hpp"
 #include "common/edge_checks.hpp"
 #include "supernode/supernode_tracker.hpp"
 
@@ -151,9 +152,14 @@ class CheckedInputs {
       return rejections.add(topic, *why);
     if (batch.supernode != context_.index) return rejections.add(topic, RejectReason::kMisaddressed);
     if (batch.tick < first_) return;  // before a restart: ticks this process takes no part in
-    if (batch.observations._length > bounds_.max_reports) return rejections.add(topic, RejectReason::kTooLong);
+    if (dds::packedCount(batch.observations) > bounds_.max_reports) return rejections.add(topic, RejectReason::kTooLong);
     if (!deliveries.accepts(batch.tick, 0)) return rejections.add(topic, RejectReason::kDuplicate);
-    auto observations = dds::decode(batch.observations, batch.tick);
+    std::vector<common::Observation> observations;
+    try {
+      observations = dds::unpackObservations(batch.observations, batch.tick);
+    } catch (const dds::PackingError&) {
+      return rejections.add(topic, RejectReason::kMalformed);  // not filed: the network model's own batch still counts
+    }
     common::dropRejected(observations, [&](const common::Observation& o) { return common::checkObservation(o, bounds_); },
                          topic, rejections);
     deliveries.put(batch.tick, 0, std::move(observations));

@@ -28,20 +28,6 @@ std::vector<Out> mapSequence(const Seq& seq, F convert) {
   return out;
 }
 
-template <typename Message>
-std::size_t doublesOf(const std::vector<Message>& messages) {
-  std::size_t n = 0;
-  for (const auto& m : messages)
-    if (m.measurement) n += m.measurement->values.size() + m.measurement->noise.size() + m.measurement->class_likelihoods.size();
-  return n;
-}
-
-template <typename Message>
-std::size_t posesOf(const std::vector<Message>& messages) {
-  const auto has_pose = [](const Message& m) { return m.measurement && m.measurement->sensor.has_value(); };
-  return static_cast<std::size_t>(std::count_if(messages.begin(), messages.end(), has_pose));
-}
-
 /// Appends `values` to `pool` (whose capacity was reserved up front, so earlier views stay valid)
 /// and returns a sequence over the appended part.
 dds_sequence_double appendDoubles(std::vector<double>& pool, const std::vector<double>& values, std::size_t bound,
@@ -59,67 +45,8 @@ dds_sequence_double appendDoubles(std::vector<double>& pool, const std::vector<d
   return seq;
 }
 
-/// A plain position (a null MeasurementRef) goes on the wire as kind position with no values,
-/// noise, pose or classes: the receiver reads x, y, as the sender meant.
-template <typename Wire>
-wsn_msg_Measurement encodeMeasurement(const common::MeasurementRef& ref, Encoded<Wire>& storage) {
-  constexpr std::size_t kMaxNoise = common::kMaxMeasurementDimension * common::kMaxMeasurementDimension;
-  wsn_msg_Measurement w{};
-  if (!ref) {
-    w.kind = static_cast<wsn_msg_MeasurementKind>(common::MeasurementKind::position);
-    return w;
-  }
-  const common::Measurement& m = *ref;
-  // A malformed one would read back as something else (an empty position as a plain one).
-  if (!common::wellFormed(m))
-    throw std::invalid_argument("codec: a " + std::string(common::measurementKindName(m.kind)) +
-                                " measurement that is not well formed (wrong dimension, noise or pose)");
-  w.kind = static_cast<wsn_msg_MeasurementKind>(m.kind);
-  w.clutter_density = m.clutter_density;
-  w.values = appendDoubles(storage.doubles, m.values, common::kMaxMeasurementDimension, "measurement values");
-  w.noise = appendDoubles(storage.doubles, m.noise, kMaxNoise, "measurement noise");
-  w.class_likelihoods = appendDoubles(storage.doubles, m.class_likelihoods, common::kMaxClasses, "measurement class likelihoods");
-  if (m.sensor) {
-    storage.poses.push_back(wsn_msg_SensorPose{m.sensor->x, m.sensor->y, m.sensor->heading, m.sensor->height});
-    w.sensor._maximum = w.sensor._length = 1;
-    w.sensor._buffer = &storage.poses.back();
-    w.sensor._release = false;
-  }
-  return w;
-}
-
 std::vector<double> copyOut(const dds_sequence_double& seq) {
   return seq._length == 0 ? std::vector<double>{} : std::vector<double>(seq._buffer, seq._buffer + seq._length);
-}
-
-common::MeasurementRef decodeMeasurement(const wsn_msg_Measurement& w) {
-  const bool plain = w.kind == static_cast<wsn_msg_MeasurementKind>(common::MeasurementKind::position) &&
-                     w.values._length == 0 && w.noise._length == 0 && w.sensor._length == 0 &&
-                     w.class_likelihoods._length == 0 && w.clutter_density == 0.0;
-  if (plain) return {};
-  common::Measurement m;
-  m.kind = static_cast<common::MeasurementKind>(w.kind);
-  m.values = copyOut(w.values);
-  m.noise = copyOut(w.noise);
-  if (w.sensor._length > 0) {
-    const wsn_msg_SensorPose& pose = w.sensor._buffer[0];
-    m.sensor = common::SensorPose{pose.x, pose.y, pose.heading, pose.height};
-  }
-  m.class_likelihoods = copyOut(w.class_likelihoods);
-  m.clutter_density = w.clutter_density;
-  return common::MeasurementRef(std::move(m));
-}
-
-/// Encodes every message with `convert(message, measurement)`, the measurement's sequences
-/// pointing into the result's own storage.
-template <typename Wire, typename Message, typename F>
-Encoded<Wire> encodeWithMeasurements(const std::vector<Message>& messages, F convert) {
-  Encoded<Wire> out;
-  out.doubles.reserve(doublesOf(messages));
-  out.poses.reserve(posesOf(messages));
-  out.items.reserve(messages.size());
-  for (const auto& m : messages) out.items.push_back(convert(m, encodeMeasurement(m.measurement, out)));
-  return out;
 }
 
 }  // namespace
@@ -133,32 +60,6 @@ std::vector<wsn_msg_SensorReading> encode(const std::vector<common::SensorReadin
 std::vector<common::SensorReading> decode(const dds_sequence_wsn_msg_SensorReading& seq) {
   return mapSequence<common::SensorReading>(seq, [](const wsn_msg_SensorReading& r) {
     return common::SensorReading{r.sensor, r.z};
-  });
-}
-
-Encoded<wsn_msg_Report> encode(const std::vector<common::Report>& reports) {
-  return encodeWithMeasurements<wsn_msg_Report>(reports, [](const common::Report& r, const wsn_msg_Measurement& m) {
-    return wsn_msg_Report{r.sensor, r.x, r.y, r.target, r.power_level, m};
-  });
-}
-
-std::vector<common::Report> decode(const dds_sequence_wsn_msg_Report& seq, std::int32_t tick) {
-  return mapSequence<common::Report>(seq, [tick](const wsn_msg_Report& r) {
-    return common::Report{tick, r.sensor, r.x, r.y, r.target, r.power_level, decodeMeasurement(r.measurement)};
-  });
-}
-
-Encoded<wsn_msg_Observation> encode(const std::vector<common::Observation>& observations) {
-  return encodeWithMeasurements<wsn_msg_Observation>(
-      observations, [](const common::Observation& o, const wsn_msg_Measurement& m) {
-        return wsn_msg_Observation{o.tick_generated, o.sensor, o.x, o.y, o.target, o.power_level, m};
-      });
-}
-
-std::vector<common::Observation> decode(const dds_sequence_wsn_msg_Observation& seq, std::int32_t tick_delivered) {
-  return mapSequence<common::Observation>(seq, [tick_delivered](const wsn_msg_Observation& o) {
-    return common::Observation{o.tick_generated, tick_delivered, o.sensor,      o.x,
-                               o.y,              o.target,       o.power_level, decodeMeasurement(o.measurement)};
   });
 }
 

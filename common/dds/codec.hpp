@@ -41,8 +41,7 @@ std::vector<common::SensorReading> decode(const dds_sequence_wsn_msg_SensorReadi
 template <typename Wire>
 struct Encoded {
   std::vector<Wire> items;
-  std::vector<double> doubles;            ///< every measurement's values, noise, class likelihoods; tracks' classes
-  std::vector<wsn_msg_SensorPose> poses;  ///< the measurements' sensor poses
+  std::vector<double> doubles;  ///< the items' class probabilities
 
   Encoded() = default;
   Encoded(Encoded&&) noexcept = default;
@@ -50,15 +49,6 @@ struct Encoded {
   Encoded(const Encoded&) = delete;
   Encoded& operator=(const Encoded&) = delete;
 };
-
-/// Throws std::length_error when a measurement exceeds the wire's bounds (kMaxMeasurementDimension,
-/// kMaxClasses), which Cyclone would only report as a failed write.
-Encoded<wsn_msg_Report> encode(const std::vector<common::Report>& reports);
-std::vector<common::Report> decode(const dds_sequence_wsn_msg_Report& seq, std::int32_t tick);
-
-/// As for reports.
-Encoded<wsn_msg_Observation> encode(const std::vector<common::Observation>& observations);
-std::vector<common::Observation> decode(const dds_sequence_wsn_msg_Observation& seq, std::int32_t tick_delivered);
 
 /// Throws std::length_error for a class vector longer than kMaxClasses.
 Encoded<wsn_msg_TrackEstimate> encode(const std::vector<common::TrackEstimate>& tracks);

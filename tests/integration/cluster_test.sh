@@ -544,6 +544,7 @@ PY
     [ "$(count tick_out_of_range)" -eq 2 ] || fail "tick_out_of_range: $(count tick_out_of_range), expected 2"
     [ "$(count producer_out_of_range)" -eq 1 ] || fail "producer_out_of_range: $(count producer_out_of_range), expected 1"
     [ "$(count foreign_run)" -eq 1 ] || fail "foreign_run: $(count foreign_run), expected 1"
+    [ "$(count malformed)" -eq 1 ] || fail "malformed: $(count malformed), expected 1"
     [ "$(count duplicate)" -ge 1 ] || fail "tile 0's own batches of the forged ticks were not counted as duplicates"
     grep -q "samples rejected" r.stdout || { cat r.stdout >&2; fail "the summary does not say samples were rejected"; }
     ! grep -q -i -E "nan|inf|e\+" r/observations.csv || fail "a forged value reached observations.csv"

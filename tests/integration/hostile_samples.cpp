@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "common/dds/codec.hpp"
+#include "common/dds/packing.hpp"
 #include "common/dds/entity.hpp"
 #include "common/dds/role_runtime.hpp"
 
@@ -59,14 +60,13 @@ struct Forger {
   }
 };
 
-wsn_msg_Observation observation(std::int32_t generated, std::uint32_t sensor, double x, double y) {
-  wsn_msg_Observation o{};
+wsn::common::Observation observation(std::int32_t generated, std::uint32_t sensor, double x, double y) {
+  wsn::common::Observation o;
   o.tick_generated = generated;
   o.sensor = sensor;
   o.x = x;
   o.y = y;
-  o.target = -1;
-  o.measurement.kind = wsn_msg_MEASUREMENT_POSITION;
+  o.target = wsn::common::kFalseAlarm;
   return o;
 }
 
@@ -110,21 +110,21 @@ int main(int argc, char** argv) {
     for (std::int32_t t = first; t <= last; ++t) good.push_back({run_id, producer, t});
     const dds::Participant participant(domain);
     // Storage the batches' sequences point into, alive until the writes are acknowledged.
-    std::vector<wsn_msg_Observation> observations;
+    dds::Packed observations;
     std::vector<wsn_msg_TrackHandoff> handoffs;
     std::vector<wsn_msg_TrackEstimate> tracks;
     int readers = 0;
     if (what == "deliveries") {
       Forger<wsn_msg_DeliveryBatch> forger{[&](const Header& h, bool bad_items) {
-        observations = bad_items ? std::vector{observation(h.tick, 1, kNaN, 10.0), observation(h.tick, 2, 1e308, 10.0),
-                                               observation(h.tick, 2000000000u, 10.0, 10.0),
-                                               observation(h.tick + 1, 3, 10.0, 10.0)}
-                                 : std::vector{observation(1, 1, 10.0, 10.0)};
+        observations = dds::packObservations(
+            bad_items ? std::vector{observation(h.tick, 1, kNaN, 10.0), observation(h.tick, 2, 1e308, 10.0),
+                                    observation(h.tick, 2000000000u, 10.0, 10.0), observation(h.tick + 1, 3, 10.0, 10.0)}
+                      : std::vector{observation(1, 1, 10.0, 10.0)});
         wsn_msg_DeliveryBatch b{};
         b.run_id = h.run_id;
         b.supernode = h.producer;
         b.tick = h.tick;
-        b.observations = dds::sequenceView<dds_sequence_wsn_msg_Observation>(observations);
+        b.observations = observations.view();
         return b;
       }};
       readers = forger.run(participant, dds::topic_names::kDeliveryBatch,

@@ -1,5 +1,6 @@
-// The codec of reports and observations through Cyclone's own CDR serializer (no participant):
-// a measurement of any kind, with its noise, pose and class likelihoods, comes back as it went.
+// The codec and the packed batches through Cyclone's own CDR serializer (no participant): a
+// measurement of any kind, with its noise, pose and class likelihoods, comes back as it went, and
+// bytes that are not a packed batch are refused.
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -8,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include "common/dds/codec.hpp"
+#include "common/dds/packing.hpp"
 #include "dds/ddsi/ddsi_cdrstream.h"
 
 namespace wsn::dds {
@@ -65,17 +67,18 @@ TEST_CASE("a bearing report with noise, pose and class likelihoods crosses the w
   const common::Report bearing_report{7, 12, 12.0, 34.0, common::kFalseAlarm, 0, bearing()};
   std::vector<common::Report> reports{position, bearing_report};
 
-  auto encoded = encode(reports);
+  auto packed = packReports(reports);
   wsn_msg_ReportBatch batch{};
   batch.run_id = 99;
   batch.tile = 1;
   batch.tick = 7;
-  batch.reports = sequenceView<dds_sequence_wsn_msg_Report>(encoded.items);
-  reports.clear();  // the encoded batch owns what its sequences point at
+  batch.reports = packed.view();
+  reports.clear();  // the packed batch owns what the sample points at
 
   const WireRoundTrip wire(batch, wsn_msg_ReportBatch_desc);
   REQUIRE(wire.valid);
-  const auto decoded = decode(wire.received.reports, wire.received.tick);
+  CHECK(packedCount(wire.received.reports) == 2);
+  const auto decoded = unpackReports(wire.received.reports, wire.received.tick);
   REQUIRE(decoded.size() == 2);
   CHECK(decoded[0] == position);
   CHECK(decoded[1] == bearing_report);
@@ -84,58 +87,49 @@ TEST_CASE("a bearing report with noise, pose and class likelihoods crosses the w
   CHECK(common::wellFormed(decoded[1]));
 }
 
-TEST_CASE("an observation keeps its measurement through the wire", "[codec]") {
+TEST_CASE("an observation keeps its generation tick and measurement through the wire", "[codec]") {
   const common::Observation sent{5, 9, 12, 12.0, 34.0, 2, 0, bearing()};
-  std::vector<common::Observation> observations{sent, common::Observation{4, 9, 3, 1.0, 2.0, 1}};
-  const auto encoded = encode(observations);
+  const std::vector<common::Observation> observations{sent, common::Observation{4, 9, 3, 1.0, 2.0, 1}};
+  auto packed = packObservations(observations);
   wsn_msg_DeliveryBatch batch{};
   batch.supernode = 0;
   batch.tick = 9;
-  auto items = encoded.items;  // sequenceView needs a mutable vector; the copy still points into `encoded`
-  batch.observations = sequenceView<dds_sequence_wsn_msg_Observation>(items);
+  batch.observations = packed.view();
 
   const WireRoundTrip wire(batch, wsn_msg_DeliveryBatch_desc);
   REQUIRE(wire.valid);
-  const auto decoded = decode(wire.received.observations, wire.received.tick);
+  const auto decoded = unpackObservations(wire.received.observations, wire.received.tick);
   REQUIRE(decoded.size() == 2);
   CHECK(decoded[0] == sent);
   CHECK(decoded[1] == observations[1]);
 }
 
-TEST_CASE("a plain position report crosses the wire as a bare position kind and comes back plain", "[codec]") {
+TEST_CASE("a plain position report packs as x and y alone and comes back plain", "[codec]") {
   // Built the way the position sensors build it, from the position alone: no measurement object.
-  std::vector<common::Report> reports{common::Report{2, 4, 3.5, 4.5, 1, 2}};
+  const std::vector<common::Report> reports{common::Report{2, 4, 3.5, 4.5, 1, 2}};
   REQUIRE(reports[0].measurement.get() == nullptr);
-
-  auto encoded = encode(reports);
-  REQUIRE(encoded.items.size() == 1);
-  CHECK(encoded.doubles.empty());  // nothing beyond x, y goes on the wire
-  const wsn_msg_Measurement& wire = encoded.items[0].measurement;
-  CHECK(wire.kind == wsn_msg_MEASUREMENT_POSITION);
-  CHECK(wire.values._length == 0);
-  CHECK(wire.noise._length == 0);
-  CHECK(wire.sensor._length == 0);
-  CHECK(wire.class_likelihoods._length == 0);
-
-  const auto decoded = decode(sequenceView<dds_sequence_wsn_msg_Report>(encoded.items), 2);
+  auto packed = packReports(reports);
+  // Count, then sensor, x, y, target, power level and the plain-position marker.
+  CHECK(packed.bytes.size() == 4 + 4 + 8 + 8 + 4 + 4 + 1);
+  const auto decoded = unpackReports(packed.view(), 2);
   REQUIRE(decoded.size() == 1);
   CHECK(decoded[0] == reports[0]);
   CHECK(decoded[0].measurement.get() == nullptr);
 }
 
-TEST_CASE("a malformed or over-long measurement is refused when encoding", "[codec]") {
+TEST_CASE("a malformed or over-long measurement is refused when packing", "[codec]") {
   common::Measurement m = common::Measurement::position(0.0, 0.0);
   m.class_likelihoods.assign(common::kMaxClasses + 1, 0.1);
   common::Report r{1, 0, 0.0, 0.0, 0, 0, common::MeasurementRef(m)};
-  CHECK_THROWS_AS(encode(std::vector<common::Report>{r}), std::invalid_argument);
+  CHECK_THROWS_AS(packReports(std::vector<common::Report>{r}), std::invalid_argument);
   m.class_likelihoods.clear();
   m.values.assign(common::kMaxMeasurementDimension + 1, 1.0);
   r.measurement = common::MeasurementRef(m);
-  CHECK_THROWS_AS(encode(std::vector<common::Report>{r}), std::invalid_argument);
-  // An empty position would look like a plain one on the wire and come back as (x, y).
+  CHECK_THROWS_AS(packReports(std::vector<common::Report>{r}), std::invalid_argument);
+  // An empty position would read back as something else.
   m.values.clear();
   r.measurement = common::MeasurementRef(m);
-  CHECK_THROWS_AS(encode(std::vector<common::Report>{r}), std::invalid_argument);
+  CHECK_THROWS_AS(packReports(std::vector<common::Report>{r}), std::invalid_argument);
 }
 
 TEST_CASE("the largest measurement of any kind crosses the wire unchanged", "[codec]") {
@@ -149,60 +143,51 @@ TEST_CASE("the largest measurement of any kind crosses the wire unchanged", "[co
   m.class_likelihoods.assign(common::kMaxClasses, 1.0 / static_cast<double>(common::kMaxClasses));
   m.clutter_density = 0.2 / (1000.0 * 1.5707963267948966 * 40.0);  // 0.2 per scan over range x 90 deg x +-20 m/s
   REQUIRE(common::wellFormed(m));
-  std::vector<common::Report> reports{common::Report{3, 8, 5.0, 6.0, 1, 0, common::MeasurementRef(m)}};
-  const auto sent = reports;
-  auto encoded = encode(reports);
+  const std::vector<common::Report> reports{common::Report{3, 8, 5.0, 6.0, 1, 0, common::MeasurementRef(m)}};
+  auto packed = packReports(reports);
   wsn_msg_ReportBatch batch{};
   batch.tick = 3;
-  batch.reports = sequenceView<dds_sequence_wsn_msg_Report>(encoded.items);
+  batch.reports = packed.view();
   const WireRoundTrip wire(batch, wsn_msg_ReportBatch_desc);
   REQUIRE(wire.valid);
-  const auto decoded = decode(wire.received.reports, wire.received.tick);
+  const auto decoded = unpackReports(wire.received.reports, wire.received.tick);
   REQUIRE(decoded.size() == 1);
-  CHECK(decoded[0] == sent[0]);
+  CHECK(decoded[0] == reports[0]);
 }
 
-TEST_CASE("the wire's sequence bounds are the C++ limits on a measurement", "[codec]") {
-  // idl/wsntrack.idl writes the bounds as numbers: sequences at kMaxMeasurementDimension and
-  // kMaxClasses must cross, so a limit raised in C++ alone fails here, not in dds_write at run
-  // time. (One element more is refused by encode's wellFormed check; Cyclone 0.10's serializer
-  // frees its buffer when it refuses an over-long bounded sequence, so that side is not probed
-  // through it.)
-  const auto crosses = [](std::size_t values, std::size_t noise, std::size_t classes) {
-    std::vector<double> v(values, 1.0), r(noise, 0.0), c(classes, 0.1);
-    wsn_msg_Report report{};
-    report.measurement.kind = wsn_msg_MEASUREMENT_POSITION;
-    const auto view = [](std::vector<double>& d) {
-      dds_sequence_double s{};
-      s._maximum = s._length = static_cast<std::uint32_t>(d.size());
-      s._buffer = d.empty() ? nullptr : d.data();
-      s._release = false;
-      return s;
-    };
-    report.measurement.values = view(v);
-    report.measurement.noise = view(r);
-    report.measurement.class_likelihoods = view(c);
-    std::vector<wsn_msg_Report> items{report};
-    wsn_msg_ReportBatch batch{};
-    batch.reports = sequenceView<dds_sequence_wsn_msg_Report>(items);
-    const WireRoundTrip wire(batch, wsn_msg_ReportBatch_desc);
-    return wire.valid;
+TEST_CASE("bytes that are not a packed batch are refused with PackingError, never read past their end", "[codec]") {
+  const std::vector<common::Report> reports{common::Report{1, 3, 1.0, 2.0, 0, 0, bearing()}};
+  const auto good = packReports(reports).bytes;
+  const auto unpack = [](std::vector<std::uint8_t> bytes) {
+    dds_sequence_octet seq{};
+    seq._length = seq._maximum = static_cast<std::uint32_t>(bytes.size());
+    seq._buffer = bytes.data();
+    return unpackReports(seq, 1);
   };
-  constexpr std::size_t d = common::kMaxMeasurementDimension;
-  CHECK(crosses(d, d * d, common::kMaxClasses));
-}
-
-TEST_CASE("a kind the IDL does not know never crosses the wire", "[codec]") {
-  // Cyclone checks enum values against the IDL's largest (here already when serializing; the
-  // reader's normalize makes the same check): a sample of a newer build's kind fails loudly
-  // instead of decoding as some other kind.
-  std::vector<common::Report> reports{common::Report{1, 0, 0.0, 0.0, 0}};
-  auto encoded = encode(reports);
-  encoded.items[0].measurement.kind = static_cast<wsn_msg_MeasurementKind>(wsn_msg_MEASUREMENT_PRESENCE + 1);
-  wsn_msg_ReportBatch batch{};
-  batch.reports = sequenceView<dds_sequence_wsn_msg_Report>(encoded.items);
-  const WireRoundTrip wire(batch, wsn_msg_ReportBatch_desc);
-  CHECK_FALSE(wire.valid);
+  REQUIRE(unpack(good).size() == 1);
+  // Every truncation, including no bytes at all.
+  for (std::size_t n = 0; n < good.size(); ++n)
+    CHECK_THROWS_AS(unpack(std::vector<std::uint8_t>(good.begin(), good.begin() + static_cast<std::ptrdiff_t>(n))), PackingError);
+  // A byte after the last item.
+  auto longer = good;
+  longer.push_back(0);
+  CHECK_THROWS_WITH(unpack(longer), Catch::Contains("1 bytes after its last item"));
+  // A count far beyond what the bytes can hold is refused before anything is allocated for it.
+  auto huge = good;
+  huge[0] = huge[1] = huge[2] = huge[3] = 0xff;
+  CHECK_THROWS_WITH(unpack(huge), Catch::Contains("4294967295 items claimed"));
+  dds_sequence_octet huge_view{};
+  huge_view._length = huge_view._maximum = static_cast<std::uint32_t>(huge.size());
+  huge_view._buffer = huge.data();
+  CHECK(packedCount(huge_view) == 4294967295u);
+  // A kind beyond the last (byte 4 + 4 + 8 + 8 + 4 + 4 = 32 is the measurement's kind).
+  auto kind = good;
+  kind[32] = static_cast<std::uint8_t>(common::MeasurementKind::presence) + 1;
+  CHECK_THROWS_WITH(unpack(kind), Catch::Contains("measurement kind 6"));
+  // More values than any kind has.
+  auto values = good;
+  values[33] = static_cast<std::uint8_t>(common::kMaxMeasurementDimension + 1);
+  CHECK_THROWS_WITH(unpack(values), Catch::Contains("beyond what the wire holds"));
 }
 
 TEST_CASE("a track and a handoff carry their class vector, a track its stop probability, across the wire", "[codec]") {
