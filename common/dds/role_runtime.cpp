@@ -18,8 +18,10 @@ using Clock = std::chrono::steady_clock;
 constexpr dds_attach_t kStopToken = -1;
 
 // The start barrier re-checks the matched endpoints at least this often: matched-status changes
-// wake it, but whether a matched reader is a role's (its user data) is read, not signalled.
-constexpr std::chrono::milliseconds kDiscoveryRecheck{200};
+// wake it, but whether a matched reader is a role's (its user data) is read, not signalled. 200 ms
+// made the default scenario's start-up 0.28 s (0.71 s with DDS Security); 20 ms makes it 0.20 s
+// (0.49 s), and costs a few dozen wake-ups of a waiting process.
+constexpr std::chrono::milliseconds kDiscoveryRecheck{20};
 
 void throwIfStopped(const RoleContext& context) {
   if (context.stop.stop_requested()) throw RoleAborted(context.role + " stopped on request");
