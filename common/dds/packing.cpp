@@ -195,6 +195,16 @@ Packed pack(const std::vector<Item>& items, std::size_t item_bytes, PackItem pac
   return packed;
 }
 
+/// The items of a packed batch, each read by `unpack_item(reader, item)`.
+template <typename Item, typename UnpackItem>
+std::vector<Item> unpack(const dds_sequence_octet& bytes, UnpackItem unpack_item) {
+  Reader r(bytes._buffer, bytes._length);
+  std::vector<Item> items(itemCount(r));
+  for (auto& item : items) unpack_item(r, item);
+  checkEnd(r);
+  return items;
+}
+
 }  // namespace
 
 dds_sequence_octet Packed::view() {
@@ -223,28 +233,18 @@ std::uint32_t packedCount(const dds_sequence_octet& bytes) {
 }
 
 std::vector<common::Report> unpackReports(const dds_sequence_octet& bytes, std::int32_t tick) {
-  Reader r(bytes._buffer, bytes._length);
-  const auto count = itemCount(r);
-  std::vector<common::Report> reports(count);
-  for (auto& report : reports) {
+  return unpack<common::Report>(bytes, [tick](Reader& r, common::Report& report) {
     report.tick = tick;
     unpackSensed(r, report);
-  }
-  checkEnd(r);
-  return reports;
+  });
 }
 
 std::vector<common::Observation> unpackObservations(const dds_sequence_octet& bytes, std::int32_t tick_delivered) {
-  Reader r(bytes._buffer, bytes._length);
-  const auto count = itemCount(r);
-  std::vector<common::Observation> observations(count);
-  for (auto& o : observations) {
+  return unpack<common::Observation>(bytes, [tick_delivered](Reader& r, common::Observation& o) {
     o.tick_delivered = tick_delivered;
     o.tick_generated = r.take<std::int32_t>();
     unpackSensed(r, o);
-  }
-  checkEnd(r);
-  return observations;
+  });
 }
 
 }  // namespace wsn::dds
