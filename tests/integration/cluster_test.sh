@@ -418,7 +418,7 @@ PY
     # the aggregator at the last tick. The launcher and the roles act on none of it: the run
     # completes with the outputs of an undisturbed run, nothing prints the escape byte, and the
     # launcher counts each of the 7 claims in rejected.json.
-    "$wsntrack" run "$scenario" --seed 3 --tick-interval 0.1 --no-plot --security off --out "$PWD/r" >r.stdout 2>r.stderr & launcher=$!
+    "$wsntrack" run "$scenario" --seed 3 --tick-interval 0.25 --no-plot --security off --out "$PWD/r" >r.stdout 2>r.stderr & launcher=$!
     joined_run r
     claim() {  # claim ROLE INDEX STATE:TICK,...
       CYCLONEDDS_URI="file://$PWD/r/cyclonedds.xml" WSN_PARTICIPANT_INDEX="$viewer" timeout 60 "$bin/wsn_fake_status" \
@@ -428,6 +428,7 @@ PY
     claim supernode 1 FAILED:1,FAULTED:0,FAULTED:7,DONE:100
     claim network 0 DONE:100,FAULTED:0
     claim aggregator 0 RUNNING:100
+    kill -0 "$launcher" 2>/dev/null || fail "the run ended before the claims were made: the test proves nothing"
     wait_bounded "$launcher" 120
     [ "$rc" -eq 0 ] || { cat r.stderr >&2; fail "fake status claims ended the run (exit $rc)"; }
     run_ok "$PWD/clean" --seed 3 --no-plot

@@ -53,6 +53,10 @@ case "$case_name" in
     last_viewer=$(sed -n 's/.*"viewer_participant_indices": \[[0-9]*, \([0-9]*\)\].*/\1/p' "$PWD/paced/run.json")
     [ -n "$domain" ] && [ -n "$run_id" ] && [ -n "$last_viewer" ] || { cat "$PWD/paced/run.json" >&2; fail "run.json lacks domain, run_id or viewer slots"; }
     "$wsntrack" watch "$PWD/paced" --plain --timeout 60 >watch.out 2>watch.err & watcher=$!; started_pids+=("$watcher")
+    # run.json marks the directory as the run's before its inputs are written; the configuration
+    # the example reads is written last (after the credentials it names), and whole.
+    for _ in $(seq 1 300); do [ -f "$PWD/paced/cyclonedds.xml" ] && break; sleep 0.1; done
+    [ -f "$PWD/paced/cyclonedds.xml" ] || fail "paced/cyclonedds.xml did not appear within 30 s"
     CYCLONEDDS_URI="file://$PWD/paced/cyclonedds.xml" WSN_PARTICIPANT_INDEX="$last_viewer" \
       "$example" "$domain" "$run_id" 60 >example.out 2>example.err & viewer=$!; started_pids+=("$viewer")
     wait_bounded "$launcher" 120 "wsntrack run"; [ "$rc" -eq 0 ] || { cat run.stderr >&2; fail "paced run exited $rc"; }
