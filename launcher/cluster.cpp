@@ -444,8 +444,7 @@ ClusterResult runProcesses(const ClusterOptions& options) {
         result.failure = "timed out after " + std::to_string(options.timeout.count()) + " s";
     }
     progress.finish();
-    // Samples that arrived after the last poll (a forged claim as the last process ended) count too.
-    observer.poll(std::chrono::milliseconds(0), tick, failed_messages, faulted);
+    observer.poll(std::chrono::milliseconds(0), tick, failed_messages, faulted);  // what came after the last poll
     observer.writeRejections();
   } catch (const std::exception& error) {
     if (result.failure.empty()) result.failure = std::string("launcher: ") + error.what();
