@@ -242,7 +242,7 @@ void waitForClusterReady(const Participant& participant, const RunTopics& topics
     reader.take([&](const wsn_msg_ProcessStatus& s) {
       // A FAILED sample is only a claim: a role that really failed ends its process or thread, and
       // the launcher stops the others.
-      if (s.run_id != context.run_id || s.state == wsn_msg_FAILED || !context.status_key.authentic(s)) return;
+      if (s.state == wsn_msg_FAILED || !fromThisRun(s, context)) return;
       if (s.state != wsn_msg_STARTING) ready.emplace(s.role, s.index);
     });
   }
@@ -271,8 +271,7 @@ void LiveRolesDone::wait() {
   while (!waiting.empty() && Clock::now() < deadline && !context.stop.stop_requested()) {
     waitset_.wait(until(deadline));
     reader_.take([&](const wsn_msg_ProcessStatus& s) {
-      if (s.run_id == context.run_id && (s.state == wsn_msg_DONE || announcesLoss(s)) && context.status_key.authentic(s))
-        waiting.erase({s.role, s.index});
+      if ((s.state == wsn_msg_DONE || announcesLoss(s)) && fromThisRun(s, context)) waiting.erase({s.role, s.index});
     });
   }
 }
@@ -330,7 +329,7 @@ LostProcesses::LostProcesses(const Participant& participant, const RunTopics& to
     : loop_(loop), reader_(participant, topics.process_status, Qos::lastValueTransientLocal()) {
   loop_.watch(reader_, [this, &context, on_lost = std::move(on_lost)] {
     reader_.take([&](const wsn_msg_ProcessStatus& s) {
-      if (s.run_id != context.run_id || !announcesLoss(s) || !context.status_key.authentic(s)) return;
+      if (!announcesLoss(s) || !fromThisRun(s, context)) return;
       const std::string role = s.role;
       if ((role != "node" && role != "supernode") || !seen_.emplace(role, s.index).second) return;
       on_lost(role == "node" ? common::FaultRole::kNode : common::FaultRole::kSupernode, static_cast<std::int32_t>(s.index));

@@ -438,6 +438,12 @@ class LostProcesses {
 /// True for the status sample by which the launcher announces a process lost outside the scenario.
 inline bool announcesLoss(const wsn_msg_ProcessStatus& s) { return s.state == wsn_msg_FAULTED && s.tick == 0; }
 
+/// A status sample a role may act on: of this run, and signed with its status key (a program on the
+/// domain without the key can write status samples too).
+inline bool fromThisRun(const wsn_msg_ProcessStatus& s, const RoleContext& context) {
+  return s.run_id == context.run_id && context.status_key.authentic(s);
+}
+
 /// Runs `body`, publishing READY-to-FAILED status around it: any exception is reported on the
 /// status topic (so the launcher and peers learn why) and rethrown.
 void runWithStatus(StatusPublisher& status, const std::function<void()>& body);

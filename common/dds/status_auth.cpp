@@ -8,6 +8,7 @@
 #include <openssl/rand.h>
 #include <unistd.h>
 
+#include <array>
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
@@ -32,13 +33,6 @@ void appendString(std::vector<std::uint8_t>& out, const char* text) {
   out.insert(out.end(), text, text + length);
 }
 
-int hexDigit(char c) {
-  if (c >= '0' && c <= '9') return c - '0';
-  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-  return -1;
-}
-
 }  // namespace
 
 StatusKey StatusKey::generate() {
@@ -55,11 +49,9 @@ StatusKey StatusKey::fromHex(const std::string& hex) {
   if (hex.size() != 2 * bytes.size())
     throw std::invalid_argument("a status key is " + std::to_string(2 * bytes.size()) + " hexadecimal digits, got " +
                                 std::to_string(hex.size()) + " characters");
-  for (std::size_t i = 0; i < bytes.size(); ++i) {
-    const int high = hexDigit(hex[2 * i]), low = hexDigit(hex[2 * i + 1]);
-    if (high < 0 || low < 0) throw std::invalid_argument("a status key is hexadecimal digits only");
-    bytes[i] = static_cast<std::uint8_t>(high * 16 + low);
-  }
+  std::size_t length = 0;
+  if (OPENSSL_hexstr2buf_ex(bytes.data(), bytes.size(), &length, hex.c_str(), '\0') != 1 || length != bytes.size())
+    throw std::invalid_argument("a status key is hexadecimal digits only");
   StatusKey key;
   key.bytes_ = bytes;
   return key;
@@ -81,13 +73,10 @@ StatusKey StatusKey::readLine(int fd) {
 
 std::string StatusKey::hex() const {
   if (!bytes_) return "";
-  static constexpr char kDigits[] = "0123456789abcdef";
-  std::string out;
-  for (const std::uint8_t b : *bytes_) {
-    out.push_back(kDigits[b >> 4]);
-    out.push_back(kDigits[b & 0xf]);
-  }
-  return out;
+  std::array<char, 2 * sizeof(Bytes) + 1> text{};
+  if (OPENSSL_buf2hexstr_ex(text.data(), text.size(), nullptr, bytes_->data(), bytes_->size(), '\0') != 1)
+    throw std::runtime_error("OpenSSL could not write the status key as hex");
+  return text.data();
 }
 
 StatusKey::Bytes StatusKey::mac(const wsn_msg_ProcessStatus& sample) const {

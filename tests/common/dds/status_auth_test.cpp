@@ -104,4 +104,11 @@ TEST_CASE("A malformed or missing status key is a clear error", "[status_auth]")
   ::close(fds[1]);
   CHECK_THROWS_WITH(StatusKey::readLine(fds[0]), Catch::Contains("ended before the launcher's status key"));
   ::close(fds[0]);
+  // A first line longer than any key is refused without reading on to its end.
+  REQUIRE(::pipe(fds) == 0);
+  const std::string long_line(100, 'a');
+  REQUIRE(::write(fds[1], long_line.data(), long_line.size()) == static_cast<ssize_t>(long_line.size()));
+  CHECK_THROWS_WITH(StatusKey::readLine(fds[0]), Catch::Contains("is not a status key"));
+  ::close(fds[1]);
+  ::close(fds[0]);
 }
