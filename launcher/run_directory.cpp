@@ -162,10 +162,12 @@ void createRunDirectory(const std::string& path, bool overwrite) {
     // A live run is named as such whatever the options: it is the first thing the user must know.
     if (fs::exists(fs::path(path) / kRunLockFile)) lock = lockRunDirectory(path);
     if (!overwrite) refuse("run directory exists and is not empty (use --overwrite)");
-    // Only what a previous run left may be cleared: never a directory of the user's own.
-    if (!fs::exists(fs::path(path) / "cyclonedds.xml") || !fs::exists(fs::path(path) / "scenario.yaml"))
-      refuse("not a wsntrack run directory (no cyclonedds.xml and scenario.yaml); --overwrite only replaces an "
-             "earlier run");
+    // Only what a previous run left may be cleared: never a directory of the user's own. A launcher
+    // stopped in its first milliseconds has left only its lock file (and logs/): that is a run's too.
+    const bool has_inputs = fs::exists(fs::path(path) / "cyclonedds.xml") && fs::exists(fs::path(path) / "scenario.yaml");
+    if (!has_inputs && lock < 0)
+      refuse("not a wsntrack run directory (no cyclonedds.xml and scenario.yaml, no " + std::string(kRunLockFile) +
+             "); --overwrite only replaces an earlier run");
   }
   fs::create_directories(path, error);
   if (error) refuse("cannot create (" + error.message() + ")");
@@ -196,7 +198,7 @@ void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario
                                                                                        cycloneNetworkOf(hosts, h), security));
 
   const common::Truth truth(truthConfig(scenario));
-  common::CsvFile csv(run_dir + "/truth.csv", "tick,target,x,y,vx,vy,class");
+  common::CsvFile csv(run_dir + "/truth.csv", kTruthCsvHeader);
   for (std::int32_t t = 1; t <= scenario.run.ticks; ++t)
     for (const auto& target : truth.at(t))
       csv.row(std::to_string(t) + "," + std::to_string(target.id) + "," + common::fixed6(target.x) + "," +
@@ -206,7 +208,7 @@ void writeRunInputs(const std::string& run_dir, const common::Scenario& scenario
 
   if (scenario.sensors.kind != common::SensorLayoutConfig::Kind::kGrid) {  // grids need no list
     const common::SensorLayout layout(sensorFieldConfig(scenario));
-    common::CsvFile sensors(run_dir + "/sensors.csv", "sensor,x,y");
+    common::CsvFile sensors(run_dir + "/sensors.csv", kSensorsCsvHeader);
     for (common::SensorId id = 0; id < layout.size(); ++id) {
       const auto p = layout.truePosition(id);
       sensors.row(std::to_string(id) + "," + common::fixed6(p.x) + "," + common::fixed6(p.y));

@@ -70,6 +70,15 @@ TEST_CASE("an ended run's directory is refused without overwrite and cleared wit
   CHECK_FALSE(fs::exists(root / "ended" / "scenario.yaml"));
   CHECK(fs::exists(root / "ended" / kRunLockFile));  // now held by this process
 
+  // A launcher stopped before it wrote its inputs left its lock file and logs/: cleared with overwrite.
+  fs::create_directories(root / "stopped" / "logs");
+  touch(root / "stopped" / kRunLockFile);
+  touch(root / "stopped" / "logs" / "launcher.log");
+  const std::string stopped = (root / "stopped").string();
+  CHECK(errorOf(stopped, false) == stopped + ": run directory exists and is not empty (use --overwrite)");
+  CHECK(errorOf(stopped, true).empty());
+  CHECK_FALSE(fs::exists(root / "stopped" / "logs" / "launcher.log"));
+
   // A directory of the user's own is never cleared, and gets no lock file.
   fs::create_directories(root / "mine");
   touch(root / "mine" / "notes.txt");
