@@ -13,6 +13,8 @@ install(PROGRAMS tools/plot_run.py tools/sweep.py tools/wsntrack_run.py tools/on
 # The package the tools are entry points over, where they look for it: ../python from the tools.
 install(DIRECTORY python/wsntrack DESTINATION ${WSN_INSTALL_PYTHON_DIR} FILES_MATCHING PATTERN "*.py"
         PATTERN "__pycache__" EXCLUDE)
+# With the catalogue of the wsntrack installed beside it (launcher/CMakeLists.txt writes it).
+install(FILES ${WSN_BUILD_CATALOGUE} DESTINATION ${WSN_INSTALL_PYTHON_DIR}/wsntrack)
 
 install(DIRECTORY scenarios/ DESTINATION ${WSN_INSTALL_SCENARIO_DIR} FILES_MATCHING PATTERN "*.yaml")
 # The sweep specs name their scenario relative to the data directory, where the scenarios are too.

@@ -449,4 +449,28 @@ std::vector<std::pair<std::string, std::string>> markdownTables() {
   };
 }
 
+std::vector<config::KeyTable> keyTables() {
+  using config::keyTable;
+  return {keyTable("name", "", topLevel()),
+          keyTable("region", "region", region()),
+          keyTable("sensors", "sensors", sensors()),
+          keyTable("sensors.list[]", "sensors.list[]", placedSensor()),
+          keyTable("sensor_model", "sensor_model", sensorModel()),
+          keyTable("localisation", "localisation", localisation()),
+          keyTable("targets", "targets", targets()),
+          keyTable("targets.scripted[]", "targets.scripted[]", scriptedTarget()),
+          keyTable("targets.scripted[].stops[]", "targets.scripted[].stops[]", waypointStop()),
+          keyTable("dynamics", "dynamics", dynamics()),
+          keyTable("supernodes[]", "supernodes[]", supernode()),
+          keyTable("terrain", "terrain", terrain()),
+          keyTable("terrain.roads[]", "terrain.roads[]", road()),
+          keyTable("terrain.masks[]", "terrain.masks[]", mask()),
+          keyTable("network", "network", network()),
+          keyTable("tracker", "tracker", tracker()),
+          keyTable("aggregator", "aggregator", aggregator()),
+          keyTable("metrics", "metrics", metrics()),
+          keyTable("run", "run", run()),
+          keyTable("faults[]", "faults[]", fault())};
+}
+
 }  // namespace wsn::common::schema

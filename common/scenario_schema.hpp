@@ -41,6 +41,10 @@ const std::vector<std::string>& sectionNames();
 /// scenarios/README.md; checked against the README by a test.
 std::vector<std::pair<std::string, std::string>> markdownTables();
 
+/// Every section's keys with unit, default, range and meaning, each under its dotted path
+/// ("network.pte"), for `wsntrack components --json`.
+std::vector<config::KeyTable> keyTables();
+
 // Limits that are not paper values but keep a run finite and the numbers meaningful.
 inline constexpr double kMaxCoordinate = 1e6;      ///< |region bounds| (sensor separations)
 inline constexpr double kMaxSensors = 1e7;         ///< sensors a layout may create

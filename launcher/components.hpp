@@ -15,6 +15,12 @@ namespace wsn::launcher {
 /// The listing of every registry, as `wsntrack components` prints it.
 std::string componentsText();
 
+/// The catalogue as JSON (`wsntrack components --json`): every scenario key, sensor model, engine,
+/// association and metric with units, defaults, ranges and meaning; the metrics.json and
+/// network.json quantities sweeps tabulate, with their labels; the columns of each output file; the
+/// measurement kinds, target classes, observation fates and the track-id layout (launcher/catalogue.cpp).
+std::string componentsJson();
+
 /// The key tables of scenarios/README.md, each between "<!-- table: NAME -->" and
 /// "<!-- end table -->" (`wsntrack components --markdown`; a test checks the README against it).
 std::string componentsMarkdown();

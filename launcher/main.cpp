@@ -1,6 +1,7 @@
 // wsntrack: run a tracking cluster on this host, or validate a scenario.
 #include <unistd.h>
 
+#include <algorithm>
 #include <boost/program_options.hpp>
 #include <cerrno>
 #include <chrono>
@@ -43,9 +44,14 @@ constexpr const char* kUsage =
     "  watch RUN_DIR      live view of a running cluster's tracks and metrics (from another terminal)\n"
     "  validate FILE...   check scenario files without running them\n"
     "  components         list every sensor model, tracking engine and track association with its parameters\n"
-    "                     (--markdown: the key tables of scenarios/README.md; --names KIND: the names of one\n"
-    "                     kind, one per line: sensor-models, engines, associations or metrics)\n"
+    "                     (--json: the machine-readable catalogue the Python package reads: every key,\n"
+    "                     component and metric with units and labels, the output files' columns, the\n"
+    "                     track-id layout; --markdown: the key tables of scenarios/README.md; --names KIND:\n"
+    "                     the names of one kind, one per line: sensor-models, engines, associations or metrics)\n"
     "  engines            list the tracking engines and association methods only\n"
+    "  sweep SPEC.yaml    a robustness sweep: one run per grid point, engine and seed, with results.csv,\n"
+    "                     summary.csv (mean, sd, 95 % CI), table.md and plots; resumes; -j N or a Dask\n"
+    "                     cluster (--scheduler). Also the flag form: sweep --scenario FILE --set-grid ...\n"
     "  replay RUN_DIR     write an animation of a finished run (GIF, MP4 or HTML) with plot_run.py --animate\n"
     "  version            print the version, git commit and Cyclone DDS version (also --version)\n"
     "  help               show this text\n\n"
@@ -148,6 +154,16 @@ std::string executableDirectory() {
   return std::filesystem::canonical("/proc/self/exe").parent_path().string();
 }
 
+/// Replaces this process with `exec_args` (a python and its script); returns only on failure.
+int execTool(const std::string& command, std::vector<std::string>& exec_args) {
+  std::vector<char*> argv;
+  for (auto& arg : exec_args) argv.push_back(arg.data());
+  argv.push_back(nullptr);
+  ::execv(exec_args.front().c_str(), argv.data());
+  std::cerr << "wsntrack " << command << ": cannot start " << exec_args.front() << ": " << std::strerror(errno) << "\n";
+  return 1;
+}
+
 /// `wsntrack replay RUN_DIR [options]`: the animation is drawn by plot_run.py --animate (matplotlib),
 /// so this only finds the script and hands over; its options and exit status are the script's.
 int commandReplay(const std::vector<std::string>& args) {
@@ -172,12 +188,30 @@ int commandReplay(const std::vector<std::string>& args) {
   } else {
     exec_args.insert(exec_args.end(), args.begin(), args.end());
   }
-  std::vector<char*> argv;
-  for (auto& arg : exec_args) argv.push_back(arg.data());
-  argv.push_back(nullptr);
-  ::execv(python.c_str(), argv.data());
-  std::cerr << "wsntrack replay: cannot start " << python << ": " << std::strerror(errno) << "\n";
-  return 1;
+  return execTool("replay", exec_args);
+}
+
+/// `wsntrack sweep SPEC.yaml | --scenario FILE ...`: robustness sweeps are the Python package's
+/// (wsntrack.sweep: scheduling, Student's t intervals, matplotlib plots, Dask); this finds
+/// sweep.py and hands over, with this wsntrack as the one the sweep runs unless --wsntrack names another.
+int commandSweep(const std::vector<std::string>& args) {
+  const std::string python = launcher::kPlotPython;
+  const std::string script = launcher::locateInstall(executableDirectory()).tools_dir + "/sweep.py";
+  if (::access(python.c_str(), X_OK) != 0 || ::access(script.c_str(), R_OK) != 0) {
+    std::cerr << "wsntrack sweep: needs " << python << " (Debian's python3) and " << script << "\n";
+    return 2;
+  }
+  std::vector<std::string> exec_args{python, script};
+  exec_args.insert(exec_args.end(), args.begin(), args.end());
+  const bool named = std::any_of(args.begin(), args.end(), [](const std::string& a) {
+    return a == "--wsntrack" || a.rfind("--wsntrack=", 0) == 0;
+  });
+  if (!named) {
+    exec_args.push_back("--wsntrack");
+    exec_args.push_back(std::filesystem::canonical("/proc/self/exe").string());
+  }
+  ::setenv("WSNTRACK_PROG", "wsntrack sweep", 1);  // the usage line names the command the user typed
+  return execTool("sweep", exec_args);
 }
 
 /// The files a run that succeeded has written: a run is complete only with every one of them.
@@ -344,13 +378,14 @@ int main(int argc, char** argv) {
   try {
     if (command == "run") return commandRun(command_line);
     if (command == "replay") return commandReplay(args);
+    if (command == "sweep") return commandSweep(args);
     if (command == "version" || command == "--version" || command == "-V") {
       std::cout << version::describe() << "\n";
       return 0;
     }
     if (command == "validate") return commandValidate(args);
-    if (command == "components" && args.size() == 1 && args[0] == "--markdown") {
-      std::cout << launcher::componentsMarkdown();
+    if (command == "components" && args.size() == 1 && (args[0] == "--markdown" || args[0] == "--json")) {
+      std::cout << (args[0] == "--json" ? launcher::componentsJson() : launcher::componentsMarkdown());
       return 0;
     }
     if (command == "components" && args.size() == 2 && args[0] == "--names") {
@@ -363,7 +398,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if ((command == "components" || command == "engines") && !args.empty()) {
-      std::cerr << "Usage: wsntrack " << command << (command == "components" ? " [--markdown | --names KIND]" : "")
+      std::cerr << "Usage: wsntrack " << command << (command == "components" ? " [--json | --markdown | --names KIND]" : "")
                 << "\n";
       return 2;
     }

@@ -35,6 +35,11 @@ int pickFreeDomain(std::uint64_t run_id, int participants);
 /// Default run directory: runs/<scenario name>-seed<seed>-<UTC timestamp>-<pid>.
 std::string defaultRunDirectory(const common::Scenario& scenario);
 
+/// The headers of the run's inputs the launcher writes: the targets' states, and the sensors of a
+/// layout other than a grid.
+inline constexpr const char* kTruthCsvHeader = "tick,target,x,y,vx,vy,class";
+inline constexpr const char* kSensorsCsvHeader = "sensor,x,y";
+
 /// The lock file a launcher holds (flock, exclusive) in its run directory for the run's whole life.
 inline constexpr const char* kRunLockFile = ".wsntrack.lock";
 

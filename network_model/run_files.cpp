@@ -81,6 +81,8 @@ std::string networkJson(const NetworkReport& report) {
   putCounts(json, c, report.with_faults);
   json["rejected"] = c.rejected;
   json["lost_to_total"] = ratio(c.lost + c.unreachable + c.lost_dead_supernode, c.sent);
+  // The end-to-end delivery ratio a reader understands, for sweeps' axes: delivered within the run.
+  json["delivered_to_total"] = ratio(c.delivered, c.sent);
   json["delayed_to_received"] = ratio(c.delayed + c.after_end, received);
   json["supernodes"] = Json::array();
   for (std::size_t j = 0; j < report.per_supernode.size(); ++j) {

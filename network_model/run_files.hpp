@@ -42,6 +42,8 @@ NetworkReport networkReport(const Topology& topology, const Router& router);
 
 /// The observations.csv fate of a report lost to a dead supernode.
 inline constexpr const char* kDeadSupernodeFate = "dead_supernode";
+/// Every fate an observations.csv row can have (observationRow), for the catalogue.
+inline constexpr const char* kObservationFates[] = {"delivered", "lost", "unreachable", "after_end", kDeadSupernodeFate};
 
 /// network.json: the report, its loss and delay ratios as Oh §VII-E counts them, and the paper's
 /// §VII-E counts as a reference named after the scenario they belong to (the paper's own example).

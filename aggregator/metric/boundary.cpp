@@ -51,7 +51,14 @@ MetricSpec boundaryMetric() {
           {"boundary_band", "mot_threshold"},
           [](const common::MetricsConfig& config, const std::vector<common::Vec2>& supernodes) -> std::unique_ptr<Metric> {
             return std::make_unique<BoundaryMetric>(supernodes, config.boundary_band, config.mot_threshold);
-          }};
+          },
+          {{"boundary_duplicates", "boundary dup", "duplicate track-ticks near boundaries", "",
+            {"boundary", "boundary", "duplicate_track_ticks"}, {}, "ticks a target near a group boundary had two tracks"},
+           {"boundary_id_switches", "boundary IDsw", "identity switches near boundaries", "",
+            {"boundary", "boundary", "id_switches"}, {},
+            "CLEAR-MOT identity switches of targets near a group boundary"},
+           {"boundary_fragmentations", "boundary frag", "fragmentations near boundaries", "",
+            {"boundary", "boundary", "fragmentations"}, {}, "fragmentations of targets near a group boundary"}}};
 }
 
 }  // namespace wsn::aggregator

@@ -108,7 +108,11 @@ MetricSpec classificationMetric() {
           {"quality_gate"},
           [](const common::MetricsConfig& config, const std::vector<common::Vec2>&) -> std::unique_ptr<Metric> {
             return std::make_unique<ClassificationMetric>(config.quality_gate);
-          }};
+          },
+          {{"class_accuracy", "class accuracy", "class accuracy", "", {"classification", "class_accuracy"}, {},
+            "ticks a track declares its target's true class over ticks it declares one (null: none declared)"},
+           {"declared_share", "declared share", "share of associated ticks with a declared class", "",
+            {"classification", "declared_share"}, {}, "ticks a track declares a class over its associated ticks"}}};
 }
 
 }  // namespace wsn::aggregator

@@ -43,7 +43,15 @@ MetricSpec clearMotMetric() {
           {"mot_threshold"},
           [](const common::MetricsConfig& config, const std::vector<common::Vec2>&) -> std::unique_ptr<Metric> {
             return std::make_unique<ClearMotMetric>(config.mot_threshold);
-          }};
+          },
+          {{"mota", "MOTA", "MOTA", "", {"clear_mot", "mota"}, {"clear_mot", "mota_defined"},
+            "multiple-object tracking accuracy, 1 − (misses + false positives + identity switches) / targets"},
+           {"motp", "MOTP", "MOTP", "separations", {"clear_mot", "motp"}, {"clear_mot", "motp_defined"},
+            "mean distance of the matched track-target pairs"},
+           {"id_switches", "ID switches", "identity switches", "", {"clear_mot", "id_switches"}, {},
+            "CLEAR-MOT identity switches"},
+           {"fragmentations", "fragmentations", "fragmentations", "", {"clear_mot", "fragmentations"}, {},
+            "times a target's track was interrupted"}}};
 }
 
 }  // namespace wsn::aggregator

@@ -56,7 +56,9 @@ MetricSpec gospaMetric() {
           {"gospa_c", "gospa_p"},
           [](const common::MetricsConfig& config, const std::vector<common::Vec2>&) -> std::unique_ptr<Metric> {
             return std::make_unique<GospaMetric>(config);
-          }};
+          },
+          {{"gospa", "GOSPA", "mean GOSPA", "separations", {"gospa", "mean"}, {},
+            "GOSPA (alpha = 2) averaged over the ticks"}}};
 }
 
 }  // namespace wsn::aggregator

@@ -73,6 +73,21 @@ class Metric {
   virtual MetricReport finish() const = 0;
 };
 
+/// One number of a run's metrics.json that sweeps tabulate and plot, as the catalogue
+/// (`wsntrack components --json`) describes it to the Python side and to figures.
+struct MetricQuantity {
+  std::string name;   ///< a sweep's metric name (eps_k)
+  std::string title;  ///< its column title in a sweep's tables (eps_K)
+  std::string label;  ///< a figure's axis label ("εK (Oh eq. 9)")
+  std::string unit;   ///< "" for a ratio or a count
+  /// Keys from the top of a stream's block in metrics.json (the live stream's block is the file
+  /// itself; the settled stream's is streams.settled).
+  std::vector<std::string> path;
+  /// Keys of the flag that says whether the run defines it; empty when it always does.
+  std::vector<std::string> defined;
+  std::string meaning;
+};
+
 /// A registered metric. Its name is its key in metrics.json.
 struct MetricSpec {
   std::string name;
@@ -83,6 +98,7 @@ struct MetricSpec {
   std::function<std::unique_ptr<Metric>(const common::MetricsConfig& config,
                                         const std::vector<common::Vec2>& supernodes)>
       create;
+  std::vector<MetricQuantity> quantities;  ///< what of its block a sweep can tabulate
 };
 
 using MetricRegistry = common::Registry<MetricSpec>;

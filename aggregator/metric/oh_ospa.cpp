@@ -68,7 +68,15 @@ MetricSpec ohOspaMetric() {
           {"eps_x_gate", "ospa_c", "ospa_p"},
           [](const common::MetricsConfig& config, const std::vector<common::Vec2>&) -> std::unique_ptr<Metric> {
             return std::make_unique<OhOspaMetric>(config);
-          }};
+          },
+          {{"eps_k", "eps_K", "εK (Oh eq. 9)", "", {"eps_k"}, {"metrics", "eps_k_defined"},
+            "Σ|K*_t − K_t| / Σ K*_t: the error of the number of tracks"},
+           {"eps_x", "eps_X", "εX (Oh eq. 10)", "separations", {"eps_x"}, {"metrics", "eps_x_defined"},
+            "the rms distance of the matched track-target pairs"},
+           {"eps_x_gated", "eps_X gated", "εX gated (Oh eq. 10)", "separations", {"metrics", "eps_x_gated"},
+            {"metrics", "eps_x_gated_defined"}, "εX over the matches closer than metrics.eps_x_gate"},
+           {"ospa", "OSPA", "mean OSPA", "separations", {"ospa"}, {}, "OSPA (c = metrics.ospa_c, p = metrics.ospa_p) "
+            "averaged over the scored ticks"}}};
 }
 
 }  // namespace wsn::aggregator

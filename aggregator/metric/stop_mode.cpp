@@ -89,7 +89,13 @@ MetricSpec stopModeMetric() {
           {"quality_gate"},
           [](const common::MetricsConfig& config, const std::vector<common::Vec2>&) -> std::unique_ptr<Metric> {
             return std::make_unique<StopModeMetric>(config.quality_gate);
-          }};
+          },
+          {{"stop_probability_stopped", "P(stop) stopped", "mean stop probability while stopped", "",
+            {"stop_mode", "mean_stop_probability_stopped"}, {},
+            "the mean probability a track gives its target being stopped, over the ticks it stands still"},
+           {"stop_probability_moving", "P(stop) moving", "mean stop probability while moving", "",
+            {"stop_mode", "mean_stop_probability_moving"}, {},
+            "the mean probability a track gives its target being stopped, over the ticks it moves"}}};
 }
 
 }  // namespace wsn::aggregator

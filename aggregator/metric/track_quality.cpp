@@ -56,7 +56,15 @@ MetricSpec trackQualityMetric() {
           {"quality_gate"},
           [](const common::MetricsConfig& config, const std::vector<common::Vec2>&) -> std::unique_ptr<Metric> {
             return std::make_unique<TrackQualityMetric>(config.quality_gate);
-          }};
+          },
+          {{"tlr", "TLR", "TLR (Pannetier et al. 2014, §V)", "", {"track_quality", "mean_tlr"},
+            {"track_quality", "means_defined"},
+            "track length ratio A_j / L_j (associated over alive ticks), averaged over the targets"},
+           {"tlr_length", "TLR length", "TLR by path length", "", {"track_quality", "mean_tlr_length"},
+            {"track_quality", "means_defined"},
+            "track length ratio by path length P^A_j / P_j, averaged over the targets"},
+           {"position_error", "<dx>", "⟨dx⟩ (An et al. 2014, §5.2)", "separations", {"track_quality", "mean_position_error"},
+            {"track_quality", "means_defined"}, "mean position error of the associated ticks, averaged over the targets"}}};
 }
 
 }  // namespace wsn::aggregator

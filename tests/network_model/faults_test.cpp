@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
@@ -282,6 +283,16 @@ TEST_CASE("an observations row names a report lost to a dead supernode", "[netwo
   CHECK(std::string(nm::kDeadSupernodeFate) == "dead_supernode");
   fate.to_dead_supernode = false;
   CHECK(nm::observationRow(fate) == "5,,17,1,2,,1.500000,-2.250000,3,lost,0");
+  // Every fate a row can name is in the list the catalogue gives the Python readers.
+  const auto listed = [](const std::string& fate_name) {
+    return std::find(std::begin(nm::kObservationFates), std::end(nm::kObservationFates), fate_name) !=
+           std::end(nm::kObservationFates);
+  };
+  for (const auto& row : {nm::observationRow(fate), std::string("5,,17,1,2,,1.500000,-2.250000,3,dead_supernode,0")}) {
+    const auto end = row.rfind(',');
+    CHECK(listed(row.substr(row.rfind(',', end - 1) + 1, end - row.rfind(',', end - 1) - 1)));
+  }
+  for (const char* name : {"delivered", "lost", "unreachable", "after_end", "dead_supernode"}) CHECK(listed(name));
 }
 
 TEST_CASE("network.json has the fault counts only for a run with faults", "[network_model][run_files][faults]") {
@@ -323,6 +334,9 @@ TEST_CASE("network.json has the fault counts only for a run with faults", "[netw
   CHECK(json.at("silent_tile_ticks") == 7);
   // lost_to_total counts the dead supernode's losses: (15 + 2 + 5) / 100.
   CHECK(json.at("lost_to_total").get<double>() == Approx(0.22).margin(1e-12));
+  // The end-to-end delivery ratio: delivered within the run over sent, (45 + 33) / 100.
+  CHECK(json.at("delivered_to_total").get<double>() == Approx(0.78).margin(1e-12));
+  CHECK(plain.at("delivered_to_total").get<double>() == Approx(0.78).margin(1e-12));
   REQUIRE(json.at("rehomes").size() == 1);
   const auto& rehome = json.at("rehomes")[0];
   CHECK(rehome.at("supernode") == 1);

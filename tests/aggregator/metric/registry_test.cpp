@@ -61,7 +61,8 @@ MetricSpec toySpec(std::string name = "toy") {
   return {std::move(name), "counts tracks", {},
           [](const MetricsConfig&, const std::vector<Vec2>&) -> std::unique_ptr<Metric> {
             return std::make_unique<ToyMetric>();
-          }};
+          },
+          {}};
 }
 
 /// Only the registered metric called `name`.
