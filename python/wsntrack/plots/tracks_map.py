@@ -5,7 +5,7 @@ function each; the legend goes below the map."""
 import math
 
 from ..figures import new_figure
-from ..rundir import TARGET_CLASSES
+from .. import rundir
 from .field import (CLASS_COLOURS, NO_CLASS_COLOUR, NO_CLASS_DASHES, REGION_COLOURS, TRACK_COLOURS, TRACK_DASHES,
                     TRUTH_COLOUR, draw_groups_and_region, draw_terrain, draw_typed_sensors, length_unit)
 from .geometry import class_pieces, interior_edges, paths_by_id
@@ -91,7 +91,7 @@ def _draw_tracks_by_class(ax, tracks, order):
             mx, my = points.setdefault(row[-2], ([], []))
             mx.append(row[2])
             my.append(row[3])
-    classes_drawn = [c for c in TARGET_CLASSES + ("",) if c in points]
+    classes_drawn = [c for c in rundir.TARGET_CLASSES + ("",) if c in points]
     for declared in classes_drawn:
         colour = CLASS_COLOURS.get(declared, NO_CLASS_COLOUR)
         if lines.get(declared, ([], []))[0]:

@@ -6,6 +6,7 @@ import math
 import sys
 
 from .tables import InputError, ToolMissing, require
+from .. import catalogue
 
 # Imported here rather than when scenario.yaml is read: under 'wsntrack run' (plot_run.py --wait)
 # the import then overlaps the run. Without it the tools still start, to report it as a missing tool.
@@ -191,17 +192,18 @@ def read_terrain(section, at):
     return terrain
 
 
-# The sensor types of sensor_model kind field_sensors (ONERA Table I), in the order of the scenario
-# schema, with the coverage of a sensor whose entry and type section give none (node/field_sensors:
-# range, fov_deg). wsntrack.plots.field gives each its colour and marker.
-SENSOR_TYPES = {
-    "acoustic_antenna": {"range": 200.0, "fov_deg": 360.0},
-    "acoustic_beacon": {"range": 200.0, "fov_deg": 360.0},
-    "magnetic": {"range": 2.0, "fov_deg": 360.0},
-    "pir": {"range": 200.0, "fov_deg": 10.0},
-    "radar": {"range": 1000.0, "fov_deg": 90.0},
-    "camera": {"range": 200.0, "fov_deg": 30.0},
-}
+def sensor_types():
+    """The sensor types of the sensor models (ONERA Table I's of field_sensors), in the catalogue's
+    order, each with its defaults (range, fov_deg, ...: the coverage of a sensor whose entry and type
+    section give none). wsntrack.plots.field gives each its colour and marker."""
+    return {name: defaults for model in catalogue.load()["sensor_models"]
+            for name, defaults in model["sensor_types"].items()}
+
+
+def __getattr__(name):
+    if name == "SENSOR_TYPES":  # the table as a constant, as this module has always exported it
+        return sensor_types()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def _yaml_number(value):
@@ -222,6 +224,7 @@ def read_typed_sensors(data, at):
     if not isinstance(entries, list) or not any(
             isinstance(entry, dict) and entry.get("type") not in (None, "") for entry in entries):
         return None
+    types = sensor_types()
     model = data.get("sensor_model")
     model = model if isinstance(model, dict) else {}
     coverage = {}  # per sensor type: (range, fov), read when a sensor of the type is met
@@ -239,7 +242,7 @@ def read_typed_sensors(data, at):
         for key, high in (("range", 1e6), ("fov_deg", 360.0)):
             value = section.get(key)
             if value is None:
-                values.append(SENSOR_TYPES[kind][key])
+                values.append(types[kind][key])
                 continue
             number = _yaml_number(value)
             if number is None or not 0.0 < number <= high:
@@ -256,9 +259,9 @@ def read_typed_sensors(data, at):
                              "{name, type, x, y, heading, ...}")
         kind = entry.get("type")
         kind = None if kind is None or kind == "" else str(kind)
-        if kind is not None and kind not in SENSOR_TYPES:
+        if kind is not None and kind not in types:
             raise InputError(f"{at('sensors', 'list', i, 'type')}: sensors.list[{i}].type must be one of "
-                             f"{', '.join(SENSOR_TYPES)}, got '{kind}'")
+                             f"{', '.join(types)}, got '{kind}'")
         values = {}
         # key, default, lowest, highest (fov: 0 excluded, but 0 means the type's, like range)
         for key, default, low, high in (("x", None, -math.inf, math.inf), ("y", None, -math.inf, math.inf),

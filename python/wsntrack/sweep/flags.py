@@ -16,7 +16,7 @@ from pathlib import Path
 from ..rundir import incomplete_reason, read_json
 from .common import (REPO, UsageError, make_runs, parse_seeds, plural, run_command, scenario_engine, seeds_text,
                      short_names, split_key_value, engine_sets, validate)
-from .metrics import DEFAULT_METRICS, METRIC_SOURCES, metric_value
+from .metrics import DEFAULT_METRICS, metric_sources, metric_value
 
 DESCRIPTION = """\
 Runs a grid of wsntrack clusters and tabulates their metrics.
@@ -125,7 +125,7 @@ def markdown_table(args, grid, names, engines, seeds, runs, fixed, metrics):
         "or the metric is undefined for it); –: none.",
         "",
     ]
-    header = list(names) + [f"{e} {METRIC_SOURCES[m][0]}" for e in engines for m in metrics]
+    header = list(names) + [f"{e} {metric_sources()[m][0]}" for e in engines for m in metrics]
     lines.append("| " + " | ".join(header) + " |")
     lines.append("|" + "|".join(["---"] * len(names) + ["---:"] * (len(header) - len(names))) + "|")
     by_cell = {}
@@ -233,7 +233,7 @@ def parse_args(argv):
              "       %(prog)s --scenario SCENARIO [--seeds SEEDS] [--engines ENGINES] [--set-grid KEY=V1,V2,...]\n"
              "                [--set KEY=VALUE] [--out OUT] [-j JOBS] [--wsntrack WSNTRACK] [--metrics METRICS]\n"
              "                [--in-process]")
-    parser = argparse.ArgumentParser(prog="sweep.py", description=DESCRIPTION, epilog=EPILOG, usage=usage,
+    parser = argparse.ArgumentParser(prog=os.environ.get("WSNTRACK_PROG", "sweep.py"), description=DESCRIPTION, epilog=EPILOG, usage=usage,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--scenario", required=True, type=Path, help="scenario file (YAML)")
     parser.add_argument("--seeds", default="1", help="seeds: 1-5, 1,3,7 or 1-3,10 (default: 1)")
@@ -255,7 +255,7 @@ def parse_args(argv):
                         help="the wsntrack executable (default: build/bin/wsntrack of this repository)")
     parser.add_argument("--metrics", default=",".join(DEFAULT_METRICS),
                         help="comma-separated metrics to tabulate (default: %(default)s); one of: " +
-                        ", ".join(METRIC_SOURCES))
+                        ", ".join(metric_sources()))
     parser.add_argument("--in-process", action="store_true",
                         help="run each cluster's roles as threads of one process (wsntrack run --in-process); "
                         "the results are the same")
@@ -269,9 +269,9 @@ def _checked(args):
     """(metrics, seeds, grid, fixed, engines, out) of the flag form's arguments; UsageError for
     anything that cannot be run."""
     metrics = tuple(m.strip() for m in args.metrics.split(","))
-    unknown = [m for m in metrics if m not in METRIC_SOURCES]
+    unknown = [m for m in metrics if m not in metric_sources()]
     if unknown or not metrics or len(set(metrics)) != len(metrics):
-        raise UsageError(f"--metrics: expected distinct names from {', '.join(METRIC_SOURCES)}, got '{args.metrics}'")
+        raise UsageError(f"--metrics: expected distinct names from {', '.join(metric_sources())}, got '{args.metrics}'")
     seeds = parse_seeds(args.seeds)
     grid = parse_grid(args.set_grid)
     fixed = [split_key_value(t, "--set") for t in args.fixed]

@@ -4,37 +4,34 @@ errors), read through wsntrack.rundir."""
 
 import math
 
+from .. import catalogue
 from ..rundir import read_csv, read_json, read_observations
 
-# The metrics a sweep can tabulate: name -> (table title, path into metrics.json, path of the flag
-# that says whether the run defines it, or None). docs/METRICS.md defines each.
-METRIC_SOURCES = {
-    "eps_k": ("eps_K", ("eps_k",), ("metrics", "eps_k_defined")),
-    "eps_x": ("eps_X", ("eps_x",), ("metrics", "eps_x_defined")),
-    "eps_x_gated": ("eps_X gated", ("metrics", "eps_x_gated"), ("metrics", "eps_x_gated_defined")),
-    "ospa": ("OSPA", ("ospa",), None),
-    "gospa": ("GOSPA", ("gospa", "mean"), None),
-    "mota": ("MOTA", ("clear_mot", "mota"), ("clear_mot", "mota_defined")),
-    "motp": ("MOTP", ("clear_mot", "motp"), ("clear_mot", "motp_defined")),
-    "id_switches": ("ID switches", ("clear_mot", "id_switches"), None),
-    "fragmentations": ("fragmentations", ("clear_mot", "fragmentations"), None),
-    "boundary_duplicates": ("boundary dup", ("boundary", "boundary", "duplicate_track_ticks"), None),
-    "boundary_id_switches": ("boundary IDsw", ("boundary", "boundary", "id_switches"), None),
-    "boundary_fragmentations": ("boundary frag", ("boundary", "boundary", "fragmentations"), None),
-    "tlr": ("TLR", ("track_quality", "mean_tlr"), ("track_quality", "means_defined")),
-    "tlr_length": ("TLR length", ("track_quality", "mean_tlr_length"), ("track_quality", "means_defined")),
-    "position_error": ("<dx>", ("track_quality", "mean_position_error"), ("track_quality", "means_defined")),
-}
-# The same metrics of the settled stream (the fixed-lag, smoothed estimate; docs/METRICS.md, "Track
-# streams"): settled_eps_k, settled_ospa, ...
-METRIC_SOURCES.update({
-    "settled_" + name: ("settled " + title, ("streams", "settled") + where,
-                        ("streams", "settled") + defined if defined else None)
-    for name, (title, where, defined) in list(METRIC_SOURCES.items())})
+def _catalogue_sources():
+    """The metrics.json quantities of the catalogue (`wsntrack components --json`) as name -> (table
+    title, path into metrics.json, path of the flag that says whether the run defines it, or None),
+    each also of the settled stream (the fixed-lag, smoothed estimate; docs/METRICS.md, "Track
+    streams") as settled_NAME; then network.json's numbers (reports, reports_lost, delivery_ratio, ...)."""
+    document = catalogue.load()
+    sources = {}
+    for name, q in catalogue.quantities(document).items():
+        sources[name] = (q["title"], tuple(q["path"]), tuple(q["defined"]) or None)
+    settled = tuple(document["streams"]["settled"])
+    sources.update({
+        "settled_" + name: ("settled " + title, settled + where, settled + defined if defined else None)
+        for name, (title, where, defined) in list(sources.items())})
+    for name, q in catalogue.network_quantities(document).items():
+        sources[name] = (q["title"], _network(q["path"]), None)
+    return sources
 
 
-def _network(key):
-    return lambda data, run_dir: read_json(run_dir / "network.json")[key]
+def _network(path):
+    def value(data, run_dir):
+        document = read_json(run_dir / "network.json")
+        for key in path:
+            document = document[key]
+        return document
+    return value
 
 
 def _received(data, run_dir):
@@ -50,9 +47,6 @@ def _false_tracks_per_tick(data, run_dir):
     return data["clear_mot"]["false_positives"] / data["ticks"]
 
 
-# Tracks that match no target, per tick (CLEAR-MOT's false positives over the run's ticks), as An et
-# al. 2013 count them.
-METRIC_SOURCES["false_per_tick"] = ("false tracks/tick", _false_tracks_per_tick, None)
 
 
 def _of_target(target, key):
@@ -64,22 +58,6 @@ def _of_target(target, key):
     return value
 
 
-# One target's <dx> and TLR (track_quality.targets[] in metrics.json), for figures that follow one
-# target (An et al. 2014 Fig. 15): position_error_0 is the target with id 0 (the first scripted).
-for _target in range(10):
-    METRIC_SOURCES[f"position_error_{_target}"] = (f"<dx> target {_target}", _of_target(_target, "mean_position_error"), None)
-    METRIC_SOURCES[f"tlr_{_target}"] = (f"TLR target {_target}", _of_target(_target, "tlr"), None)
-
-# Counts of the run's reports, as Oh et al. §VII-E gives them ("a total of 1174 observations and 603
-# observations were false alarms", packets lost and received delayed): read from the run's
-# network.json and observations.csv (README.md, "Run directory") instead of metrics.json.
-METRIC_SOURCES.update({
-    "reports": ("reports", _network("sent"), None),
-    "false_reports": ("false reports", _false_reports, None),
-    "reports_lost": ("reports lost", _network("lost"), None),
-    "reports_received": ("reports received", _received, None),
-    "reports_delayed": ("received delayed", _network("delayed"), None),
-})
 
 
 def _report_detection(data, run_dir):
@@ -124,31 +102,78 @@ def _median(errors):
 # labelled report from its target (false alarms left out), over every report and over the ticks
 # whose count is right. Meaningful where a model reports each target once a tick (ADMAN, the fused
 # reports of Oh eq. 6).
-METRIC_SOURCES.update({
-    "count_match": ("count right", lambda data, run_dir: _report_detection(data, run_dir)[0], None),
-    "report_error": ("report err rms", lambda data, run_dir: _rms(_report_detection(data, run_dir)[1]), None),
-    "report_error_median": ("report err median", lambda data, run_dir: _median(_report_detection(data, run_dir)[1]),
-                            None),
-    "report_error_count_right": ("report err rms, count right",
-                                 lambda data, run_dir: _rms(_report_detection(data, run_dir)[2]), None),
-})
+def _file_sources():
+    """The quantities a sweep computes from a run's files rather than reads from metrics.json."""
+    sources = {
+        # Tracks that match no target, per tick (CLEAR-MOT's false positives over the run's ticks), as
+        # An et al. 2013 count them.
+        "false_per_tick": ("false tracks/tick", _false_tracks_per_tick, None),
+        # Counts of the run's reports beside network.json's, as Oh et al. §VII-E gives them ("a total
+        # of 1174 observations and 603 observations were false alarms"), from observations.csv.
+        "false_reports": ("false reports", _false_reports, None),
+        "reports_received": ("reports received", _received, None),
+        "count_match": ("count right", lambda data, run_dir: _report_detection(data, run_dir)[0], None),
+        "report_error": ("report err rms", lambda data, run_dir: _rms(_report_detection(data, run_dir)[1]), None),
+        "report_error_median": ("report err median",
+                                lambda data, run_dir: _median(_report_detection(data, run_dir)[1]), None),
+        "report_error_count_right": ("report err rms, count right",
+                                     lambda data, run_dir: _rms(_report_detection(data, run_dir)[2]), None),
+    }
+    # One target's <dx> and TLR (track_quality.targets[] in metrics.json), for figures that follow
+    # one target (An et al. 2014 Fig. 15): position_error_0 is the target with id 0 (the first scripted).
+    for target in range(10):
+        sources[f"position_error_{target}"] = (f"<dx> target {target}", _of_target(target, "mean_position_error"),
+                                               None)
+        sources[f"tlr_{target}"] = (f"TLR target {target}", _of_target(target, "tlr"), None)
+    return sources
+
+
+_SOURCES = {}
+
+
+def metric_sources():
+    """Every metric a sweep can tabulate: name -> (table title, where, defined), `where` a path into
+    metrics.json (a tuple of keys) or a function of (metrics.json's data, the run directory), and
+    `defined` the path of the flag that says whether the run defines it, or None. The metrics.json
+    and network.json ones come from the catalogue; docs/METRICS.md defines each."""
+    if not _SOURCES:
+        _SOURCES.update(_catalogue_sources())
+        _SOURCES.update(_file_sources())
+    return _SOURCES
+
+
+def metric_label(metric):
+    """A figure's axis label of a metric: the catalogue's label and unit, for a settled one prefixed
+    "settled"; the table title for a quantity computed from the run's files."""
+    name = metric[len("settled_"):] if metric.startswith("settled_") else metric
+    found = catalogue.quantities().get(name) or catalogue.network_quantities().get(name)
+    if found is None:
+        return metric_sources()[metric][0]
+    return catalogue.axis_label(("settled " if name != metric else "") + found["label"], found["unit"])
+
+
+def __getattr__(name):
+    if name == "METRIC_SOURCES":  # the table as a constant, for readers of older code
+        return metric_sources()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def metric_value(metric, data, run_dir):
     """One metric of a run: a path into its metrics.json (`data`), or a function of `data` and the
     run directory (the report counts read its other files)."""
-    _, where, defined = METRIC_SOURCES[metric]
+    _, where, defined = metric_sources()[metric]
     if callable(where):
         return where(data, run_dir)
     return None if defined and lookup(data, defined) is False else lookup(data, where)
 
 
 def lookup(data, path):
-    """The value at `path` (a tuple of keys) in nested dicts, or None where the path ends early."""
-    for key in path:
-        if not isinstance(data, dict):
-            return None
-        data = data.get(key)
+    """The value at `path` (a tuple of keys) in nested dicts; KeyError naming the first key that is
+    not there, so that a metric the catalogue misplaces never reads as undefined."""
+    for i, key in enumerate(path):
+        if not isinstance(data, dict) or key not in data:
+            raise KeyError(f"metrics.json has no {'.'.join(path[:i + 1])}")
+        data = data[key]
     return data
 
 

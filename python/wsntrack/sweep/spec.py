@@ -6,9 +6,10 @@ import re
 from pathlib import Path
 
 from .common import REPO, UsageError, parse_seeds
-from .metrics import DEFAULT_METRICS, METRIC_SOURCES
+from .metrics import DEFAULT_METRICS, metric_sources
 
-SPEC_KEYS = ("scenario", "grid", "engines", "seeds", "set", "metrics", "in_process", "title", "notes", "reference")
+SPEC_KEYS = ("scenario", "grid", "engines", "seeds", "set", "metrics", "x", "in_process", "title", "notes",
+             "reference")
 REFERENCE_KEYS = ("metric", "value", "at", "label")
 KEY_PATTERN = re.compile(r"[A-Za-z_][A-Za-z0-9_]*(\[\d+\])?(\.[A-Za-z_][A-Za-z0-9_]*(\[\d+\])?)*")
 TAG = "tag:yaml.org,2002:"
@@ -55,6 +56,7 @@ class Spec:
         self.fixed = []  # [(key, value)]
         self.fixed_lines = {}  # key -> line (none for a --set of the command line)
         self.metrics = list(DEFAULT_METRICS)
+        self.x = None  # a metric measured per run to plot the others against, instead of the swept value
         self.in_process = False
         self.title = ""
         self.notes = ""
@@ -191,11 +193,13 @@ class SpecReader:
             spec.metrics = []
             for node in nodes:
                 metric = self.string(node, "metrics")
-                if metric not in METRIC_SOURCES:
-                    self.fail(node, f"metrics: unknown metric '{metric}'; expected one of: {', '.join(METRIC_SOURCES)}")
+                if metric not in metric_sources():
+                    self.fail(node, f"metrics: unknown metric '{metric}'; expected one of: {', '.join(metric_sources())}")
                 if metric in spec.metrics:
                     self.fail(node, f"metrics: '{metric}' given twice")
                 spec.metrics.append(metric)
+        if "x" in fields:
+            self.x_axis(spec, fields["x"][1])
         if "in_process" in fields:
             node = fields["in_process"][1]
             if self.tag(node) != "bool":
@@ -209,10 +213,26 @@ class SpecReader:
                 spec.references.append(self.reference(spec, node))
         return spec
 
+    def x_axis(self, spec, node):
+        """x: a metric every run measures (delivery_ratio), the plots' x axis instead of the swept
+        value; added to the metrics when they lack it."""
+        metric = self.string(node, "x")
+        if metric not in metric_sources():
+            self.fail(node, f"x: unknown metric '{metric}'; expected one of: {', '.join(metric_sources())}")
+        if len(spec.grid) != 1:
+            self.fail(node, "x: a measured x axis needs a grid of one key (line plots); this grid has "
+                      f"{len(spec.grid)}")
+        spec.x = metric
+        if metric not in spec.metrics:
+            spec.metrics.append(metric)
+
     def scenario(self, node):
         text = self.string(node, "scenario")
         given = Path(text)
-        candidates = [given] if given.is_absolute() else [self.path.parent / given, REPO / given]
+        # Beside the spec; else above it, where sweeps/ and scenarios/ sit side by side (the
+        # repository, and an installed data directory); else in the repository of this package.
+        above = self.path.resolve().parent.parent
+        candidates = [given] if given.is_absolute() else [self.path.parent / given, above / given, REPO / given]
         for candidate in candidates:
             try:
                 if candidate.is_file():
@@ -221,7 +241,8 @@ class SpecReader:
                 self.fail(node, f"scenario: no file {text} ({error.strerror})")
         self.fail(node, f"scenario: no file {text} " +
                   ("" if given.is_absolute() else
-                   f"beside the spec (in {self.path.parent.resolve()}) or in the repository ({REPO})"))
+                   f"beside the spec (in {self.path.parent.resolve()}), above it (in {above}) or in the "
+                   f"repository ({REPO})"))
 
     def grid(self, spec, key_node, node):
         entries = self.items(node, "grid")

@@ -7,7 +7,7 @@ import math
 import shlex
 
 from .common import seeds_text
-from .metrics import METRIC_SOURCES
+from .metrics import metric_sources
 
 
 def t_quantile(p, df):
@@ -92,7 +92,7 @@ def spec_table(spec, points, names, cells, fixed_text):
               f"({len(spec.seeds)} per cell){'; fixed: ' + fixed_text if fixed_text else ''}.", "",
               "Each cell is the mean over the seeds ± the half-width of its 95 % confidence interval (Student's t); "
               "(k/n): only k of the n runs were counted (a run failed, or the metric is undefined for it); –: none.", ""]
-    header = list(names) + [f"{e} {METRIC_SOURCES[m][0]}" for e in spec.engines for m in spec.metrics]
+    header = list(names) + [f"{e} {metric_sources()[m][0]}" for e in spec.engines for m in spec.metrics]
     lines.append("| " + " | ".join(header) + " |")
     lines.append("|" + "|".join(["---"] * len(names) + ["---:"] * (len(header) - len(names))) + "|")
     for point in points:

@@ -20,8 +20,9 @@ import subprocess
 import time
 from pathlib import Path
 
+from .. import catalogue
 from ..rundir import InputError, incomplete_reason, read_json
-from .metrics import METRIC_SOURCES, metric_value
+from .metrics import metric_sources, metric_value
 
 RECORD = "sweep_run.json"  # in each run directory, written when the run has finished
 
@@ -53,7 +54,7 @@ def metrics_of(path, metrics):
         raise ValueError("no 'metrics' object: not a complete metrics.json")
     values = {}
     for metric in metrics:
-        where = METRIC_SOURCES[metric][1]
+        where = metric_sources()[metric][1]
         try:
             value = metric_value(metric, data, Path(path).parent)
         except (OSError, KeyError, TypeError, InputError) as error:
@@ -164,6 +165,7 @@ def run_task(task, stop, poll_s=0.05, worker=None):
     result = {"status": "not run", "exit": None, "wall_s": None, "metrics": {}, "attempts": 0}
     if stop.is_set():
         return result
+    catalogue.use(task["command"][0])  # the metrics' paths of the wsntrack that runs it (on a worker too)
     log_file = _locked_log(Path(task["log"]), stop)
     if log_file is None:
         return result
