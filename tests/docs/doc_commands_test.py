@@ -31,7 +31,7 @@ and no stale package from the real tree is seen. Only these arguments change, an
 the command as run (`wsntrack`, `sweep.py` and `plot_run.py` by their basename, so an installed
 copy such as PREFIX/bin/wsntrack is shortened like the repository's):
   wsntrack run       --ticks N (default 20), and --out runs/doc-LINE when it has none;
-  sweep.py           only the first of --seeds, --set run.ticks=N unless it sets fewer ticks
+  sweep.py, wsntrack sweep   only the first of --seeds, --set run.ticks=N unless it sets fewer ticks
                      already, --out when it has none;
   build/bin/*_bench  --benchmark_repetitions=1 and --benchmark_min_time=0.01.
 An --out outside the workspace becomes runs/doc-abs-NAME, except under /tmp. Paths under /tmp that
@@ -510,7 +510,8 @@ def rewrite(command, ticks):
         value, _ = option_value(words, "--ticks")
         changed = set_option(changed, "--ticks", str(min(int(value), ticks) if value and value.isdigit() else ticks))
         changed = with_local_out(changed, f"runs/doc-{command.line}")
-    elif command.kind == "tool" and name == "sweep.py":
+    elif (command.kind == "tool" and name == "sweep.py") or \
+            (command.kind == "wsntrack" and len(program) > 1 and program[1] == "sweep"):
         seeds, _ = option_value(words, "--seeds")
         if seeds:
             changed = set_option(changed, "--seeds", re.split(r"[-,]", seeds)[0])
@@ -577,7 +578,7 @@ def labels_of(unit, units):
     for c in test_commands(unit, units):
         words = program_words(split_words(c.text)) if c.kind != "python" else []
         # Every wsntrack run, sweep and live viewer starts or joins a cluster on loopback.
-        if (c.kind == "wsntrack" and any(w in ("run", "watch") for w in words[1:3])) or \
+        if (c.kind == "wsntrack" and any(w in ("run", "watch", "sweep") for w in words[1:3])) or \
                 (c.kind == "tool" and "sweep.py" in c.text) or "watch_tracks" in c.text:
             labels.append("cluster")
             break

@@ -1,17 +1,28 @@
 """The spec form's plots/: for a 1-D grid each metric against the swept value, one line per engine
 with a shaded 95 % band and the spec's reference lines; for a 2-D grid a heat map per metric and
-engine, on one colour scale per metric."""
+engine, on one colour scale per metric. Axis labels and units come from the catalogue (`wsntrack
+components --json`): "transmission failure rate pte [per hop]", "εK (Oh eq. 9)"."""
 
 import math
 import sys
 
 from .common import safe
-from .metrics import METRIC_SOURCES
+from .. import catalogue
+from .metrics import metric_label, metric_sources
 from .spec import number, same_value
 
 
+PLOT_FORMATS = ("png", "svg", "pdf")
+
+
+def key_label(key):
+    """A figure's label of a swept scenario key: the catalogue's label and unit, else the key."""
+    entry = catalogue.scenario_key(key)
+    return catalogue.axis_label(entry["label"], entry["unit"]) if entry else key
+
+
 def save_figure(plt, fig, path):
-    """Lays out, writes and closes one figure; returns its path."""
+    """Lays out, writes and closes one figure (its format that of the path's suffix); returns its path."""
     fig.tight_layout()
     fig.savefig(path, dpi=110)
     plt.close(fig)
@@ -40,20 +51,45 @@ def _stat(cells, point, engine, metric, index):
     return math.nan if value is None else value
 
 
-def _line_plots(plt, np, directory, spec, points, cells, subtitle):
-    """METRIC.png for a 1-D grid: the mean against the swept value per engine, with its 95 % band."""
+def _against_measured(plt, np, ax, spec, points, cells, metric):
+    """The lines of a metric against spec.x, the mean of a measured quantity per grid point: per
+    engine, the points in the order of x, each with its 95 % band and labelled with its swept value."""
+    key, values = spec.grid[0][0], spec.grid[0][1]
+    for engine in spec.engines:
+        rows = [(_stat(cells, p, engine, spec.x, 1), _stat(cells, p, engine, metric, 1),
+                 _stat(cells, p, engine, metric, 3), _stat(cells, p, engine, metric, 4), value)
+                for p, value in zip(points, values)]
+        rows = sorted((r for r in rows if not math.isnan(r[0])), key=lambda r: r[0])
+        xs, mean, low, high = (np.array([r[i] for r in rows]) for i in range(4))
+        line, = ax.plot(xs, mean, marker="o", label=engine)
+        ax.fill_between(xs, low, high, color=line.get_color(), alpha=0.2, linewidth=0)
+        for x, y, *_, value in rows:
+            ax.annotate(value, (x, y), textcoords="offset points", xytext=(3, 4), fontsize=6, color=line.get_color())
+    for reference in spec.references:
+        if reference["metric"] in (None, metric) and reference["value"] is not None:
+            ax.axhline(reference["value"], color="0.3", linestyle="--", linewidth=1, label=reference["label"])
+    ax.set_xlabel(metric_label(spec.x) + f" (points: {key})")
+
+
+def _line_plots(plt, np, directory, spec, points, cells, subtitle, plot_format):
+    """METRIC.png for a 1-D grid: the mean against the swept value per engine, with its 95 % band;
+    against the mean of a measured quantity instead when the spec has an x."""
     key, values = spec.grid[0][0], spec.grid[0][1]
     xs, categorical = _axis(values)
     written = []
     for metric in spec.metrics:
+        if metric == spec.x:
+            continue
         fig, ax = plt.subplots(figsize=(7.5, 4.8))
-        for engine in spec.engines:
+        if spec.x:
+            _against_measured(plt, np, ax, spec, points, cells, metric)
+        for engine in spec.engines if not spec.x else ():
             mean = np.array([_stat(cells, p, engine, metric, 1) for p in points])
             low = np.array([_stat(cells, p, engine, metric, 3) for p in points])
             high = np.array([_stat(cells, p, engine, metric, 4) for p in points])
             line, = ax.plot(xs, mean, marker="o", label=engine)
             ax.fill_between(xs, low, high, color=line.get_color(), alpha=0.2, linewidth=0)
-        for reference in spec.references:
+        for reference in spec.references if not spec.x else ():  # _against_measured draws its own
             if reference["metric"] not in (None, metric):
                 continue
             label = reference["label"]
@@ -63,16 +99,18 @@ def _line_plots(plt, np, directory, spec, points, cells, subtitle):
             if key in reference["at"]:
                 ax.axvline(_position(values, xs, reference["at"][key]), color="0.3", linestyle=":",
                            linewidth=1.2, label=label)
-        if categorical:
+        if categorical and not spec.x:
             ax.set_xticks(xs)
             ax.set_xticklabels(values)
-        ax.set_xlabel(key)
-        ax.set_ylabel(f"{METRIC_SOURCES[metric][0]} ({metric})")
-        ax.set_title(f"{spec.title or METRIC_SOURCES[metric][0] + ' against ' + key}\n{subtitle}; "
+        if not spec.x:
+            ax.set_xlabel(key_label(key))
+        ax.set_ylabel(metric_label(metric))
+        against = spec.x or key
+        ax.set_title(f"{spec.title or metric_sources()[metric][0] + ' against ' + against}\n{subtitle}; "
                      "band: 95 % CI of the mean", fontsize=9)
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
-        written.append(save_figure(plt, fig, directory / f"{safe(metric)}.png"))
+        written.append(save_figure(plt, fig, directory / f"{safe(metric)}.{plot_format}"))
     return written
 
 
@@ -112,7 +150,7 @@ def _heat_map(plt, np, spec, metric, engine, matrix, scale, cells, subtitle):
                                     max(4.5, 2.2 + 0.6 * len(row_values))))
     image = ax.imshow(np.ma.masked_invalid(matrix), origin="lower", aspect="auto", cmap="viridis",
                       vmin=low, vmax=high if high > low else low + 1e-9)
-    fig.colorbar(image, ax=ax, label=f"{METRIC_SOURCES[metric][0]} (mean)")
+    fig.colorbar(image, ax=ax, label=f"{metric_label(metric)}, mean")
     for i in range(len(row_values)):
         for j in range(len(column_values)):
             point = ((row_key, row_values[i]), (column_key, column_values[j]))
@@ -125,16 +163,16 @@ def _heat_map(plt, np, spec, metric, engine, matrix, scale, cells, subtitle):
     ax.set_xticklabels(column_values)
     ax.set_yticks(range(len(row_values)))
     ax.set_yticklabels(row_values)
-    ax.set_xlabel(column_key)
-    ax.set_ylabel(row_key)
-    ax.set_title(f"{spec.title or METRIC_SOURCES[metric][0]}: {engine}\n{subtitle}\n"
+    ax.set_xlabel(key_label(column_key))
+    ax.set_ylabel(key_label(row_key))
+    ax.set_title(f"{spec.title or metric_sources()[metric][0]}: {engine}\n{subtitle}\n"
                  "cells: mean ± half-width of the 95 % CI", fontsize=8)
     if handles:
         ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(0, -0.18))
     return fig
 
 
-def _heat_maps(plt, np, directory, spec, points, cells, subtitle):
+def _heat_maps(plt, np, directory, spec, points, cells, subtitle, plot_format):
     """METRIC_ENGINE.png for a 2-D grid, one colour scale per metric over its engines."""
     (_, row_values, *_), (_, column_values, *_) = spec.grid
     written = []
@@ -150,13 +188,13 @@ def _heat_maps(plt, np, directory, spec, points, cells, subtitle):
         scale = (finite.min(), finite.max()) if finite.size else (0.0, 1.0)
         for engine, matrix in matrices.items():
             fig = _heat_map(plt, np, spec, metric, engine, matrix, scale, cells, subtitle)
-            written.append(save_figure(plt, fig, directory / f"{safe(metric)}_{safe(engine)}.png"))
+            written.append(save_figure(plt, fig, directory / f"{safe(metric)}_{safe(engine)}.{plot_format}"))
     return written
 
 
-def draw_plots(directory, spec, points, cells, fixed_text):
-    """plots/: a line plot per metric (1-D grid) or a heat map per metric and engine (2-D grid);
-    returns the files written (none, with a note, without matplotlib)."""
+def draw_plots(directory, spec, points, cells, fixed_text, plot_format="png"):
+    """plots/: a line plot per metric (1-D grid) or a heat map per metric and engine (2-D grid), in
+    `plot_format` (one of PLOT_FORMATS); returns the files written (none, with a note, without matplotlib)."""
     try:
         import matplotlib
         matplotlib.use("Agg")
@@ -167,10 +205,10 @@ def draw_plots(directory, spec, points, cells, fixed_text):
               file=sys.stderr)
         return []
     directory.mkdir(exist_ok=True)
-    for old in list(directory.glob("*.png")):
+    for old in [path for suffix in PLOT_FORMATS for path in directory.glob(f"*.{suffix}")]:
         old.unlink()
     subtitle = (f"{spec.scenario.name}, {len(spec.seeds)} seed{'s' if len(spec.seeds) != 1 else ''} per point"
                 f"{'; ' + fixed_text if fixed_text else ''}")
     if len(spec.grid) == 1:
-        return _line_plots(plt, np, directory, spec, points, cells, subtitle)
-    return _heat_maps(plt, np, directory, spec, points, cells, subtitle)
+        return _line_plots(plt, np, directory, spec, points, cells, subtitle, plot_format)
+    return _heat_maps(plt, np, directory, spec, points, cells, subtitle, plot_format)

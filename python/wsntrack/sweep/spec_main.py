@@ -12,11 +12,12 @@ import sys
 from pathlib import Path
 
 from .common import REPO, UsageError, make_runs, parse_seeds, plural, run_command, seeds_text, short_names, split_key_value
-from .plots import draw_plots
+from .plots import PLOT_FORMATS, draw_plots
 from .executors import DaskExecutor, LocalExecutor, require_distributed
 from .runner import check_with_wsntrack, reusable, run_spec_runs
 from .spec import SpecError, load_spec
 from .summary import spec_table, summarise, write_spec_results, write_summary
+from .metrics import metric_sources
 from .task import sha256_of
 
 SPEC_DESCRIPTION = """\
@@ -106,7 +107,7 @@ examples:
 # What a run's command depends on: a change of these in the same DIR needs --force.
 RUN_FIELDS = ("scenario", "scenario_sha256", "wsntrack", "grid", "engines", "seeds", "set", "in_process")
 # What only the tables and plots depend on.
-PRESENTATION_FIELDS = ("metrics", "title", "notes", "reference")
+PRESENTATION_FIELDS = ("metrics", "x", "title", "notes", "reference")
 
 
 def sweep_description(spec, wsntrack, scenario_sha):
@@ -115,7 +116,7 @@ def sweep_description(spec, wsntrack, scenario_sha):
         "scenario_sha256": scenario_sha, "wsntrack": str(wsntrack),
         "grid": {k: v for k, v, *_ in spec.grid}, "engines": spec.engines, "seeds": spec.seeds,
         "set": {k: v for k, v in spec.fixed}, "in_process": spec.in_process, "metrics": spec.metrics,
-        "title": spec.title, "notes": spec.notes,
+        "title": spec.title, "notes": spec.notes, **({"x": spec.x} if spec.x else {}),
         "reference": [{k: v for k, v in r.items() if k != "line"} for r in spec.references],
     }
 
@@ -150,7 +151,7 @@ def differences(old, new, fields):
 def parse_spec_args(argv):
     """The spec form's command line."""
     parser = argparse.ArgumentParser(
-        prog="sweep.py", description=SPEC_DESCRIPTION, epilog=SPEC_EPILOG,
+        prog=os.environ.get("WSNTRACK_PROG", "sweep.py"), description=SPEC_DESCRIPTION, epilog=SPEC_EPILOG,
         usage="%(prog)s SPEC.yaml [--out DIR] [-j N | --scheduler ADDRESS] [--force] [--seeds SEEDS] [--set KEY=VALUE]... "
               "[--wsntrack PATH]",
         formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -170,6 +171,13 @@ def parse_spec_args(argv):
                         help="a fixed value added to (or replacing one of) the spec's set (repeatable)")
     parser.add_argument("--wsntrack", type=Path, default=REPO / "build" / "bin" / "wsntrack",
                         help="the wsntrack executable (default: build/bin/wsntrack of this repository)")
+    parser.add_argument("--x", default=None, metavar="METRIC",
+                        help="plot each metric against METRIC, measured per run (the mean per grid point), instead "
+                        "of the swept value: e.g. delivery_ratio, the end-to-end share of reports delivered; as "
+                        "the spec's x")
+    parser.add_argument("--plot-format", choices=PLOT_FORMATS, default="png",
+                        help="the plots' file format: png (110 dpi), or svg or pdf (vector, for a paper); "
+                        "default png")
     return parser.parse_args(argv)
 
 
@@ -192,6 +200,14 @@ def _read_spec(args):
                          "python3-scipy); run the tool with /usr/bin/python3") from None
     if args.seeds is not None:
         spec.seeds = parse_seeds(args.seeds)
+    if args.x is not None:
+        if args.x not in metric_sources():
+            raise UsageError(f"--x: unknown metric '{args.x}'; expected one of: {', '.join(metric_sources())}")
+        if len(spec.grid) != 1:
+            raise UsageError(f"--x: a measured x axis needs a grid of one key; {args.spec} sweeps {len(spec.grid)}")
+        spec.x = args.x
+        if args.x not in spec.metrics:
+            spec.metrics.append(args.x)
     for text in args.fixed:
         key, value = split_key_value(text, "--set")
         if key in ("tracker.engine", "run.seed"):
@@ -249,7 +265,7 @@ def _prepare(args):
     return spec, wsntrack, out, scenario_sha, description, warnings
 
 
-def _write_outputs(out, spec, points, names, runs, stopped):
+def _write_outputs(out, spec, points, names, runs, stopped, plot_format):
     """results.csv, summary.csv, table.md (also printed) and, unless stopped, plots/; returns the
     exit status."""
     fixed_text = " ".join(f"{k}={v}" for k, v in spec.fixed)
@@ -265,7 +281,7 @@ def _write_outputs(out, spec, points, names, runs, stopped):
         print(f"sweep.py: stopped; {unfinished} of {len(runs)} runs unfinished. Run the same command again to "
               f"resume: finished runs are kept. Results so far: {out / 'results.csv'}", file=sys.stderr)
         return 128 + stopped
-    plots = draw_plots(out / "plots", spec, points, cells, fixed_text)
+    plots = draw_plots(out / "plots", spec, points, cells, fixed_text, plot_format)
     failed = [r for r in runs if r.status == "failed"]
     if failed:
         print(f"sweep.py: {len(failed)} of {len(runs)} runs failed (not counted in summary.csv; run the same "
@@ -285,7 +301,7 @@ def _executor(args, spec, wsntrack, out):
     return DaskExecutor(args.scheduler, [(wsntrack, "x"), (spec.scenario, "r")], out)
 
 
-def _sweep(argv, spec, wsntrack, out, scenario_sha, description, executor):
+def _sweep(argv, spec, wsntrack, out, scenario_sha, description, executor, plot_format="png"):
     """Runs what is not complete from an earlier invocation and writes the outputs; the exit status."""
     names = short_names([k for k, *_ in spec.grid])
     points = [list(p) for p in itertools.product(*[[(k, v) for v in values] for k, values, *_ in spec.grid])]
@@ -304,7 +320,7 @@ def _sweep(argv, spec, wsntrack, out, scenario_sha, description, executor):
           (f"{len(to_run)} to run, {executor.where(len(to_run))}" if to_run else "nothing to run"),
           file=sys.stderr, flush=True)
     stopped = run_spec_runs(to_run, executor, scenario_sha, spec.metrics)
-    return _write_outputs(out, spec, points, names, runs, stopped)
+    return _write_outputs(out, spec, points, names, runs, stopped, plot_format)
 
 
 def spec_main(argv):
@@ -320,6 +336,6 @@ def spec_main(argv):
         print(f"sweep.py: {error}" if isinstance(error, UsageError) else str(error), file=sys.stderr)
         return 2
     try:
-        return _sweep(argv, spec, wsntrack, out, scenario_sha, description, executor)
+        return _sweep(argv, spec, wsntrack, out, scenario_sha, description, executor, args.plot_format)
     finally:
         executor.close()
