@@ -10,9 +10,13 @@ install(TARGETS wsntrack-node wsntrack-network wsntrack-supernode wsntrack-aggre
 
 # The run loader is imported, and run alone it prints what a run directory holds.
 install(PROGRAMS tools/plot_run.py tools/sweep.py tools/wsntrack_run.py tools/onera_table.py DESTINATION ${WSN_INSTALL_TOOLS_DIR})
-# The package the tools are entry points over, where they look for it: ../python from the tools.
+# The package the tools are entry points over, in the python path, and python-path beside the tools:
+# where it is, relative to them (in the source and build trees they look in ../python instead).
 install(DIRECTORY python/wsntrack DESTINATION ${WSN_INSTALL_PYTHON_DIR} FILES_MATCHING PATTERN "*.py"
         PATTERN "__pycache__" EXCLUDE)
+file(RELATIVE_PATH wsn_python_from_tools "/prefix/${WSN_INSTALL_TOOLS_DIR}" "/prefix/${WSN_INSTALL_PYTHON_DIR}")
+file(WRITE ${PROJECT_BINARY_DIR}/installed/python-path "${wsn_python_from_tools}\n")
+install(FILES ${PROJECT_BINARY_DIR}/installed/python-path DESTINATION ${WSN_INSTALL_TOOLS_DIR})
 # With the catalogue of the wsntrack installed beside it (launcher/CMakeLists.txt writes it).
 install(FILES ${WSN_BUILD_CATALOGUE} DESTINATION ${WSN_INSTALL_PYTHON_DIR}/wsntrack)
 

@@ -12,7 +12,11 @@ rather than whatever python3 is first on PATH.
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "python"))
+# The package: python/ beside tools/ in the source and build trees; installed, where python-path
+# beside this file says (cmake/WsnInstall.cmake).
+_HERE = Path(__file__).resolve().parent
+_INSTALLED = _HERE / "python-path"
+sys.path.insert(0, str(_HERE / _INSTALLED.read_text().strip() if _INSTALLED.is_file() else _HERE.parent / "python"))
 from wsntrack.entry import run  # noqa: E402
 from wsntrack.plots.cli import main  # noqa: E402
 

@@ -2,8 +2,9 @@
 """Loads a wsntrack run directory into numpy arrays for your own analysis, and into Stone Soup
 objects when the `stonesoup` package is importable.
 
-A thin entry point over the package beside it (wsntrack.loader, python/wsntrack/ in the source
-tree, share/wsntrack/python/ when installed), which it puts on sys.path when imported.
+A thin entry point over the package (wsntrack.loader: python/wsntrack/ in the source tree,
+build/python/wsntrack/ in the build tree, Debian's python path when installed), which it puts on
+sys.path when imported; analysis code imports the package itself.
 
 Needs numpy and PyYAML (Debian: python3-numpy and python3-yaml, which /usr/bin/python3 has): the
 files are read by wsntrack.rundir, the one run-directory reader, scenario.yaml with PyYAML's safe
@@ -15,8 +16,8 @@ Example (from the repository root, after ``build/bin/wsntrack run scenarios/oh_q
 --ticks 20 --out /tmp/demo``)::
 
     import sys
-    sys.path.insert(0, "tools")
-    from wsntrack_run import load_run
+    sys.path.insert(0, "build/python")   # the build tree's package; nothing once wsntrack is installed
+    from wsntrack.loader import load_run
 
     run = load_run("/tmp/demo")
     run.ticks                            # 20: the run's T
@@ -45,7 +46,11 @@ Stone Soup states are ordered (x, vx, y, vy), its usual order; a tick is one sec
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "python"))
+# The package: python/ beside tools/ in the source and build trees; installed, where python-path
+# beside this file says (cmake/WsnInstall.cmake).
+_HERE = Path(__file__).resolve().parent
+_INSTALLED = _HERE / "python-path"
+sys.path.insert(0, str(_HERE / _INSTALLED.read_text().strip() if _INSTALLED.is_file() else _HERE.parent / "python"))
 from wsntrack.loader import (OBSERVATION_DTYPE, STONESOUP_ORDER, SUPERNODE_TRACK_DTYPE, TRACK_DTYPE,  # noqa: E402
                              TRUTH_DTYPE, Run, RunError, ToolMissing, covariance_matrix, load_run, main,
                              parse_yaml, parse_yaml_subset, track_label)

@@ -8,9 +8,12 @@
   wsntrack.plots        the plots and the replay animation of a run (tools/plot_run.py)
   wsntrack.sweep        grids of `wsntrack run` and their tables, intervals and plots (tools/sweep.py)
   wsntrack.onera_table  Table II of Pannetier et al. beside our runs (tools/onera_table.py)
+  wsntrack.catalogue    the facts of the C++ side (`wsntrack components --json`): metrics, columns,
+                        classes, labels and units, read instead of restated
 
-The scripts in tools/ are thin entry points: each puts the `python` directory beside its own
-directory (in the source tree, the build tree and an installed tree alike) on sys.path and calls
-into this package. Importing the package imports nothing else, so that each tool loads only what
+docs/PYTHON.md has the details. Installed, the package is in Debian's python path; from the build
+tree, PYTHONPATH=build/python. The scripts in tools/ are thin entry points: each puts the package on
+sys.path (../python in the source and build trees, where python-path beside it says when installed)
+and calls into this package. Importing the package imports nothing else, so that each tool loads only what
 it needs (the sweep's flag form and the ONERA table run on the standard library alone).
 """

@@ -33,19 +33,25 @@ parse_yaml_subset = parse_yaml
 #: minted by the aggregator.
 track_label = rundir.track_label
 
-TRUTH_DTYPE = np.dtype([("tick", "i4"), ("target", "i8"), ("x", "f8"), ("y", "f8"), ("vx", "f8"), ("vy", "f8")])
+#: ``class`` is the target's class (``unknown`` in an older run's file, which has no such column).
+TRUTH_DTYPE = np.dtype([("tick", "i4"), ("target", "i8"), ("x", "f8"), ("y", "f8"), ("vx", "f8"), ("vy", "f8"),
+                        ("class", "U16")])
 
 #: ``tick_delivered`` and ``delay`` are -1 for a report that was not delivered (fate ``lost``,
 #: ``unreachable``, ``after_end`` or ``dead_supernode``); ``hops`` is -1 when no path led to a supernode; ``target``
-#: is -1 for a false alarm.
+#: is -1 for a false alarm; ``level`` is the report's power level (-1 in an older run's file).
 OBSERVATION_DTYPE = np.dtype([
     ("tick_generated", "i4"), ("tick_delivered", "i4"), ("sensor", "i8"), ("supernode", "i4"), ("hops", "i4"),
-    ("delay", "i4"), ("x", "f8"), ("y", "f8"), ("target", "i8"), ("fate", "U11")])
+    ("delay", "i4"), ("x", "f8"), ("y", "f8"), ("target", "i8"), ("fate", "U14"), ("level", "i4")])
 
 _TRACK_FIELDS = [("track", "u8"), ("label", "U24"), ("x", "f8"), ("y", "f8"), ("vx", "f8"), ("vy", "f8"),
-                 ("covariance", "f8", (4, 4))]
+                 ("covariance", "f8", (4, 4)), ("stop_probability", "f8"), ("class", "U16"),
+                 ("class_probability", "f8")]
 #: ``covariance`` is the 4 x 4 covariance over (x, y, vx, vy), all zero when unknown (and in runs
-#: written before tracks.csv had covariance columns).
+#: written before tracks.csv had covariance columns); ``stop_probability`` the probability the
+#: track gives its target standing still (NaN from an engine without a stop model); ``class`` the
+#: class it declares ("" without class evidence) and ``class_probability`` its probability (NaN
+#: without a class).
 TRACK_DTYPE = np.dtype([("tick", "i4")] + _TRACK_FIELDS)
 SUPERNODE_TRACK_DTYPE = np.dtype([("tick", "i4"), ("supernode", "i4")] + _TRACK_FIELDS)
 
@@ -84,6 +90,9 @@ def _tracks(rows, supernode):
             array[name] = columns[key + offset]
         array["label"] = columns[key + 4]
         array["covariance"] = covariance_matrix(np.array(columns[key + 5:key + 15], dtype=float).T)
+        array["stop_probability"] = [np.nan if v is None else v for v in columns[key + 15]]
+        array["class"] = columns[key + 16]
+        array["class_probability"] = [np.nan if v is None else v for v in columns[key + 17]]
     return np.rec.array(array)
 
 
@@ -100,8 +109,8 @@ def _metrics_per_tick(path):
 
 def _observations(path):
     """observations.csv as a record array, -1 for the tick_delivered and delay of an undelivered report."""
-    rows = [(r[0], -1 if r[1] is None else r[1]) + r[2:5] + (-1 if r[5] is None else r[5],) + r[6:]
-            for r in rundir.read_observations(path)]
+    rows = [(r[0], -1 if r[1] is None else r[1]) + r[2:5] + (-1 if r[5] is None else r[5],) + r[6:10] +
+            (-1 if r[10] is None else r[10],) for r in rundir.read_observations(path)]
     return _records(rows, OBSERVATION_DTYPE)
 
 
@@ -122,6 +131,8 @@ class Run(StoneSoupConversions):
                       tick, with label and 4 x 4 covariance
     supernode_tracks  record array SUPERNODE_TRACK_DTYPE, tracks_supernode.csv: every
                       supernode's confirmed tracks per tick
+    settled_tracks    record array TRACK_DTYPE, tracks_settled.csv: the settled (fixed-lag,
+                      smoothed) estimate of each tick once it left the supernodes' windows
     has_labels, has_covariance   whether tracks.csv has the label / covariance columns (else
                       labels are made from the ids and covariances are zero)
     metrics_per_tick  record array of metrics_per_tick.csv: tick, truth_targets (K*), tracks (K),
@@ -148,13 +159,14 @@ class Run(StoneSoupConversions):
         self.supernodes = np.array(summary["supernodes"], dtype=float).reshape(-1, 2)
         self.sensors = self._sensors(summary)
 
-        self.truth = _records(rundir.read_csv(p / "truth.csv", ["tick", "target", "x", "y", "vx", "vy"],
-                                              [int, int, float, float, float, float]), TRUTH_DTYPE)
+        self.truth = _records(rundir.read_truth(p / "truth.csv", with_class=True)[0], TRUTH_DTYPE)
         rows, self.has_labels, self.has_covariance = rundir.read_tracks(p / "tracks.csv")
         self.tracks = _tracks(rows, supernode=False)
         path = p / "tracks_supernode.csv"
         self.supernode_tracks = _tracks(rundir.read_tracks(path, supernode=True)[0], True) if path.is_file() \
             else None
+        path = p / "tracks_settled.csv"
+        self.settled_tracks = _tracks(rundir.read_tracks(path)[0], False) if path.is_file() else None
         path = p / "observations.csv"
         self.observations = _observations(path) if path.is_file() else None
         path = p / "metrics_per_tick.csv"
@@ -162,6 +174,30 @@ class Run(StoneSoupConversions):
         self.metrics = _optional_json(p / "metrics.json")
         self.network = _optional_json(p / "network.json")
         self.info = _optional_json(p / "run.json")
+
+    FRAMES = ("truth", "observations", "tracks", "supernode_tracks", "settled_tracks", "metrics_per_tick")
+
+    def frame(self, name):
+        """One of FRAMES as a pandas DataFrame (None when the file is absent): the record array's
+        columns, the 4 x 4 covariance as its ten p_* columns of tracks.csv. ToolMissing without
+        pandas (Debian: apt-get install python3-pandas)."""
+        if name not in self.FRAMES:
+            raise ValueError(f"frame: expected one of {', '.join(self.FRAMES)}, got '{name}'")
+        try:
+            import pandas
+        except ImportError:
+            raise ToolMissing("Run.frame needs pandas (Debian: apt-get install python3-pandas)") from None
+        records = getattr(self, name)
+        if records is None:
+            return None
+        columns = {}
+        for field in records.dtype.names:
+            if field == "covariance":
+                for column, (i, j) in zip(rundir.COVARIANCE_COLUMNS, rundir.COVARIANCE_INDEX):
+                    columns[column] = records.covariance[:, i, j]
+            else:
+                columns[field] = records[field]
+        return pandas.DataFrame(columns)
 
     def __repr__(self):
         return (f"<wsntrack run {str(self.path)!r}: {self.scenario.get('name', '?')}, {self.ticks} ticks, "

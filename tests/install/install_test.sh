@@ -7,7 +7,7 @@
 #   deb      cpack -G DEB into a temporary directory; its control fields and file list; dpkg-deb -x and
 #            a short run from there (never dpkg -i)
 # The install layout comes from CMake (tests/install/CMakeLists.txt) in WSN_BINDIR, WSN_ROLE_DIR,
-# WSN_DATA_DIR, WSN_DOC_DIR (relative) and the version in WSN_VERSION. Exit 77: skipped.
+# WSN_DATA_DIR, WSN_DOC_DIR, WSN_PYTHON_DIR (relative) and the version in WSN_VERSION. Exit 77: skipped.
 set -uo pipefail
 build="$1"; src="$2"; case_name="$3"
 python=/usr/bin/python3
@@ -34,10 +34,16 @@ check_tree() {
     [ -x "$root/$WSN_DATA_DIR/tools/$name" ] || fail "$root/$WSN_DATA_DIR/tools/$name missing or not executable"
   done
   [ -x "$root/$WSN_DATA_DIR/tools/wsntrack_run.py" ] || fail "$root/$WSN_DATA_DIR/tools/wsntrack_run.py missing or not executable"
-  # The package the tools are entry points over, beside them (each looks for ../python), every module of it.
+  # The package the tools are entry points over, every module of it, in the python path (the tools find
+  # it through python-path), with the installed wsntrack's catalogue.
   (cd "$src/python" && find wsntrack -name '*.py' -not -path '*/__pycache__/*') | while read -r name; do
-    cmp -s "$src/python/$name" "$root/$WSN_DATA_DIR/python/$name" || fail "$root/$WSN_DATA_DIR/python/$name missing or different"
+    cmp -s "$src/python/$name" "$root/$WSN_PYTHON_DIR/$name" || fail "$root/$WSN_PYTHON_DIR/$name missing or different"
   done || exit 1
+  [ "$(cd "$root/$WSN_DATA_DIR/tools" && realpath "$(cat python-path)")" = "$(realpath "$root/$WSN_PYTHON_DIR")" ] ||
+    fail "$root/$WSN_DATA_DIR/tools/python-path does not lead to $root/$WSN_PYTHON_DIR"
+  "$python" -c "import json, sys; assert json.load(open(sys.argv[1]))['catalogue_version'] == 1" \
+    "$root/$WSN_PYTHON_DIR/wsntrack/catalogue.json" || fail "$root/$WSN_PYTHON_DIR/wsntrack/catalogue.json"
+  [ ! -e "$root/$WSN_DATA_DIR/python" ] || fail "the package is also in $root/$WSN_DATA_DIR/python"
   for name in "$src"/scenarios/*.yaml; do
     cmp -s "$name" "$root/$WSN_DATA_DIR/scenarios/$(basename "$name")" ||
       fail "$root/$WSN_DATA_DIR/scenarios/$(basename "$name") missing or different"
@@ -108,6 +114,14 @@ import sys, wsntrack_run
 run = wsntrack_run.load_run(sys.argv[1])
 assert run.ticks == 10, run.ticks
 " "$tmp/run") || fail "the installed loader cannot load the run"
+    # The package itself, as analysis code imports it: its facts from the installed catalogue, with no
+    # wsntrack on PATH or in WSNTRACK.
+    (cd / && env -u WSNTRACK PATH=/usr/bin:/bin PYTHONPATH="$prefix/$WSN_PYTHON_DIR" "$python" -c "
+import sys, wsntrack.rundir, wsntrack.loader
+assert wsntrack.rundir.TARGET_CLASSES[0] == 'wheeled_light', wsntrack.rundir.TARGET_CLASSES
+run = wsntrack.loader.load_run(sys.argv[1])
+assert len(run.truth) and run.settled_tracks is not None
+" "$tmp/run") || fail "python3 -c 'import wsntrack.rundir' with the installed package"
     (cd / && "$prefix/$WSN_DATA_DIR/tools/wsntrack_run.py" "$tmp/run") >/dev/null || fail "the installed loader does not run alone"
     ;;
   deb)
@@ -141,6 +155,9 @@ assert run.ticks == 10, run.ticks
     ! grep -E "wsn_[a-z_]*(tests|bench|fixture)" "$tmp/contents" || fail "test or bench binaries in the package"
     dpkg-deb -x "$deb" "$tmp/root" || fail "dpkg-deb -x"
     check_tree "$tmp/root/usr"
+    # Installed by dpkg, `import wsntrack` works in Debian's python3 with no PYTHONPATH.
+    "$python" -c "import sys; sys.exit(0 if sys.argv[1] in sys.path else 1)" "/usr/$WSN_PYTHON_DIR" ||
+      fail "the package's /usr/$WSN_PYTHON_DIR is not in $python's path"
     check_run "$tmp/root/usr" "$tmp/run"
     ;;
   *) fail "unknown case $case_name" ;;

@@ -187,7 +187,9 @@ EOF
       || fail "tracks_supernode.csv header: $(head -1 real/tracks_supernode.csv)"
     "$python" -B "$src/tests/tools/loader_test.py" "$src" "$PWD/loader" --real "$PWD/real" >loader.txt 2>&1 \
       || { cat loader.txt >&2; fail "the loader on a real run"; }
-    grep -q "RealRun.test_tracks) ... ok" loader.txt || { cat loader.txt >&2; fail "the real-run tests did not run"; }
+    for case in test_tracks test_every_column_of_the_files test_frames; do
+      grep -q "RealRun.$case) ... ok" loader.txt || { cat loader.txt >&2; fail "the real-run test $case did not run"; }
+    done
 
     start=$(date +%s%N)
     "$python" "$plot" --animate real --quiet >out.txt 2>&1 || { cat out.txt >&2; fail "gif of a real run"; }

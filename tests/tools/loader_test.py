@@ -23,7 +23,9 @@ sys.path.insert(0, str(SOURCE / "tools"))
 sys.path.insert(0, str(SOURCE / "tests" / "tools"))
 import tiny_run  # noqa: E402
 import wsntrack_run  # noqa: E402  (the entry point, which puts the package on sys.path)
+import wsntrack.catalogue  # noqa: E402
 import wsntrack.loader  # noqa: E402
+import wsntrack.rundir  # noqa: E402
 from wsntrack_run import RunError, ToolMissing, load_run, track_label  # noqa: E402
 
 
@@ -382,12 +384,42 @@ class RealRun(unittest.TestCase):
             self.assertTrue(known.any(), "every covariance is zero")
             self.assertGreaterEqual(float(np.linalg.eigvalsh(covariance[known]).min()), -1e-6)
 
+    def test_every_column_of_the_files(self):
+        # Each column of each file (the catalogue's run_files) reaches the record arrays: the truth's
+        # classes, the reports' levels, the tracks' stop and class columns, the settled tracks.
+        run = self.loaded
+        catalogue = wsntrack.catalogue.load()["run_files"]
+        for name, records in (("truth.csv", run.truth), ("observations.csv", run.observations),
+                              ("tracks.csv", run.tracks), ("tracks_supernode.csv", run.supernode_tracks),
+                              ("tracks_settled.csv", run.settled_tracks)):
+            fields = set(records.dtype.names) | set(wsntrack.rundir.COVARIANCE_COLUMNS) - {"covariance"}
+            self.assertEqual(set(catalogue[name]) - fields, set(), name)
+        self.assertEqual(set(run.truth["class"]) - set(wsntrack.rundir.TRUTH_CLASSES), set())
+        with open(REAL / "observations.csv", encoding="utf-8") as f:
+            levels = [int(line.rsplit(",", 1)[1]) for line in list(f)[1:]]
+        np.testing.assert_array_equal(run.observations.level, levels)
+        self.assertGreater(len(run.settled_tracks), 0)
+
+    def test_frames(self):
+        try:
+            import pandas  # noqa: F401
+        except ImportError:
+            self.skipTest("pandas is not installed (python3-pandas)")
+        run = self.loaded
+        tracks = run.frame("tracks")
+        self.assertEqual(len(tracks), len(run.tracks))
+        self.assertIn("p_vyvy", tracks.columns)
+        np.testing.assert_array_equal(tracks["p_xy"].to_numpy(), run.tracks.covariance[:, 0, 1])
+        self.assertEqual(list(run.frame("truth").columns), list(run.truth.dtype.names))
+        with self.assertRaisesRegex(ValueError, "expected one of truth"):
+            run.frame("nothing")
+
     def test_module_example(self):
         # The example of the module's docstring, on this run instead of /tmp/demo.
         doc = wsntrack_run.__doc__
         code = doc[doc.index("    import sys"):doc.index("Arrays are")]
         code = "\n".join(line[4:] for line in code.splitlines()).replace('"/tmp/demo"', repr(str(REAL)))
-        code = code.replace('"tools"', repr(str(SOURCE / "tools")))
+        code = code.replace('"build/python"', repr(str(SOURCE / "python")))
         with contextlib.redirect_stdout(io.StringIO()):
             exec(compile(code, "wsntrack_run.__doc__", "exec"), {})
 

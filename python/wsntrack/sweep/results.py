@@ -1,0 +1,111 @@
+"""A finished sweep directory read back for analysis: its description (sweep.json), one row per run
+(results.csv) and one per grid point and engine (summary.csv), as numpy record arrays and, when
+pandas is installed, DataFrames. The columns are found by name, so a sweep of any grid and metrics
+reads; every problem is an InputError with FILE[:LINE]: what was expected.
+
+    from wsntrack.sweep.results import load_sweep
+    sweep = load_sweep("runs/fig7")
+    sweep.grid                               # {"network.pte": ["0", "0.1", ...]}
+    rows = sweep.summary[sweep.summary.engine == "mcmcda"]
+    rows["network.pte"], rows.eps_k_mean, rows.eps_k_ci95_low
+"""
+
+import math
+from pathlib import Path
+
+from ..rundir import InputError, ToolMissing, read_header, read_json, read_table
+
+
+def _column_type(name, grid_keys):
+    """How a column of results.csv or summary.csv reads: grid values and words as text, counts whole,
+    everything else a number (empty: NaN)."""
+    if name in grid_keys or name in ("engine", "status", "run_dir", "log", "command"):
+        return str
+    if name in ("seed", "runs", "ok", "failed", "reused") or name.endswith("_n"):
+        return "whole"
+    return "number"
+
+
+def _records(path, grid_keys):
+    """Every column of a sweep CSV as a numpy record array (columns by name, text as str, whole
+    numbers as int with -1 for empty, numbers as float with NaN for empty)."""
+    import numpy as np
+    header = [name for name in read_header(path) if name]
+    rows = read_table(path, [(name, str) for name in header])[0]
+    fields, columns = [], []
+    for i, name in enumerate(header):
+        kind = _column_type(name, grid_keys)
+        cells = [row[i] for row in rows]
+        try:
+            if kind == "whole":
+                values, dtype = [int(c) if c else -1 for c in cells], "i8"
+            elif kind == "number":
+                values, dtype = [float(c) if c else math.nan for c in cells], "f8"
+            else:
+                values, dtype = cells, f"U{max([1] + [len(c) for c in cells])}"
+        except ValueError:
+            bad = next(j for j, c in enumerate(cells) if c and not _is_number(c))
+            raise InputError(f"{path}:{bad + 2}: column '{name}' must be a number, got '{cells[bad]}'") from None
+        fields.append((name, dtype))
+        columns.append(values)
+    array = np.zeros(len(rows), dtype=fields)
+    for (name, _), values in zip(fields, columns):
+        array[name] = values
+    return np.rec.array(array)
+
+
+def _is_number(text):
+    try:
+        float(text)
+        return True
+    except ValueError:
+        return False
+
+
+class Sweep:
+    """One sweep directory, loaded. Attributes:
+
+    path         the sweep directory (a Path)
+    description  sweep.json as a dict: scenario, grid, engines, seeds, set, metrics, ...
+    grid         {key: [values as written]} of the swept keys, in order
+    engines      the engines, seeds the seeds, metrics the metrics tabulated
+    results      record array of results.csv: one row per run (engine, grid values, seed, status,
+                 exit, each metric, wall_s, run_dir, log, command)
+    summary      record array of summary.csv (None for the flag form, which writes none): one row
+                 per grid point and engine, each metric's _n, _mean, _sd, _ci95_low, _ci95_high
+    """
+
+    def __init__(self, path):
+        self.path = Path(path)
+        if not (self.path / "sweep.json").is_file():
+            raise InputError(f"{self.path}: not a sweep directory (no sweep.json)")
+        self.description = read_json(self.path / "sweep.json")
+        if not isinstance(self.description, dict) or not isinstance(self.description.get("grid"), dict):
+            raise InputError(f"{self.path / 'sweep.json'}: expected an object with a 'grid' mapping")
+        self.grid = self.description["grid"]
+        self.engines = self.description.get("engines")
+        self.seeds = self.description.get("seeds")
+        self.metrics = self.description.get("metrics")
+        self.results = _records(self.path / "results.csv", set(self.grid))
+        summary = self.path / "summary.csv"
+        self.summary = _records(summary, set(self.grid)) if summary.is_file() else None
+
+    def frame(self, name="summary"):
+        """results or summary as a pandas DataFrame; ToolMissing without pandas."""
+        if name not in ("results", "summary"):
+            raise ValueError(f"frame: expected results or summary, got '{name}'")
+        try:
+            import pandas
+        except ImportError:
+            raise ToolMissing("Sweep.frame needs pandas (Debian: apt-get install python3-pandas)") from None
+        records = getattr(self, name)
+        return None if records is None else pandas.DataFrame({n: records[n] for n in records.dtype.names})
+
+    def __repr__(self):
+        return (f"<wsntrack sweep {str(self.path)!r}: grid {', '.join(self.grid)}, "
+                f"{len(self.results)} runs, engines {', '.join(self.engines or [])}>")
+
+
+def load_sweep(path):
+    """Loads the sweep directory `path` (see :class:`Sweep`); InputError for a missing or malformed file."""
+    return Sweep(path)
