@@ -1,16 +1,12 @@
 #!/usr/bin/python3
-"""Parameter sweeps over wsntrack clusters: one `wsntrack run` per (grid point, engine, seed),
-every row in OUT/results.csv and a markdown table of the means over the seeds.
+"""Parameter sweeps over wsntrack clusters, as `wsntrack sweep` runs them: one `wsntrack run` per
+(grid point, engine, seed), in parallel and resumably, with results.csv, summary.csv (mean, sd,
+95 % CI), table.md and plots/; with --scheduler ADDRESS, on a Dask cluster (docs/DASK.md).
 
-Two forms:
-  sweep.py SPEC.yaml [--out DIR] [-j N]   a sweep spec (sweeps/*.yaml): runs in parallel, resumes,
-                                          writes summary.csv (mean, sd, 95 % CI) and plots/; with
-                                          --scheduler ADDRESS, on a Dask cluster (docs/DASK.md)
-  sweep.py --scenario FILE [--set-grid KEY=V1,V2,...] ...   the flag form
+  sweep.py SPEC.yaml [--out DIR] [-j N] [--wsntrack PATH]          a sweep spec (sweeps/*.yaml)
+  sweep.py --scenario FILE [--set-grid KEY=V1,V2,...] ...          the same sweep given by flags
 
-A thin entry point over the package beside it (wsntrack.sweep: python/wsntrack/ in the source
-tree, share/wsntrack/python/ when installed). The flag form needs the standard library only, so
-that it runs with any python3 on the machine. The spec form reads YAML with PyYAML, draws with
+A thin entry point over the package (wsntrack.sweep). It reads YAML with PyYAML, draws with
 matplotlib and takes Student's t from SciPy (Debian's python3-yaml, python3-matplotlib and
 python3-scipy, which /usr/bin/python3 has), and Dask's distributed with --scheduler
 (python3-distributed); it imports them only when it is used.

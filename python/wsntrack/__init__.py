@@ -15,5 +15,5 @@ docs/PYTHON.md has the details. Installed, the package is in Debian's python pat
 tree, PYTHONPATH=build/python. The scripts in tools/ are thin entry points: each puts the package on
 sys.path (../python in the source and build trees, where python-path beside it says when installed)
 and calls into this package. Importing the package imports nothing else, so that each tool loads only what
-it needs (the sweep's flag form and the ONERA table run on the standard library alone).
+it needs (the ONERA table runs on the standard library alone).
 """

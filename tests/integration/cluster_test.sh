@@ -305,26 +305,26 @@ EOF
       || { cat err.txt >&2; fail "validate message for --nodes 0"; }
     no_leftovers ;;
   sweep)
-    # tools/sweep.py: 2 grid points x 2 seeds of short gnn runs give a table row per grid point,
+    # A sweep by flags: 2 grid points x 2 seeds of short gnn runs give a table row per grid point,
     # a CSV row per run, and run directories that hold the overridden values.
-    "$src/tools/sweep.py" --scenario "$scenario" --seeds 1-2 --engines gnn --set run.ticks=10 \
+    "$wsntrack" sweep --scenario "$scenario" --seeds 1-2 --engines gnn --set run.ticks=10 \
       --set-grid network.pte=0,0.4 --out "$PWD/sw" --wsntrack "$wsntrack" >table.md 2>sweep.err \
       || { cat sweep.err >&2; fail "the sweep failed"; }
-    grep -q "^## Sweep of .*: seeds 1-2 (2 per cell)" table.md || { cat table.md >&2; fail "no heading with the seeds"; }
+    grep -q "^## Sweep of " table.md && grep -q "; seeds 1-2 (2 per cell)" table.md || { cat table.md >&2; fail "no heading with the seeds"; }
     grep -q "^| pte | gnn eps_K | gnn eps_X gated | gnn OSPA |$" table.md || { cat table.md >&2; fail "table header"; }
-    [ "$(grep -cE '^\| (0|0\.4) \| [0-9.]+ \| [0-9.]+ \| [0-9.]+ \|$' table.md)" -eq 2 ] \
+    [ "$(grep -cE '^\| (0|0\.4) \| [0-9.]+ ± [0-9.]+ \| [0-9.]+ ± [0-9.]+ \| [0-9.]+ ± [0-9.]+ \|$' table.md)" -eq 2 ] \
       || { cat table.md >&2; fail "expected 2 table rows of means over both seeds"; }
     cmp -s table.md sw/table.md || fail "stdout and sw/table.md differ"
     [ "$(wc -l <sw/results.csv)" -eq 5 ] || { cat sw/results.csv >&2; fail "expected a header and 4 rows in results.csv"; }
-    head -1 sw/results.csv | grep -q "^engine,network.pte,seed,status,eps_k,eps_x_gated,ospa," || fail "results.csv header"
-    [ "$(grep -c '^gnn,0\(\.4\)\?,[12],ok,[0-9]' sw/results.csv)" -eq 4 ] || { cat sw/results.csv >&2; fail "a run not ok"; }
+    head -1 sw/results.csv | grep -q "^engine,network.pte,seed,status,exit,eps_k,eps_x_gated,ospa," || fail "results.csv header"
+    [ "$(grep -c '^gnn,0\(\.4\)\?,[12],ok,0,[0-9]' sw/results.csv)" -eq 4 ] || { cat sw/results.csv >&2; fail "a run not ok"; }
     [ "$(grep -c '^\[[1-4]/4\] gnn pte=' sweep.err)" -eq 4 ] || { cat sweep.err >&2; fail "no progress lines"; }
     grep -q "^  ticks: 10$" sw/runs/gnn_pte-0.4_seed-2/scenario.yaml && grep -q "^  pte: 0.4$" sw/runs/gnn_pte-0.4_seed-2/scenario.yaml \
       || fail "the run directory's scenario.yaml lacks the --set values"
     # A run that fails is reported and the sweep goes on; the exit status says so.
     printf '#!/bin/sh\ncase " $* " in *" run "*"--seed 2 "*) exit 3;; esac\nexec "%s" "$@"\n' "$wsntrack" >failing.sh
     chmod +x failing.sh
-    "$src/tools/sweep.py" --scenario "$scenario" --seeds 1-2 --set run.ticks=5 --out "$PWD/sf" --wsntrack "$PWD/failing.sh" \
+    "$wsntrack" sweep --scenario "$scenario" --seeds 1-2 --set run.ticks=5 --out "$PWD/sf" --wsntrack "$PWD/failing.sh" \
       >table2.md 2>sweep2.err && fail "a sweep with a failed run exited 0"
     grep -q "FAILED (exit 3).*sf/logs/mcmcda_seed-2.log" sweep2.err || { cat sweep2.err >&2; fail "the failed run is not reported"; }
     grep -q "^| [0-9.]* (1/2) |" table2.md || { cat table2.md >&2; fail "the table does not count the failed run out"; }

@@ -9,7 +9,7 @@ on it has that run done by the other worker, and the summary is still the same.
 
   sweep_dask_test.py SOURCE_DIR BIN_DIR WORK_DIR          the cluster cases
   sweep_dask_test.py SOURCE_DIR BIN_DIR WORK_DIR errors   the error cases: no scheduler there, no
-        python3-distributed, -j with --scheduler, the flag form, a worker that cannot see --out
+        python3-distributed, -j with --scheduler, a sweep by flags, a worker that cannot see --out
 
 Nothing is skipped: without python3-distributed the test fails. Every process the test starts is
 stopped by its PID when it ends."""
@@ -287,11 +287,13 @@ class Errors(unittest.TestCase):
 
     def test_jobs_and_flag_form(self):
         self.assertIn("-j and --scheduler", self.fails(fresh("jobs"), "-j", "2", "--scheduler", "tcp://127.0.0.1:9"))
+        # A sweep given by flags is the same spec, and goes to a cluster the same way.
+        short = dict(os.environ, DASK_DISTRIBUTED__COMM__TIMEOUTS__CONNECT="1s")
         result = subprocess.run([PYTHON, "-B", str(SWEEP), "--scheduler", "tcp://127.0.0.1:9", "--scenario",
-                                 str(SOURCE / "scenarios/oh_single_supernode.yaml"), "--wsntrack", str(WSNTRACK)],
-                                capture_output=True, text=True, timeout=60)
+                                 str(SOURCE / "scenarios/oh_single_supernode.yaml"), "--out", str(fresh("flags")),
+                                 "--wsntrack", str(WSNTRACK)], capture_output=True, text=True, timeout=60, env=short)
         self.assertEqual(result.returncode, 2, result.stderr)
-        self.assertIn("the flag form runs on this machine only", result.stderr)
+        self.assertIn("no Dask scheduler answered at tcp://127.0.0.1:9", result.stderr)
 
     def test_worker_that_cannot_see_the_sweep_directory(self):
         hidden = fresh("hidden")

@@ -449,16 +449,44 @@ class Pieces(unittest.TestCase):
                 self.assertTrue(set(spec.metrics) <= set(METRIC_SOURCES), spec.metrics)
                 self.assertTrue(spec.grid)
 
-    def test_flag_form_unchanged(self):
-        out = fresh("flag")
-        result = subprocess.run([PYTHON, str(SWEEP), "--scenario", str(SOURCE / "scenarios/oh_single_supernode.yaml"),
-                                 "--engines", "gnn", "--set-grid", "network.pte=0,0.3", "--set", "run.ticks=10",
-                                 "--in-process", "--out", str(out), "--wsntrack", str(WSNTRACK)],
-                                capture_output=True, text=True, timeout=120)
+    def test_flags_build_the_same_sweep_as_a_spec(self):
+        # The same sweep by a spec file and by flags: the same results (timing aside), summary and table.
+        spec = WORK / "same.yaml"
+        spec.write_text(f"scenario: {SOURCE / 'scenarios/oh_single_supernode.yaml'}\ngrid:\n  network.pte: [0, 0.3]\n"
+                        "engines: [gnn]\nseeds: 1-2\nset:\n  run.ticks: 10\nin_process: true\n", encoding="utf-8")
+        by_spec, by_flags = fresh("same-spec"), fresh("same-flags")
+        first = subprocess.run([PYTHON, str(SWEEP), str(spec), "--out", str(by_spec), "--wsntrack", str(WSNTRACK)],
+                               capture_output=True, text=True, timeout=120)
+        self.assertEqual(first.returncode, 0, first.stderr)
+        flags = [PYTHON, str(SWEEP), "--scenario", str(SOURCE / "scenarios/oh_single_supernode.yaml"), "--engines",
+                 "gnn", "--seeds", "1-2", "--set-grid", "network.pte=0,0.3", "--set", "run.ticks=10", "--in-process",
+                 "--out", str(by_flags), "--wsntrack", str(WSNTRACK)]
+        result = subprocess.run(flags, capture_output=True, text=True, timeout=120)
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn("| pte | gnn eps_K | gnn eps_X gated | gnn OSPA |", result.stdout)
-        self.assertEqual(len(rows(out / "results.csv")), 2)
-        self.assertFalse((out / "summary.csv").exists())
+        untimed = [{k: v for k, v in r.items() if k not in ("wall_s", "command")} for r in rows(by_spec / "results.csv")]
+        self.assertEqual(len(untimed), 4)
+        self.assertEqual(untimed, [{k: v for k, v in r.items() if k not in ("wall_s", "command")}
+                                   for r in rows(by_flags / "results.csv")])
+        self.assertEqual((by_spec / "summary.csv").read_bytes(), (by_flags / "summary.csv").read_bytes())
+        self.assertEqual((by_spec / "table.md").read_bytes(), (by_flags / "table.md").read_bytes())
+        self.assertTrue((by_flags / "plots" / "eps_k.png").is_file())
+        # And it resumes like one: the same flags again run nothing.
+        again = subprocess.run(flags, capture_output=True, text=True, timeout=120)
+        self.assertEqual(again.returncode, 0, again.stderr)
+        self.assertIn("4 complete from an earlier invocation, nothing to run", again.stderr)
+
+    def test_flags_and_a_spec_file_do_not_mix(self):
+        result = subprocess.run([PYTHON, str(SWEEP), str(SOURCE / "sweeps/oh_fig7_pte.yaml"), "--set-grid",
+                                 "network.pde=0,0.3", "--wsntrack", str(WSNTRACK)], capture_output=True, text=True,
+                                timeout=60)
+        self.assertEqual(result.returncode, 2, result.stderr)
+        self.assertIn("--set-grid: ", result.stderr)
+        self.assertIn("is a spec file, whose scenario and grid are its own", result.stderr)
+        result = subprocess.run([PYTHON, str(SWEEP), "--wsntrack", str(WSNTRACK)], capture_output=True, text=True,
+                                timeout=60)
+        self.assertEqual(result.returncode, 2, result.stderr)
+        self.assertIn("expected a spec file (sweeps/*.yaml) or --scenario FILE", result.stderr)
 
 
 if __name__ == "__main__":

@@ -28,7 +28,7 @@ stop_mode metric, the mean stop probability of the tracks while their targets st
   onera_table.py RUN_DIR...                        the same as --a2 RUN_DIR...
   onera_table.py ... --plot FILE.png|FILE.svg       the table, and bar charts of it in FILE
 
-Standard library only, like tools/sweep.py's flag form, so that it runs with any python3; --plot
+Standard library only, so that it runs with any python3; --plot
 alone needs matplotlib (Debian's python3-matplotlib, for /usr/bin/python3), imported only then.
 """
 

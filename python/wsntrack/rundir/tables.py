@@ -1,5 +1,5 @@
 """The run directory's CSV and JSON files read by name, every problem reported as FILE[:LINE]: what
-was expected. Standard library only: the sweep's flag form and the ONERA table read runs with it."""
+was expected. Standard library only: the ONERA table reads runs with it."""
 
 import csv
 import json

@@ -209,6 +209,10 @@ def draw_plots(directory, spec, points, cells, fixed_text, plot_format="png"):
         old.unlink()
     subtitle = (f"{spec.scenario.name}, {len(spec.seeds)} seed{'s' if len(spec.seeds) != 1 else ''} per point"
                 f"{'; ' + fixed_text if fixed_text else ''}")
+    if len(spec.grid) not in (1, 2):
+        print(f"sweep: no plots for a grid of {len(spec.grid)} keys (a line plot needs 1, a heat map 2); "
+              "summary.csv has every number", file=sys.stderr)
+        return []
     if len(spec.grid) == 1:
         return _line_plots(plt, np, directory, spec, points, cells, subtitle, plot_format)
     return _heat_maps(plt, np, directory, spec, points, cells, subtitle, plot_format)

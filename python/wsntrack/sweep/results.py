@@ -71,7 +71,7 @@ class Sweep:
     engines      the engines, seeds the seeds, metrics the metrics tabulated
     results      record array of results.csv: one row per run (engine, grid values, seed, status,
                  exit, each metric, wall_s, run_dir, log, command)
-    summary      record array of summary.csv (None for the flag form, which writes none): one row
+    summary      record array of summary.csv (None for a sweep of an older wsntrack without one): one row
                  per grid point and engine, each metric's _n, _mean, _sd, _ci95_low, _ci95_high
     """
 

@@ -47,7 +47,8 @@ def check_with_wsntrack(spec, wsntrack):
             raise SpecError(spec.path, key_line, f"grid: {key}: wsntrack validate rejects every value: {errors[0]}")
         for value, line, error in zip(values, value_lines, errors):
             if error:
-                warnings.append(f"{spec.path}:{line}: warning: {key}={value} is rejected by wsntrack validate, so "
+                where = f"{spec.path}:{line}" if spec.path else f"--set-grid {key}"
+                warnings.append(f"{where}: warning: {key}={value} is rejected by wsntrack validate, so "
                                 f"its runs will fail: {error}")
     return warnings
 

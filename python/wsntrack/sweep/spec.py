@@ -19,14 +19,8 @@ class SpecError(Exception):
     """A spec that cannot be run: reported as FILE:LINE: what was expected."""
 
     def __init__(self, path, line, message):
-        super().__init__(f"{path}:{line}: {message}" if line else f"{path}: {message}")
-
-
-def spec_form(argv):
-    """The spec form: no --scenario, and a spec file named (first, or any *.yaml / *.yml word)."""
-    if any(a == "--scenario" or a.startswith("--scenario=") for a in argv):
-        return False
-    return bool(argv) and (not argv[0].startswith("-") or any(a.endswith((".yaml", ".yml")) for a in argv))
+        # A spec built from flags has no file: the message alone (it names the option).
+        super().__init__(message if path is None else f"{path}:{line}: {message}" if line else f"{path}: {message}")
 
 
 def number(text):

@@ -1,6 +1,6 @@
-"""The spec form of a sweep, `sweep.py SPEC.yaml [--out DIR] [-j N]`: the spec read and checked, the
-directory compared with the sweep made there before, the runs that are not complete run, and the
-results, summary, table and plots written."""
+"""`wsntrack sweep SPEC.yaml | --scenario FILE ...`: the spec read (or built from the flags) and
+checked, the directory compared with the sweep made there before, the runs that are not complete
+run, and the results, summary, table and plots written."""
 
 import argparse
 import importlib
@@ -11,17 +11,22 @@ import shlex
 import sys
 from pathlib import Path
 
-from .common import REPO, UsageError, make_runs, parse_seeds, plural, run_command, seeds_text, short_names, split_key_value
+from .common import REPO, UsageError, make_runs, plural, run_command, seeds_text, short_names
 from .plots import PLOT_FORMATS, draw_plots
 from .executors import DaskExecutor, LocalExecutor, require_distributed
 from .runner import check_with_wsntrack, reusable, run_spec_runs
 from .spec import SpecError, load_spec
 from .summary import spec_table, summarise, write_spec_results, write_summary
-from .metrics import metric_sources
+from .from_flags import apply_options, check_forms, default_out, spec_from_flags
 from .task import sha256_of
 
 SPEC_DESCRIPTION = """\
-Runs the sweep a spec file describes (sweeps/*.yaml), in parallel, and resumes it when run again.
+Runs the sweep a spec file describes (sweeps/*.yaml), or one given by flags, in parallel, and
+resumes it when run again.
+
+Without a spec file, --scenario FILE and any number of --set-grid KEY=V1,V2,... (the grid is their
+product) give the sweep, with --engines, --seeds, --set, --metrics and --in-process for the rest:
+the flags build the same spec in memory, and everything below holds for both.
 
 A spec is a YAML mapping:
 
@@ -32,6 +37,7 @@ A spec is a YAML mapping:
   seeds: 1-10                                    # or 3, or [1, 4, 9]; default 1
   set: {network.pde: 0}                          # fixed values for every run (wsntrack run --set)
   metrics: [eps_k, eps_x_gated, ospa]            # default eps_k, eps_x_gated, ospa
+  x: delivery_ratio                              # plot against this metric of each run, not the swept value
   in_process: true                               # wsntrack run --in-process (default false)
   title: "Oh et al. Fig. 7"                      # plots and table.md
   notes: "..."                                   # table.md and sweep.json
@@ -99,9 +105,12 @@ Exit status: 0 when every run succeeded, 1 when any failed, 2 for a usage or spe
 
 SPEC_EPILOG = """\
 examples:
-  tools/sweep.py sweeps/oh_fig7_pte.yaml --out runs/fig7
-  tools/sweep.py sweeps/oh_fig7_pte.yaml --out runs/fig7-quick --seeds 1-2 --set run.ticks=20 -j 2
-  tools/sweep.py sweeps/oh_fig7_pte.yaml --out /shared/runs/fig7 --scheduler tcp://node01:8786
+  wsntrack sweep sweeps/oh_fig7_pte.yaml --out runs/fig7
+  wsntrack sweep sweeps/oh_fig7_pte.yaml --out runs/fig7-quick --seeds 1-2 --set run.ticks=20 -j 2
+  wsntrack sweep sweeps/oh_fig7_pte.yaml --out runs/fig7-pdf --x delivery_ratio --plot-format pdf
+  wsntrack sweep sweeps/oh_fig7_pte.yaml --out /shared/runs/fig7 --scheduler tcp://node01:8786
+  wsntrack sweep --scenario scenarios/oh_quadrants.yaml --seeds 1-5 --engines gnn,mcmcda \\
+      --set-grid network.pte=0,0.2,0.4 --set-grid network.pde=0,0.3,0.6 --out runs/sweep-loss
 """
 
 # What a run's command depends on: a change of these in the same DIR needs --force.
@@ -112,7 +121,7 @@ PRESENTATION_FIELDS = ("metrics", "x", "title", "notes", "reference")
 
 def sweep_description(spec, wsntrack, scenario_sha):
     return {
-        "form": "spec", "spec": str(spec.path.resolve()), "scenario": str(spec.scenario),
+        "form": "spec", "spec": str(spec.path.resolve()) if spec.path else None, "scenario": str(spec.scenario),
         "scenario_sha256": scenario_sha, "wsntrack": str(wsntrack),
         "grid": {k: v for k, v, *_ in spec.grid}, "engines": spec.engines, "seeds": spec.seeds,
         "set": {k: v for k, v in spec.fixed}, "in_process": spec.in_process, "metrics": spec.metrics,
@@ -149,15 +158,21 @@ def differences(old, new, fields):
 
 
 def parse_spec_args(argv):
-    """The spec form's command line."""
+    """The command line of a sweep, by spec file or by flags (one parser: flags build a spec)."""
     parser = argparse.ArgumentParser(
         prog=os.environ.get("WSNTRACK_PROG", "sweep.py"), description=SPEC_DESCRIPTION, epilog=SPEC_EPILOG,
-        usage="%(prog)s SPEC.yaml [--out DIR] [-j N | --scheduler ADDRESS] [--force] [--seeds SEEDS] [--set KEY=VALUE]... "
-              "[--wsntrack PATH]",
+        usage="%(prog)s (SPEC.yaml | --scenario FILE [--set-grid KEY=V1,V2,...]...) [--out DIR] "
+              "[-j N | --scheduler ADDRESS] [--force] [--seeds SEEDS] [--engines E1,E2] [--set KEY=VALUE]... "
+              "[--metrics M1,M2] [--in-process] [--x METRIC] [--plot-format png|svg|pdf] [--wsntrack PATH]",
         formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("spec", type=Path, help="the sweep spec (YAML), e.g. sweeps/oh_fig7_pte.yaml")
+    parser.add_argument("spec", type=Path, nargs="?", help="the sweep spec (YAML), e.g. sweeps/oh_fig7_pte.yaml")
+    flags = parser.add_argument_group("a sweep without a spec file (flags build the spec)")
+    flags.add_argument("--scenario", type=Path, default=None, help="the scenario every run starts from")
+    flags.add_argument("--set-grid", action="append", default=[], metavar="KEY=V1,V2,...",
+                       help="a swept key and its values (repeatable: the grid is the product of them)")
     parser.add_argument("--out", type=Path, default=None,
-                        help="sweep directory (default: runs/<spec name>); the same DIR again resumes the sweep")
+                        help="sweep directory (default: runs/<spec name>, runs/sweep-<scenario>-<UTC time> for "
+                        "flags); the same DIR again resumes the sweep")
     parser.add_argument("-j", "--jobs", type=int, default=None,
                         help="runs at a time (default: the number of cores, here %d)" % (os.cpu_count() or 1))
     parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
@@ -167,10 +182,16 @@ def parse_spec_args(argv):
     parser.add_argument("--force", action="store_true",
                         help="go on in a DIR made by a different sweep (keeping the runs whose command is unchanged)")
     parser.add_argument("--seeds", default=None, help="instead of the spec's seeds: 1-5, 1,3,7 or 1-3,10")
+    parser.add_argument("--engines", default=None, metavar="E1,E2",
+                        help="instead of the spec's engines (default: the scenario's own)")
     parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="fixed",
                         help="a fixed value added to (or replacing one of) the spec's set (repeatable)")
+    parser.add_argument("--metrics", default=None, metavar="M1,M2",
+                        help="instead of the spec's metrics (default eps_k,eps_x_gated,ospa); every name of "
+                        "`wsntrack components --json`'s quantities, settled_NAME, and the report counts")
+    parser.add_argument("--in-process", action="store_true", help="wsntrack run --in-process, as the spec's in_process")
     parser.add_argument("--wsntrack", type=Path, default=REPO / "build" / "bin" / "wsntrack",
-                        help="the wsntrack executable (default: build/bin/wsntrack of this repository)")
+                        help="the wsntrack executable (default: the wsntrack that `wsntrack sweep` was started as)")
     parser.add_argument("--x", default=None, metavar="METRIC",
                         help="plot each metric against METRIC, measured per run (the mean per grid point), instead "
                         "of the swept value: e.g. delivery_ratio, the end-to-end share of reports delivered; as "
@@ -182,7 +203,9 @@ def parse_spec_args(argv):
 
 
 def _read_spec(args):
-    """The spec with the command line's --seeds and --set applied; UsageError or SpecError."""
+    """The spec (read, or built from the flags) with the command line's options applied; UsageError
+    or SpecError."""
+    check_forms(args)
     if args.jobs is not None and args.jobs < 1:
         raise UsageError("-j/--jobs must be at least 1")
     if args.jobs is not None and args.scheduler:
@@ -190,34 +213,15 @@ def _read_spec(args):
                          "how many runs go at once")
     if args.scheduler:
         require_distributed()  # before anything runs, like SciPy below
-    if not args.spec.is_file():
+    if args.spec is not None and not args.spec.is_file():
         raise UsageError(f"{args.spec}: no such spec file")
-    spec = load_spec(args.spec)
+    spec = spec_from_flags(args) if args.spec is None else load_spec(args.spec)
     try:  # the confidence intervals' Student's t, checked before anything runs
         importlib.import_module("scipy.stats")
     except ImportError:
-        raise UsageError(f"{args.spec}: the confidence intervals of a spec need SciPy (Debian: apt-get install "
-                         "python3-scipy); run the tool with /usr/bin/python3") from None
-    if args.seeds is not None:
-        spec.seeds = parse_seeds(args.seeds)
-    if args.x is not None:
-        if args.x not in metric_sources():
-            raise UsageError(f"--x: unknown metric '{args.x}'; expected one of: {', '.join(metric_sources())}")
-        if len(spec.grid) != 1:
-            raise UsageError(f"--x: a measured x axis needs a grid of one key; {args.spec} sweeps {len(spec.grid)}")
-        spec.x = args.x
-        if args.x not in spec.metrics:
-            spec.metrics.append(args.x)
-    for text in args.fixed:
-        key, value = split_key_value(text, "--set")
-        if key in ("tracker.engine", "run.seed"):
-            raise UsageError(f"--set {key}: choose {'engines' if key == 'tracker.engine' else 'seeds'} in the "
-                             f"spec{'' if key == 'tracker.engine' else ' or with --seeds'}")
-        if any(key == k for k, *_ in spec.grid):
-            raise UsageError(f"--set {key}: the spec's grid sweeps it")
-        spec.fixed = [(k, v) for k, v in spec.fixed if k != key] + [(key, value)]
-        spec.fixed_lines.pop(key, None)
-    return spec
+        raise UsageError("the confidence intervals of a sweep need SciPy (Debian: apt-get install python3-scipy); "
+                         "run the tool with /usr/bin/python3") from None
+    return apply_options(spec, args)
 
 
 def _compare_with_earlier(out, description, force):
@@ -229,7 +233,7 @@ def _compare_with_earlier(out, description, force):
         raise UsageError(f"--out: {out} is not empty and holds no sweep (no readable sweep.json); "
                          "choose another") from None
     if earlier.get("form") != "spec":
-        changed = ["  it holds a sweep of the flag form (sweep.py --scenario ...)"]
+        changed = ["  it holds a sweep of an older wsntrack's flag form, which did not resume"]
     else:
         changed = differences(earlier, description, RUN_FIELDS)
     if changed and not force:
@@ -254,7 +258,7 @@ def _prepare(args):
     if not os.access(wsntrack, os.X_OK):
         raise UsageError(f"--wsntrack: {args.wsntrack} is not an executable (build first: cmake --build build)")
     warnings = check_with_wsntrack(spec, wsntrack)
-    out = args.out or Path("runs") / args.spec.stem
+    out = args.out or default_out(args)
     if out.exists() and not out.is_dir():
         raise UsageError(f"--out: {out} is not a directory")
     out = out.resolve()
