@@ -18,8 +18,11 @@ esac
 
 packages=(build-essential cmake pkg-config git cyclonedds-dev cyclonedds-tools libeigen3-dev
           libboost-program-options-dev catch2 libyaml-cpp-dev libbenchmark-dev nlohmann-json3-dev libssl-dev
+          libcpp-httplib-dev
           procps python3 python3-numpy python3-matplotlib python3-pil python3-yaml python3-scipy python3-distributed
           python3-pandas ffmpeg ninja-build ccache clang libclang-rt-14-dev python3-hypothesis)
+# The browser map's test drives a real headless Chromium: only the test suite needs it.
+[ "$mode" != run ] && packages+=(chromium chromium-driver python3-selenium)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

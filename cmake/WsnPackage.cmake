@@ -34,12 +34,12 @@ if(WSN_DPKG_SHLIBDEPS)
 else()
   message(STATUS "dpkg-shlibdeps not found (package dpkg-dev): the .deb's Depends are the Debian 12 list")
   set(CPACK_DEBIAN_PACKAGE_DEPENDS
-      "python3, libboost-program-options1.74.0 (>= 1.74.0+ds1), libc6 (>= 2.35), libddsc0debian (>= 0.8.0), \
-libgcc-s1 (>= 3.0), libssl3 (>= 3.0.0), libstdc++6 (>= 11), libyaml-cpp0.7 (>= 0.7.0)")
+      "python3, libboost-program-options1.74.0 (>= 1.74.0+ds1), libc6 (>= 2.35), libcpp-httplib0.11 (>= 0.11.4), \
+libddsc0debian (>= 0.8.0), libgcc-s1 (>= 3.0), libssl3 (>= 3.0.0), libstdc++6 (>= 11), libyaml-cpp0.7 (>= 0.7.0)")
 endif()
 # Plots (plot_run.py) need matplotlib, the run loader numpy, both PyYAML, a sweep spec's confidence
 # intervals SciPy; a run works without them.
-set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3-matplotlib, python3-numpy, python3-yaml, python3-scipy")
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3-matplotlib, python3-numpy, python3-yaml, python3-scipy, python3-pandas")
 # A sweep over a Dask cluster (sweep.py --scheduler) needs Dask's distributed.
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "python3-distributed")
 

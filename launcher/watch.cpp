@@ -27,6 +27,8 @@
 #include "launcher/run_credentials.hpp"
 #include "launcher/run_description.hpp"
 #include "launcher/run_directory.hpp"
+#include "launcher/map_server.hpp"
+#include "launcher/watch_live_map.hpp"
 #include "launcher/watch_state.hpp"
 #include "wsntrack.h"
 
@@ -45,7 +47,11 @@ struct WatchOptions {
   double timeout_s = 60;
   bool plain = false;
   double max_fps = 20;
+  /// --http: where the browser map is served ([ADDR:]PORT parsed); none without it.
+  std::optional<std::pair<std::string, int>> http;
 };
+
+bool interrupted() { return g_interrupted.load(); }
 
 std::string hex(std::uint64_t value) {
   std::ostringstream out;
@@ -108,12 +114,28 @@ class Watcher {
   int run() {
     const auto started = Clock::now();
     const auto deadline = started + std::chrono::duration_cast<Clock::duration>(Seconds(options_.timeout_s));
+    if (options_.http && finishedRunThere()) {  // the map scrubs a finished run from its files
+      serveFinishedRun(options_.run_dir, options_.http->first, options_.http->second, interrupted);
+      return kWatchFinished;
+    }
     if (const auto code = waitForLiveRun(deadline)) return *code;
     return watch(deadline);
   }
 
  private:
   // ---- finding the run -------------------------------------------------------------------
+
+  /// Whether RUN_DIR holds a run that finished: its metrics.json written and its launcher gone.
+  bool finishedRunThere() {
+    std::error_code error;
+    if (!fs::exists(options_.run_dir + "/metrics.json", error) || !fs::exists(options_.run_dir + "/run.json", error))
+      return false;
+    try {
+      return !launcherAlive(readRunDescription(options_.run_dir).launcher_pid);
+    } catch (const std::exception&) {
+      return false;
+    }
+  }
 
   RunPresence presence(std::string& why) {
     const std::string dir = options_.run_dir;
@@ -245,6 +267,10 @@ class Watcher {
     waitset.attach(status_ready.handle(), 0);
     waitset.attach(tracks_ready.handle(), 1);
     waitset.attach(metrics_ready.handle(), 2);
+    std::unique_ptr<LiveMap> map;
+    if (options_.http)
+      map = std::make_unique<LiveMap>(options_.run_dir, options_.http->first, options_.http->second, participant,
+                                      waitset, 3);
 
     const CursorGuard cursor(tty_);
     if (!tty_)
@@ -273,21 +299,34 @@ class Watcher {
       });
       track_reader.take([&](const wsn_msg_GlobalTrackBatch& batch) {
         if (batch.run_id != run_.identity.run_id) return;
-        state.onTracks(batch.tick, dds::decode(batch.tracks), now);
+        auto tracks = dds::decode(batch.tracks);
+        if (map) map->onTracks(batch.tick, tracks);
+        state.onTracks(batch.tick, std::move(tracks), now);
       });
       metrics_reader.take([&](const wsn_msg_TickMetrics& m) {
         if (m.run_id != run_.identity.run_id) return;
         TickScores scores;
         for (std::uint32_t i = 0; i < m.values._length; ++i) scores[m.values._buffer[i].name] = m.values._buffer[i].value;
         state.onMetrics(m.tick, scores);
+        if (map) map->onMetrics(m.tick, scores);
       });
+      if (map) map->poll(run_.identity.run_id);
 
       const auto step = state.step(now, metrics_reader.matchedWriters() > 0, static_cast<bool>(std::cout),
                                    [&] { return launcherAlive(run_.launcher_pid); });
       if (step.frame) drawTick(state, *step.frame);
       if (step.draw_waiting) drawWaiting(state);
-      if (step.end) return finish(*step.end);
+      if (step.end) return map ? keepServing(*map, *step.end) : finish(*step.end);
     }
+  }
+
+  /// The run ended with a map up: the page says how, and scrubs the run until Ctrl-C or SIGTERM.
+  int keepServing(LiveMap& map, const WatchEnd& end) {
+    map.ended(end.exit_code == kWatchFinished ? "finished" : "failed", end.text.empty() ? "the run ended" : end.text);
+    const int code = finish(end);
+    std::cerr << "wsntrack watch: the map still shows the run at " << map.url() << "; Ctrl-C stops it\n" << std::flush;
+    while (!g_interrupted.load()) ::usleep(200000);
+    return code;
   }
 
   // ---- drawing -----------------------------------------------------------------------------
@@ -350,7 +389,7 @@ class Watcher {
 };
 
 constexpr const char* kWatchHelp =
-    "Usage: wsntrack watch RUN_DIR [--timeout S] [--plain] [--max-fps N]\n\n"
+    "Usage: wsntrack watch RUN_DIR [--timeout S] [--plain] [--max-fps N] [--http [ADDR:]PORT]\n\n"
     "Live view of a cluster started by 'wsntrack run --out RUN_DIR' (from another terminal):\n"
     "it joins the run's DDS domain as a viewer and, every tick, shows the run's progress (tick\n"
     "t/T), the aggregator's per-tick metrics (K* truth targets, K tracks, OSPA, GOSPA, running\n"
@@ -366,6 +405,13 @@ constexpr const char* kWatchHelp =
     "viewers: up to 4 viewers at a time). The watch waits up to --timeout seconds for a run to\n"
     "start there (RUN_DIR may not exist yet) and then for each sign of progress; it never slows\n"
     "the run down or changes it.\n\n"
+    "With --http [ADDR:]PORT the watch also serves a map of the run to a browser, at\n"
+    "http://127.0.0.1:PORT/ (ADDR: another address of this host to listen on; PORT 0: any free port,\n"
+    "printed): the sensor field, the supernodes and their tracking groups, each tick's truth,\n"
+    "delivered reports and tracks with their ids and 2-sigma ellipses, and the per-tick metrics,\n"
+    "updated as the run goes (Server-Sent Events). It is read-only. After the run ends the page can\n"
+    "scrub it (slider, arrow keys) until Ctrl-C; on a run that has already finished it is served\n"
+    "from the run's files.\n\n"
     "Exit status: 0 when the run finished (the aggregator reported DONE or the last tick was shown);\n"
     "1 when the run failed, its launcher exited early, no run started or nothing happened within\n"
     "--timeout; 2 for bad options or when RUN_DIR is not a run directory; 130 on Ctrl-C.\n\n";
@@ -381,6 +427,8 @@ int commandWatch(const std::vector<std::string>& args) {
       "seconds to wait for the run to start, and then at most between two signs of progress")(
       "plain", "line-oriented frames even on a terminal (the default when stdout is not one)")(
       "max-fps", po::value(&options.max_fps)->default_value(20), "most frames drawn per second")(
+      "http", po::value<std::string>()->value_name("[ADDR:]PORT"),
+      "also serve a live map of the run to a browser (127.0.0.1 unless ADDR; PORT 0: any free port)")(
       "run-dir", po::value(&options.run_dir), "run directory of the run to watch");
   po::positional_options_description positional;
   positional.add("run-dir", 1);
@@ -398,6 +446,14 @@ int commandWatch(const std::vector<std::string>& args) {
   if (!std::isfinite(options.max_fps) || options.max_fps < 0.1 || options.max_fps > 1000) {
     std::cerr << "wsntrack watch: --max-fps must be in [0.1, 1000], got " << options.max_fps << "\n";
     return kWatchUsage;
+  }
+  if (vm.count("http")) {
+    try {
+      options.http = parseHttpAddress(vm["http"].as<std::string>());
+    } catch (const std::invalid_argument& error) {
+      std::cerr << "wsntrack watch: " << error.what() << "\n";
+      return kWatchUsage;
+    }
   }
   options.plain = options.plain || vm.count("plain") != 0;
   const bool tty = !options.plain && ::isatty(STDOUT_FILENO) != 0;

@@ -108,6 +108,15 @@ Qos&& Qos::inPartitions(const std::vector<std::string>& names) && {
   return std::move(*this);
 }
 
+Qos Qos::bestEffort(Endpoint owner) {
+  Qos q;
+  markOwner(q, owner);
+  dds_qset_reliability(q.get(), DDS_RELIABILITY_BEST_EFFORT, 0);
+  dds_qset_history(q.get(), DDS_HISTORY_KEEP_ALL, 0);
+  dds_qset_durability(q.get(), DDS_DURABILITY_VOLATILE);
+  return q;
+}
+
 Qos Qos::lastValueTransientLocal(Endpoint owner) {
   Qos q;
   markOwner(q, owner);

@@ -79,6 +79,8 @@ class Qos {
   static Qos reliableKeepAll(Endpoint owner = Endpoint::kRole);
   /// Reliable, KEEP_LAST 1 per instance, TRANSIENT_LOCAL: process status for late joiners.
   static Qos lastValueTransientLocal(Endpoint owner = Endpoint::kRole);
+  /// Best effort, KEEP_ALL, volatile: a viewer's reader that must never hold a writer back.
+  static Qos bestEffort(Endpoint owner = Endpoint::kViewer);
 
   /// Puts the endpoint in DDS partition `name`: it matches only endpoints of the same topic in
   /// that partition, so samples meant for one process are sent to that process alone.

@@ -27,7 +27,8 @@ std::vector<RunIdentity> makeIdentities() {
       {kInProcessIdentity, everyTopic(), everyTopic()},
       // The launcher announces processes lost outside the scenario's faults (FAULTED at tick 0).
       {kLauncherIdentity, {kProcessStatus}, {kProcessStatus}},
-      {kViewerIdentity, {}, {kGlobalTrackBatch, kTickMetrics, kProcessStatus}},
+      // The viewer reads; the deliveries are for the browser map's reports (wsntrack watch --http).
+      {kViewerIdentity, {}, {kGlobalTrackBatch, kTickMetrics, kProcessStatus, kDeliveryBatch}},
   };
 }
 

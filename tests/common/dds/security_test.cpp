@@ -45,7 +45,7 @@ TEST_CASE("the viewer reads the live topics and writes nothing", "[security]") {
   const auto& viewer = identityNamed(kViewerIdentity);
   CHECK(viewer.publish.empty());
   CHECK(viewer.subscribe == std::vector<std::string>{topic_names::kGlobalTrackBatch, topic_names::kTickMetrics,
-                                                     topic_names::kProcessStatus});
+                                                     topic_names::kProcessStatus, topic_names::kDeliveryBatch});
   const std::string document = permissionsDocument(5, "wsntrack run 1", "2026-01-01T00:00:00", "2026-01-08T00:00:00");
   const std::string grant = grantOf(document, kViewerIdentity);
   CHECK(grant.find("<publish>") == std::string::npos);
