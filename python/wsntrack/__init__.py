@@ -8,6 +8,7 @@
   wsntrack.plots        the plots and the replay animation of a run (tools/plot_run.py)
   wsntrack.sweep        grids of `wsntrack run` and their tables, intervals and plots (tools/sweep.py)
   wsntrack.onera_table  Table II of Pannetier et al. beside our runs (tools/onera_table.py)
+  wsntrack.plot         the figures for a script: run_plots, animation, sweep_plots (drawn again)
   wsntrack.catalogue    the facts of the C++ side (`wsntrack components --json`): metrics, columns,
                         classes, labels and units, read instead of restated
 

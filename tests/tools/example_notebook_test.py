@@ -48,6 +48,21 @@ class Example(unittest.TestCase):
         self.assertIn(f"wrote {figure}", result.stdout)
         self.assertGreater(figure.stat().st_size, 20_000)  # two panels with points and paths, not an empty frame
 
+    def test_the_plots_again_from_python(self):
+        code = ("import sys; from wsntrack import plot, rundir; "
+                "pdfs = plot.sweep_plots(sys.argv[1], sys.argv[2], 'pdf', x='delivery_ratio'); "
+                "print(sorted(p.name for p in pdfs)); "
+                "run = rundir.load_run(sys.argv[1] + '/runs/gnn_pte-0.4_seed-1'); print(len(run.truth) > 0); "
+                "print([p.name for p in plot.run_plots(run.path, sys.argv[3], 'svg')])")
+        result = subprocess.run([sys.executable, "-B", "-c", code, str(self.sweep), str(WORK / "pdf"),
+                                 str(WORK / "svg")], env=self.env, capture_output=True, text=True, timeout=120)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        lines = result.stdout.strip().splitlines()
+        self.assertEqual(lines[0], "['eps_k.pdf', 'ospa.pdf']")  # every metric but the x axis's own
+        self.assertEqual(lines[1], "True")
+        self.assertIn("tracks.svg", lines[2])
+        self.assertTrue((WORK / "pdf" / "eps_k.pdf").read_bytes().startswith(b"%PDF"))
+
     def test_the_sweep_reader_gives_back_the_files(self):
         code = ("import sys; from wsntrack.sweep.results import load_sweep; s = load_sweep(sys.argv[1]); "
                 "print(len(s.results), len(s.summary), sorted(set(s.results.engine)), "
@@ -64,4 +79,4 @@ class Example(unittest.TestCase):
 if __name__ == "__main__":
     cases = unittest.defaultTestLoader.loadTestsFromTestCase(Example)
     result = unittest.TextTestRunner(verbosity=2).run(cases)
-    sys.exit(0 if result.wasSuccessful() and result.testsRun == 2 else 1)
+    sys.exit(0 if result.wasSuccessful() and result.testsRun == 3 else 1)

@@ -1,4 +1,6 @@
-"""The one reader of a wsntrack run directory (README.md, "Run directory"), for the plots, the
+"""The one reader of a wsntrack run directory (README.md, "Run directory"): `load_run(RUN_DIR)` gives
+every file as numpy record arrays and DataFrames (wsntrack.loader); the per-file readers below serve
+the plots, the
 loader, the sweep and the ONERA table alike: scenario.yaml (PyYAML's safe loader, lines kept),
 the CSV files by column name, the JSON files, whether the run is complete (run.json's status); a
 missing or malformed file raises InputError with ``FILE[:LINE]: what was expected``. Standard library only, PyYAML aside (ToolMissing without it)."""
@@ -20,5 +22,10 @@ __all__ = ["COVARIANCE_COLUMNS", "COVARIANCE_INDEX", "OBSERVATION_FATES", "PER_T
 
 
 def __getattr__(name):
-    """The facts read from wsntrack's catalogue (TARGET_CLASSES, SENSOR_TYPES, ...), when first used."""
+    """The facts read from wsntrack's catalogue (TARGET_CLASSES, SENSOR_TYPES, ...), when first used;
+    load_run and Run, the whole run directory as numpy record arrays (wsntrack.loader, which needs
+    numpy: imported only then)."""
+    if name in ("load_run", "Run"):
+        from .. import loader
+        return getattr(loader, name)
     return getattr(_scenario if name == "SENSOR_TYPES" else _files, name)

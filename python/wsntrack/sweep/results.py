@@ -109,3 +109,44 @@ class Sweep:
 def load_sweep(path):
     """Loads the sweep directory `path` (see :class:`Sweep`); InputError for a missing or malformed file."""
     return Sweep(path)
+
+
+def _number_or_none(value):
+    return None if value is None or (isinstance(value, float) and math.isnan(value)) else float(value)
+
+
+def redraw_plots(path, out=None, plot_format="png", x=None):
+    """Draws the plots of the finished sweep in `path` again, from its sweep.json and summary.csv
+    (nothing is run): into `out` (default DIR/plots), in `plot_format` (png, svg or pdf), against the
+    metric `x` when given (it must be one the sweep tabulated). Returns the files written."""
+    from .plots import PLOT_FORMATS, draw_plots
+    from .spec import Spec
+    sweep = load_sweep(path)
+    if sweep.summary is None:
+        raise InputError(f"{sweep.path}: no summary.csv to draw from")
+    if plot_format not in PLOT_FORMATS:
+        raise ValueError(f"plot_format: expected one of {', '.join(PLOT_FORMATS)}, got '{plot_format}'")
+    d = sweep.description
+    spec = Spec(Path(d["spec"]) if d.get("spec") else None)
+    spec.scenario = Path(d["scenario"])
+    spec.grid = [(key, values, None, [None] * len(values)) for key, values in sweep.grid.items()]
+    spec.engines, spec.seeds, spec.metrics = list(sweep.engines), list(sweep.seeds), list(sweep.metrics)
+    spec.title, spec.notes = d.get("title", ""), d.get("notes", "")
+    spec.references = d.get("reference", [])
+    spec.fixed = list(d.get("set", {}).items())
+    spec.x = x if x is not None else d.get("x")
+    if spec.x is not None and spec.x not in spec.metrics:
+        raise ValueError(f"x: the sweep did not tabulate '{spec.x}'; it has {', '.join(spec.metrics)}")
+    keys = list(sweep.grid)
+    points, cells = [], {}
+    for row in sweep.summary:
+        point = tuple((key, str(row[key])) for key in keys)
+        if list(point) not in points:
+            points.append(list(point))
+        cells[(point, str(row.engine))] = {
+            "runs": int(row.runs), "ok": int(row.ok), "failed": int(row.failed),
+            **{m: (int(row[f"{m}_n"]),) + tuple(_number_or_none(row[f"{m}_{s}"]) for s in ("mean", "sd", "ci95_low",
+                                                                                                "ci95_high"))
+               for m in spec.metrics}}
+    fixed_text = " ".join(f"{k}={v}" for k, v in spec.fixed)
+    return draw_plots(Path(out) if out else sweep.path / "plots", spec, points, cells, fixed_text, plot_format)
