@@ -10,15 +10,25 @@ install(TARGETS wsntrack-node wsntrack-network wsntrack-supernode wsntrack-aggre
 
 # The run loader is imported, and run alone it prints what a run directory holds.
 install(PROGRAMS tools/plot_run.py tools/sweep.py tools/wsntrack_run.py tools/onera_table.py DESTINATION ${WSN_INSTALL_TOOLS_DIR})
-# The package the tools are entry points over, in the python path, and python-path beside the tools:
-# where it is, relative to them (in the source and build trees they look in ../python instead).
-install(DIRECTORY python/wsntrack DESTINATION ${WSN_INSTALL_PYTHON_DIR} FILES_MATCHING PATTERN "*.py"
-        PATTERN "__pycache__" EXCLUDE)
-file(RELATIVE_PATH wsn_python_from_tools "/prefix/${WSN_INSTALL_TOOLS_DIR}" "/prefix/${WSN_INSTALL_PYTHON_DIR}")
-file(WRITE ${PROJECT_BINARY_DIR}/installed/python-path "${wsn_python_from_tools}\n")
-install(FILES ${PROJECT_BINARY_DIR}/installed/python-path DESTINATION ${WSN_INSTALL_TOOLS_DIR})
-# With the catalogue of the wsntrack installed beside it (launcher/CMakeLists.txt writes it).
-install(FILES ${WSN_BUILD_CATALOGUE} DESTINATION ${WSN_INSTALL_PYTHON_DIR}/wsntrack)
+# The package the tools are entry points over, in the python path of the prefix it is installed into
+# (cmake/WsnInstallDirs.cmake), with the catalogue of the wsntrack installed beside it
+# (launcher/CMakeLists.txt writes it); and python-path beside the tools: where it is, relative to
+# them (in the source and build trees they look in ../python instead). Decided at install time, when
+# CMAKE_INSTALL_PREFIX is the prefix installed into. file(INSTALL) adds DESTDIR itself; file(WRITE)
+# is given it.
+install(CODE "
+  if(CMAKE_INSTALL_PREFIX STREQUAL \"/usr\")
+    set(wsn_python_dir \"${WSN_INSTALL_PYTHON_DIR_USR}\")
+  else()
+    set(wsn_python_dir \"${WSN_INSTALL_PYTHON_DIR_OTHER}\")
+  endif()
+  file(INSTALL \"${PROJECT_SOURCE_DIR}/python/wsntrack\" DESTINATION \"\${CMAKE_INSTALL_PREFIX}/\${wsn_python_dir}\"
+       FILES_MATCHING PATTERN \"*.py\" PATTERN \"__pycache__\" EXCLUDE)
+  file(INSTALL \"${WSN_BUILD_CATALOGUE}\" DESTINATION \"\${CMAKE_INSTALL_PREFIX}/\${wsn_python_dir}/wsntrack\")
+  file(RELATIVE_PATH wsn_python_from_tools \"/prefix/${WSN_INSTALL_TOOLS_DIR}\" \"/prefix/\${wsn_python_dir}\")
+  file(WRITE \"\$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/${WSN_INSTALL_TOOLS_DIR}/python-path\" \"\${wsn_python_from_tools}\\n\")
+  message(STATUS \"Installing: the python package into \$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/\${wsn_python_dir}\")
+")
 
 install(DIRECTORY scenarios/ DESTINATION ${WSN_INSTALL_SCENARIO_DIR} FILES_MATCHING PATTERN "*.yaml")
 # The sweep specs name their scenario relative to the data directory, where the scenarios are too.

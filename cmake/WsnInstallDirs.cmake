@@ -14,18 +14,21 @@ set(WSN_INSTALL_SCENARIO_DIR "${WSN_INSTALL_DATA_DIR}/scenarios")
 set(WSN_INSTALL_IDL_DIR "${WSN_INSTALL_DATA_DIR}/idl")
 set(WSN_INSTALL_TOOLS_DIR "${WSN_INSTALL_DATA_DIR}/tools")
 # The python package (`import wsntrack`) goes where Debian's /usr/bin/python3, which runs the tools,
-# imports from: lib/python3/dist-packages under /usr (the .deb: Debian's place for a package of any
-# python3), lib/python3.X/dist-packages under any other prefix (on that python's path for /usr/local;
-# PYTHONPATH for another prefix). The tools find it through python-path, written beside them.
+# imports from, chosen by the prefix it is installed into (cmake/WsnInstall.cmake decides when it
+# installs, so that cpack's /usr and `cmake --install --prefix P` each get theirs):
+# lib/python3/dist-packages under /usr (the .deb: Debian's place for a package of any python3),
+# lib/python3.X/dist-packages under any other prefix (on that python's path for /usr/local;
+# PYTHONPATH for another). The tools find it through python-path, written beside them.
 if(NOT DEFINED WSN_PYTHON3_MINOR)
   execute_process(COMMAND /usr/bin/python3 -c "import sys; print(sys.version_info[1])"
                   OUTPUT_VARIABLE wsn_python3_minor OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
   set(WSN_PYTHON3_MINOR "${wsn_python3_minor}" CACHE INTERNAL "minor version of /usr/bin/python3")
 endif()
-if(CMAKE_INSTALL_PREFIX STREQUAL "/usr" OR WSN_PYTHON3_MINOR STREQUAL "")
-  set(WSN_INSTALL_PYTHON_DIR "lib/python3/dist-packages")
+set(WSN_INSTALL_PYTHON_DIR_USR "lib/python3/dist-packages")
+if(WSN_PYTHON3_MINOR STREQUAL "")
+  set(WSN_INSTALL_PYTHON_DIR_OTHER "${WSN_INSTALL_PYTHON_DIR_USR}")
 else()
-  set(WSN_INSTALL_PYTHON_DIR "lib/python3.${WSN_PYTHON3_MINOR}/dist-packages")
+  set(WSN_INSTALL_PYTHON_DIR_OTHER "lib/python3.${WSN_PYTHON3_MINOR}/dist-packages")
 endif()
 
 # Relative to bindir, so that the installed tree works under any prefix (`cmake --install --prefix P`,

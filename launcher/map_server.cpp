@@ -64,7 +64,9 @@ std::size_t MapFeed::ticks() const {
 
 std::pair<std::string, int> parseHttpAddress(const std::string& text) {
   const auto colon = text.rfind(':');
-  const std::string address = colon == std::string::npos ? "127.0.0.1" : text.substr(0, colon);
+  std::string address = colon == std::string::npos ? "127.0.0.1" : text.substr(0, colon);
+  if (address.size() > 2 && address.front() == '[' && address.back() == ']')  // an IPv6 address: [::1]:8080
+    address = address.substr(1, address.size() - 2);
   const std::string port_text = colon == std::string::npos ? text : text.substr(colon + 1);
   std::size_t used = 0;
   int port = -1;

@@ -115,7 +115,12 @@ class Watcher {
     const auto started = Clock::now();
     const auto deadline = started + std::chrono::duration_cast<Clock::duration>(Seconds(options_.timeout_s));
     if (options_.http && finishedRunThere()) {  // the map scrubs a finished run from its files
-      serveFinishedRun(options_.run_dir, options_.http->first, options_.http->second, interrupted);
+      try {
+        serveFinishedRun(options_.run_dir, options_.http->first, options_.http->second, interrupted);
+      } catch (const std::runtime_error& error) {
+        std::cerr << "wsntrack watch: " << error.what() << "\n";
+        return kWatchUsage;
+      }
       return kWatchFinished;
     }
     if (const auto code = waitForLiveRun(deadline)) return *code;
@@ -268,9 +273,14 @@ class Watcher {
     waitset.attach(tracks_ready.handle(), 1);
     waitset.attach(metrics_ready.handle(), 2);
     std::unique_ptr<LiveMap> map;
-    if (options_.http)
-      map = std::make_unique<LiveMap>(options_.run_dir, options_.http->first, options_.http->second, participant,
-                                      waitset, 3);
+    try {
+      if (options_.http)
+        map = std::make_unique<LiveMap>(options_.run_dir, options_.http->first, options_.http->second, participant,
+                                        waitset, 3);
+    } catch (const std::runtime_error& error) {  // the address is in use or not this host's: an option's fault
+      std::cerr << "wsntrack watch: " << error.what() << "\n";
+      return kWatchUsage;
+    }
 
     const CursorGuard cursor(tty_);
     if (!tty_)
@@ -409,9 +419,12 @@ constexpr const char* kWatchHelp =
     "http://127.0.0.1:PORT/ (ADDR: another address of this host to listen on; PORT 0: any free port,\n"
     "printed): the sensor field, the supernodes and their tracking groups, each tick's truth,\n"
     "delivered reports and tracks with their ids and 2-sigma ellipses, and the per-tick metrics,\n"
-    "updated as the run goes (Server-Sent Events). It is read-only. After the run ends the page can\n"
-    "scrub it (slider, arrow keys) until Ctrl-C; on a run that has already finished it is served\n"
-    "from the run's files.\n\n"
+    "updated as the run goes (Server-Sent Events). It is read-only. The page answers once the run has\n"
+    "started (the field is the run's scenario). After the run ends the page can scrub it (slider,\n"
+    "arrow keys) until Ctrl-C or SIGTERM, and the exit status is then the run's (0 finished, 1\n"
+    "failed), not 130. On a RUN_DIR whose run has already finished, the map of that run is served\n"
+    "from its files (a failed run is waited past, as without --http). An address that cannot be\n"
+    "listened on is exit status 2.\n\n"
     "Exit status: 0 when the run finished (the aggregator reported DONE or the last tick was shown);\n"
     "1 when the run failed, its launcher exited early, no run started or nothing happened within\n"
     "--timeout; 2 for bad options or when RUN_DIR is not a run directory; 130 on Ctrl-C.\n\n";

@@ -16,6 +16,13 @@ std::string urlOf(const std::string& address, int port) {
   return "http://" + (v6 ? "[" + address + "]" : address) + ":" + std::to_string(port) + "/";
 }
 
+/// A map on an address other hosts can reach has no password: said once, beside its URL.
+void warnIfReachable(const std::string& address, const std::string& url) {
+  if (address.rfind("127.", 0) == 0 || address == "::1" || address == "localhost") return;
+  std::cerr << "wsntrack watch: warning: anyone who reaches " << url
+            << " can read the run's map (it has no password, whatever the run's DDS Security)\n";
+}
+
 /// A reader of the deliveries to every supernode: they go out in one partition per supernode
 /// (topic_names::supernodePartition), which the pattern matches.
 dds::Qos deliveriesOfEverySupernode() { return dds::Qos::bestEffort(dds::Endpoint::kViewer).inPartition("supernode-*"); }
@@ -38,6 +45,7 @@ LiveMap::LiveMap(const std::string& run_dir, const std::string& address, int por
   waitset.attach(deliveries_ready_.handle(), token);
   feed_->setStatus(mapStatusJson("live", "live: the run is going on"));
   std::cerr << "wsntrack watch: the map is at " << url_ << "\n" << std::flush;
+  warnIfReachable(address, url_);
 }
 
 void LiveMap::poll(std::uint64_t run_id) {
@@ -93,6 +101,7 @@ void serveFinishedRun(const std::string& run_dir, const std::string& address, in
   std::cerr << "wsntrack watch: the run in " << run_dir << " has finished; its map (" << ticks.size()
             << " ticks, from its files) is at " << url << " until Ctrl-C\n"
             << std::flush;
+  warnIfReachable(address, url);
   while (!stop()) ::usleep(200000);
 }
 

@@ -1,5 +1,6 @@
 #include "launcher/watch_map.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <stdexcept>
@@ -208,39 +209,65 @@ std::vector<MapTick> readFinishedTicks(const std::string& run_dir) {
   return out;
 }
 
+MapTickAssembler::Held& MapTickAssembler::at(std::int32_t tick) {
+  auto& held = held_[tick];
+  held.tick.tick = tick;
+  return held;
+}
+
 void MapTickAssembler::onDeliveries(std::int32_t tick, std::vector<common::Observation> reports) {
-  auto& pending = pending_[tick];
-  pending.tick = tick;
-  pending.reports.insert(pending.reports.end(), reports.begin(), reports.end());
+  if (tick < forgotten_below_) return;
+  auto& held = at(tick);
+  held.tick.reports.insert(held.tick.reports.end(), reports.begin(), reports.end());
+  if (held.given) complete_.push_back(held.tick);
 }
 
 void MapTickAssembler::onTracks(std::int32_t tick, std::vector<common::TrackEstimate> tracks) {
-  // The next tick's tracks: a tick whose metrics never come (no TickMetrics) is complete now.
-  while (!pending_.empty() && pending_.begin()->first < tick && has_tracks_[pending_.begin()->first])
-    complete(pending_.begin()->first);
-  auto& pending = pending_[tick];
-  pending.tick = tick;
-  pending.tracks = std::move(tracks);
-  has_tracks_[tick] = true;
+  if (tick < forgotten_below_) return;
+  auto& held = at(tick);
+  held.tick.tracks = std::move(tracks);
+  held.tracks = true;
+  last_tracks_ = std::max(last_tracks_, tick);
+  if (held.given) complete_.push_back(held.tick);
+  settle();
 }
 
 void MapTickAssembler::onMetrics(std::int32_t tick, std::map<std::string, double> metrics) {
-  auto& pending = pending_[tick];
-  pending.tick = tick;
-  pending.metrics = std::move(metrics);
-  while (!pending_.empty() && pending_.begin()->first <= tick) complete(pending_.begin()->first);
+  if (tick < forgotten_below_) return;
+  auto& held = at(tick);
+  held.tick.metrics = std::move(metrics);
+  held.metrics = true;
+  last_metrics_ = std::max(last_metrics_, tick);
+  if (held.given) complete_.push_back(held.tick);
+  settle();
 }
 
-void MapTickAssembler::complete(std::int32_t tick) {
-  complete_.push_back(std::move(pending_.at(tick)));
-  pending_.erase(tick);
-  has_tracks_.erase(tick);
+void MapTickAssembler::settle() {
+  for (auto& [tick, held] : held_) {
+    if (held.given) continue;
+    const bool both = held.tracks && held.metrics;
+    const bool late = (held.tracks && last_tracks_ - tick >= kLateTicks) || (held.metrics && last_metrics_ - tick >= kLateTicks);
+    if (!both && !late) continue;
+    complete_.push_back(held.tick);
+    held.given = true;
+  }
+  // What is given out and far behind both topics is forgotten, and anything later for it ignored:
+  // the page keeps what it was given (a sample that late is one the terminal view drops too).
+  const std::int32_t settled = std::min(last_tracks_, last_metrics_) - 4 * kLateTicks;
+  while (!held_.empty() && held_.begin()->first < settled && held_.begin()->second.given) {
+    forgotten_below_ = held_.begin()->first + 1;
+    held_.erase(held_.begin());
+  }
 }
 
 std::vector<MapTick> MapTickAssembler::takeComplete() { return std::exchange(complete_, {}); }
 
 std::vector<MapTick> MapTickAssembler::flush() {
-  while (!pending_.empty()) complete(pending_.begin()->first);
+  for (auto& [tick, held] : held_)
+    if (!held.given) {
+      complete_.push_back(held.tick);
+      held.given = true;
+    }
   return takeComplete();
 }
 

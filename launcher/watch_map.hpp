@@ -48,24 +48,38 @@ std::string mapTickJson(const MapTick& tick, const std::vector<MapTarget>& truth
 /// metrics_per_tick.csv, in tick order; throws std::runtime_error "FILE:LINE: ..." on a malformed file.
 std::vector<MapTick> readFinishedTicks(const std::string& run_dir);
 
-/// Assembles the live samples of each tick into a MapTick: deliveries and tracks come first, the
-/// metrics last (the aggregator publishes them after its tracks). A tick is complete when its
-/// metrics came, or, for an aggregator without TickMetrics, when the next tick's tracks did.
+/// Assembles the live samples of each tick into a MapTick. No order holds across topics: a tick's
+/// metrics may come before its tracks. A tick is complete when both came; when only one of them did
+/// and the same topic is kLateTicks ticks further on (an aggregator without TickMetrics), it is
+/// complete with what it has. Whatever comes for a tick already given out gives that tick out again,
+/// whole, so that the last event of every tick has all of it.
 class MapTickAssembler {
  public:
+  /// How many ticks one topic may run ahead of the other before a tick is given out without it.
+  static constexpr std::int32_t kLateTicks = 3;
+
   void onDeliveries(std::int32_t tick, std::vector<common::Observation> reports);
   void onTracks(std::int32_t tick, std::vector<common::TrackEstimate> tracks);
   void onMetrics(std::int32_t tick, std::map<std::string, double> metrics);
-  /// The ticks completed since the last call, in tick order.
+  /// The ticks completed (or completed again) since the last call, in the order they were.
   std::vector<MapTick> takeComplete();
   /// Every tick still held (the run ended), in tick order.
   std::vector<MapTick> flush();
 
  private:
-  std::map<std::int32_t, MapTick> pending_;
-  std::map<std::int32_t, bool> has_tracks_;
+  struct Held {
+    MapTick tick;
+    bool tracks = false;
+    bool metrics = false;
+    bool given = false;  ///< given out already: anything more for it gives it out again
+  };
+  std::map<std::int32_t, Held> held_;
+  std::int32_t last_tracks_ = 0;
+  std::int32_t last_metrics_ = 0;
+  std::int32_t forgotten_below_ = 0;  ///< ticks below this were given out and are no longer held
   std::vector<MapTick> complete_;
-  void complete(std::int32_t tick);
+  Held& at(std::int32_t tick);
+  void settle();
 };
 
 }  // namespace wsn::launcher

@@ -5,7 +5,7 @@ when the runs have them, as a Markdown table on stdout (and bar charts with --pl
 `onera_table.py --help` says everything.
 
 A thin entry point over the package beside it (wsntrack.onera_table: python/wsntrack/ in the
-source tree, share/wsntrack/python/ when installed). Standard library only but for --plot, which
+source tree, Debian's python path when installed). Standard library only but for --plot, which
 needs matplotlib.
 """
 

@@ -4,7 +4,7 @@ of tracks K and of targets K* over time, and OSPA over time; with --animate, the
 `plot_run.py --help` says everything.
 
 A thin entry point over the package beside it (wsntrack.plots: python/wsntrack/ in the source tree,
-build/python/ in a build tree, share/wsntrack/python/ when installed). Needs Debian's
+build/python/ in a build tree, Debian's python path when installed). Needs Debian's
 python3-matplotlib and python3-yaml (PyYAML, for the run's scenario.yaml), hence /usr/bin/python3
 rather than whatever python3 is first on PATH.
 """

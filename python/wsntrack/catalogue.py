@@ -38,7 +38,7 @@ def _from_executable(executable):
         raise CatalogueError(f"{executable}: cannot run it for the catalogue ({error.strerror})") from None
     if result.returncode != 0:
         raise CatalogueError(f"{executable} components --json failed (exit {result.returncode}): "
-                             f"{result.stderr.strip() or 'no message'}; is it wsntrack 0.9 or newer?")
+                             f"{result.stderr.strip() or 'no message'}; is it a wsntrack that has `components --json`?")
     return _parsed(result.stdout, f"{executable} components --json")
 
 

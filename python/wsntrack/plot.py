@@ -55,6 +55,11 @@ def animation(run_dir, out=None, animate_format="gif", quiet=True):
 
 
 def sweep_plots(sweep_dir, out=None, plot_format="png", x=None):
-    """A finished sweep's plots again (png, svg or pdf), against the measured metric `x` if given."""
+    """A finished sweep's plots again (png, svg or pdf), against the measured metric `x` if given
+    (one the sweep tabulated); into `out` nothing is deleted, only files of the plots' names written."""
+    from .rundir import InputError
     from .sweep.results import redraw_plots
-    return redraw_plots(sweep_dir, out, plot_format, x)
+    try:
+        return redraw_plots(sweep_dir, out, plot_format, x)
+    except (InputError, ValueError) as error:
+        raise PlotError(2, str(error)) from None

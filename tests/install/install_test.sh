@@ -7,7 +7,8 @@
 #   deb      cpack -G DEB into a temporary directory; its control fields and file list; dpkg-deb -x and
 #            a short run from there (never dpkg -i)
 # The install layout comes from CMake (tests/install/CMakeLists.txt) in WSN_BINDIR, WSN_ROLE_DIR,
-# WSN_DATA_DIR, WSN_DOC_DIR, WSN_PYTHON_DIR (relative) and the version in WSN_VERSION. Exit 77: skipped.
+# WSN_DATA_DIR, WSN_DOC_DIR (relative), the package's directory under /usr and under any other prefix in
+# WSN_PYTHON_DIR_USR and WSN_PYTHON_DIR_OTHER, and the version in WSN_VERSION. Exit 77: skipped.
 set -uo pipefail
 build="$1"; src="$2"; case_name="$3"
 python=/usr/bin/python3
@@ -20,9 +21,10 @@ case "$tmp" in "$src"/* | "$build"/*) fail "$tmp is inside the source or build t
 
 have_matplotlib() { [ -x "$python" ] && "$python" -c "import matplotlib" 2>/dev/null; }
 
-# The files of an installed tree under ROOT (a prefix, or usr/ of the extracted .deb).
+# The files of an installed tree under ROOT (a prefix, or usr/ of the extracted .deb), its python
+# package in PYTHON_DIR (relative to ROOT).
 check_tree() {
-  local root="$1" name
+  local root="$1" WSN_PYTHON_DIR="$2" name
   for name in wsntrack wsntrack-network-calibrate; do
     [ -x "$root/$WSN_BINDIR/$name" ] || fail "$root/$WSN_BINDIR/$name missing or not executable"
   done
@@ -89,7 +91,7 @@ case "$case_name" in
   prefix)
     prefix="$tmp/prefix"
     cmake --install "$build" --prefix "$prefix" >"$tmp/install.log" 2>&1 || { cat "$tmp/install.log" >&2; fail "cmake --install"; }
-    check_tree "$prefix"
+    check_tree "$prefix" "$WSN_PYTHON_DIR_OTHER"
     check_run "$prefix" "$tmp/run"
     wsntrack="$prefix/$WSN_BINDIR/wsntrack"
     # Without a role executable the run stops before it starts, naming both places it looked.
@@ -116,7 +118,7 @@ assert run.ticks == 10, run.ticks
 " "$tmp/run") || fail "the installed loader cannot load the run"
     # The package itself, as analysis code imports it: its facts from the installed catalogue, with no
     # wsntrack on PATH or in WSNTRACK.
-    (cd / && env -u WSNTRACK PATH=/usr/bin:/bin PYTHONPATH="$prefix/$WSN_PYTHON_DIR" "$python" -c "
+    (cd / && env -u WSNTRACK PATH=/usr/bin:/bin PYTHONPATH="$prefix/$WSN_PYTHON_DIR_OTHER" "$python" -c "
 import sys, wsntrack.rundir, wsntrack.loader
 assert wsntrack.rundir.TARGET_CLASSES[0] == 'wheeled_light', wsntrack.rundir.TARGET_CLASSES
 run = wsntrack.loader.load_run(sys.argv[1])
@@ -154,10 +156,10 @@ assert len(run.truth) and run.settled_tracks is not None
     done
     ! grep -E "wsn_[a-z_]*(tests|bench|fixture)" "$tmp/contents" || fail "test or bench binaries in the package"
     dpkg-deb -x "$deb" "$tmp/root" || fail "dpkg-deb -x"
-    check_tree "$tmp/root/usr"
+    check_tree "$tmp/root/usr" "$WSN_PYTHON_DIR_USR"
     # Installed by dpkg, `import wsntrack` works in Debian's python3 with no PYTHONPATH.
-    "$python" -c "import sys; sys.exit(0 if sys.argv[1] in sys.path else 1)" "/usr/$WSN_PYTHON_DIR" ||
-      fail "the package's /usr/$WSN_PYTHON_DIR is not in $python's path"
+    "$python" -c "import sys; sys.exit(0 if sys.argv[1] in sys.path else 1)" "/usr/$WSN_PYTHON_DIR_USR" ||
+      fail "the package's /usr/$WSN_PYTHON_DIR_USR is not in $python's path"
     check_run "$tmp/root/usr" "$tmp/run"
     ;;
   *) fail "unknown case $case_name" ;;

@@ -30,7 +30,7 @@ common::TrackEstimate track(std::uint64_t serial, double x) {
 
 void write(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
 
-TEST_CASE("a tick is complete with its metrics, or with the next tick's tracks", "[launcher][map]") {
+TEST_CASE("a tick is given out once it has its tracks and its metrics, in either order", "[launcher][map]") {
   MapTickAssembler assembler;
   common::Observation report;
   report.x = 3.0;
@@ -44,15 +44,37 @@ TEST_CASE("a tick is complete with its metrics, or with the next tick's tracks",
   CHECK(done[0].reports.size() == 1);
   CHECK(done[0].tracks.size() == 1);
   CHECK(done[0].metrics.at("ospa") == 0.5);
-  // An aggregator without TickMetrics: tick 2 completes when tick 3's tracks come, 3 at the end.
-  assembler.onTracks(2, {});
-  assembler.onTracks(3, {track(2, 1.0)});
+  // No order holds across topics: tick 2's metrics before its tracks.
+  assembler.onMetrics(2, {{"ospa", 0.25}});
+  CHECK(assembler.takeComplete().empty());
+  assembler.onTracks(2, {track(1, 2.5), track(2, 7.0)});
   done = assembler.takeComplete();
   REQUIRE(done.size() == 1);
-  CHECK(done[0].tick == 2);
-  done = assembler.flush();
+  CHECK(done[0].tracks.size() == 2);
+  CHECK(done[0].metrics.at("ospa") == 0.25);
+}
+
+TEST_CASE("a tick still missing a topic goes out late, and again whole when the rest comes", "[launcher][map]") {
+  MapTickAssembler assembler;
+  // The tracks of ticks 1 to 4 come, and the metrics lag: tick 1 goes out with its tracks alone
+  // when the tracks are kLateTicks ahead.
+  for (std::int32_t t = 1; t <= 1 + MapTickAssembler::kLateTicks; ++t) assembler.onTracks(t, {track(1, t)});
+  auto done = assembler.takeComplete();
   REQUIRE(done.size() == 1);
-  CHECK(done[0].tick == 3);
+  CHECK(done[0].tick == 1);
+  CHECK(done[0].metrics.empty());
+  // Its metrics after all: tick 1 again, whole (the page keeps the last event of a tick).
+  assembler.onMetrics(1, {{"ospa", 1.0}});
+  done = assembler.takeComplete();
+  REQUIRE(done.size() == 1);
+  CHECK(done[0].tick == 1);
+  CHECK(done[0].tracks.size() == 1);
+  CHECK(done[0].metrics.at("ospa") == 1.0);
+  // The end of the run gives out what is held, in tick order.
+  done = assembler.flush();
+  REQUIRE(done.size() == 3);
+  CHECK(done.front().tick == 2);
+  CHECK(done.back().tick == 4);
 }
 
 TEST_CASE("a tick's JSON has its truth, reports, labelled tracks and metrics", "[launcher][map]") {
@@ -133,10 +155,11 @@ TEST_CASE("the feed streams every tick, then the state when it changes, from eac
   CHECK_FALSE(feed.next(early, std::chrono::milliseconds(0), out));
 }
 
-TEST_CASE("--http takes a port, or an address and a port, and nothing else", "[launcher][map]") {
+TEST_CASE("the map address is a port, or an address and a port, and nothing else", "[launcher][map]") {
   CHECK(parseHttpAddress("8080") == std::pair<std::string, int>{"127.0.0.1", 8080});
   CHECK(parseHttpAddress("0") == std::pair<std::string, int>{"127.0.0.1", 0});
   CHECK(parseHttpAddress("0.0.0.0:9000") == std::pair<std::string, int>{"0.0.0.0", 9000});
+  CHECK(parseHttpAddress("[::1]:8080") == std::pair<std::string, int>{"::1", 8080});
   for (const char* bad : {"", "x", "70000", "-1", ":80", "127.0.0.1:", "80x"})
     CHECK_THROWS_WITH(parseHttpAddress(bad), Catch::Contains("expected [ADDR:]PORT"));
 }

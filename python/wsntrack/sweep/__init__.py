@@ -15,18 +15,18 @@ markdown table and plots.
 import os
 
 from .. import catalogue
-from .common import REPO
+from .common import default_wsntrack
 from .spec_main import spec_main
 
 
 def _named_wsntrack(argv):
-    """The executable of --wsntrack in `argv`, else the repository's build/bin/wsntrack."""
+    """The executable of --wsntrack in `argv`, else the default (common.default_wsntrack)."""
     for i, word in enumerate(argv):
         if word == "--wsntrack" and i + 1 < len(argv):
             return argv[i + 1]
         if word.startswith("--wsntrack="):
             return word[len("--wsntrack="):]
-    return str(REPO / "build" / "bin" / "wsntrack")
+    return str(default_wsntrack())
 
 
 def main(argv):

@@ -1,14 +1,31 @@
-"""What both forms of a sweep share: seeds and grids as written on the command line, the names of
+"""What the pieces of a sweep share: seeds and grids as written on the command line, the names of
 runs, the `--set` arguments of `wsntrack run` and `wsntrack validate`, and progress wording."""
 
+import os
 import re
 import shlex
 import subprocess
 from pathlib import Path
 
-# The tree the tools belong to: the repository (python/wsntrack/sweep/ is three levels down), or an
-# installed share/wsntrack, whose sweep specs name their scenarios relative to it too.
+# The repository, when this package is its python/ (python/wsntrack/sweep/ is three levels down);
+# for a build tree's or an installed copy it is not one (no scenarios/ there), and goes unused.
 REPO = Path(__file__).resolve().parents[3]
+
+
+def default_wsntrack():
+    """The wsntrack a sweep runs unless --wsntrack names one: $WSNTRACK, else the repository's
+    build/bin/wsntrack (this package in a source tree), else the wsntrack on PATH (an installed
+    package), else the build path, which the sweep then reports as missing."""
+    import shutil
+    built = REPO / "build" / "bin" / "wsntrack"
+    for candidate in (os.environ.get("WSNTRACK"), built, shutil.which("wsntrack")):
+        if candidate and os.access(candidate, os.X_OK) and not os.path.isdir(candidate):
+            return Path(candidate)
+    return built
+
+
+# How the sweep's messages name it: the command the user typed (`wsntrack sweep` sets this), else the script.
+PROG = os.environ.get("WSNTRACK_PROG", "sweep.py")
 
 
 class UsageError(Exception):

@@ -3,7 +3,8 @@
 change a spec (--seeds, --set, --engines, --metrics, --in-process, --x) are applied to either. So
 there is one form of sweep: one parser, one scheduler, the same outputs."""
 
-import time
+import hashlib
+import json
 from pathlib import Path
 
 from .common import UsageError, parse_seeds, split_key_value
@@ -43,11 +44,15 @@ def spec_from_flags(args):
     return spec
 
 
-def default_out(args):
-    """Where a sweep goes without --out: runs/<spec name>, or for flags runs/sweep-<scenario>-<UTC time>."""
+def default_out(args, spec):
+    """Where a sweep goes without --out: runs/<spec name>, or for flags runs/sweep-<scenario>-<hash of
+    what its runs are> (scenario, grid, engines, seeds, set, in_process), so that the same flags again
+    resume the same sweep and other flags make another."""
     if args.spec is not None:
         return Path("runs") / args.spec.stem
-    return Path("runs") / f"sweep-{args.scenario.stem}-{time.strftime('%Y%m%d-%H%M%S', time.gmtime())}"
+    what = json.dumps([str(spec.scenario), [(k, v) for k, v, *_ in spec.grid], spec.engines, spec.seeds,
+                       spec.fixed, spec.in_process])
+    return Path("runs") / f"sweep-{spec.scenario.stem}-{hashlib.sha256(what.encode()).hexdigest()[:8]}"
 
 
 def check_forms(args):

@@ -6,7 +6,7 @@ components --json`): "transmission failure rate pte [per hop]", "εK (Oh eq. 9)"
 import math
 import sys
 
-from .common import safe
+from .common import PROG, safe
 from .. import catalogue
 from .metrics import metric_label, metric_sources
 from .spec import number, same_value
@@ -192,25 +192,27 @@ def _heat_maps(plt, np, directory, spec, points, cells, subtitle, plot_format):
     return written
 
 
-def draw_plots(directory, spec, points, cells, fixed_text, plot_format="png"):
+def draw_plots(directory, spec, points, cells, fixed_text, plot_format="png", own_directory=True):
     """plots/: a line plot per metric (1-D grid) or a heat map per metric and engine (2-D grid), in
-    `plot_format` (one of PLOT_FORMATS); returns the files written (none, with a note, without matplotlib)."""
+    `plot_format` (one of PLOT_FORMATS); returns the files written (none, with a note, without
+    matplotlib). In the sweep's `own_directory` the earlier files of that format go first (a metric
+    no longer tabulated leaves no stale plot); in a directory of the user's, nothing is deleted."""
     try:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         import numpy as np
     except ImportError as error:
-        print(f"sweep.py: no plots: {error} (Debian: apt-get install python3-matplotlib; run with /usr/bin/python3)",
+        print(f"{PROG}: no plots: {error} (Debian: apt-get install python3-matplotlib; run with /usr/bin/python3)",
               file=sys.stderr)
         return []
     directory.mkdir(exist_ok=True)
-    for old in [path for suffix in PLOT_FORMATS for path in directory.glob(f"*.{suffix}")]:
+    for old in directory.glob(f"*.{plot_format}") if own_directory else ():
         old.unlink()
     subtitle = (f"{spec.scenario.name}, {len(spec.seeds)} seed{'s' if len(spec.seeds) != 1 else ''} per point"
                 f"{'; ' + fixed_text if fixed_text else ''}")
     if len(spec.grid) not in (1, 2):
-        print(f"sweep: no plots for a grid of {len(spec.grid)} keys (a line plot needs 1, a heat map 2); "
+        print(f"{PROG}: no plots for a grid of {len(spec.grid)} keys (a line plot needs 1, a heat map 2); "
               "summary.csv has every number", file=sys.stderr)
         return []
     if len(spec.grid) == 1:

@@ -117,8 +117,11 @@ def _number_or_none(value):
 
 def redraw_plots(path, out=None, plot_format="png", x=None):
     """Draws the plots of the finished sweep in `path` again, from its sweep.json and summary.csv
-    (nothing is run): into `out` (default DIR/plots), in `plot_format` (png, svg or pdf), against the
-    metric `x` when given (it must be one the sweep tabulated). Returns the files written."""
+    (nothing is run): into `out` (default DIR/plots, where the earlier plots of that format are
+    replaced; in another directory only files of the same names are overwritten), in `plot_format`
+    (png, svg or pdf), against the metric `x` when given: one the sweep tabulated (a 1-D grid's;
+    `wsntrack sweep --x` measures a new one from the runs). Returns the files written; ValueError for
+    a format or x that cannot be drawn."""
     from .plots import PLOT_FORMATS, draw_plots
     from .spec import Spec
     sweep = load_sweep(path)
@@ -136,7 +139,10 @@ def redraw_plots(path, out=None, plot_format="png", x=None):
     spec.fixed = list(d.get("set", {}).items())
     spec.x = x if x is not None else d.get("x")
     if spec.x is not None and spec.x not in spec.metrics:
-        raise ValueError(f"x: the sweep did not tabulate '{spec.x}'; it has {', '.join(spec.metrics)}")
+        raise ValueError(f"x: the sweep did not tabulate '{spec.x}' (it has {', '.join(spec.metrics)}); "
+                         f"`wsntrack sweep SPEC --out {sweep.path} --x {spec.x}` reads it from the runs")
+    if spec.x is not None and len(spec.grid) != 1:
+        raise ValueError(f"x: a measured x axis needs a grid of one key; this sweep has {len(spec.grid)}")
     keys = list(sweep.grid)
     points, cells = [], {}
     for row in sweep.summary:
@@ -149,4 +155,5 @@ def redraw_plots(path, out=None, plot_format="png", x=None):
                                                                                                 "ci95_high"))
                for m in spec.metrics}}
     fixed_text = " ".join(f"{k}={v}" for k, v in spec.fixed)
-    return draw_plots(Path(out) if out else sweep.path / "plots", spec, points, cells, fixed_text, plot_format)
+    return draw_plots(Path(out) if out else sweep.path / "plots", spec, points, cells, fixed_text, plot_format,
+                      own_directory=out is None)

@@ -10,7 +10,7 @@ import signal
 import sys
 import time
 
-from .common import UsageError, duration, engine_sets, plural, scenario_engine, validate
+from .common import PROG, UsageError, duration, engine_sets, plural, scenario_engine, validate
 from .executors import outcome
 from .spec import SpecError
 from .task import RECORD, STOP_GRACE_S, metrics_of, sha256_of
@@ -108,7 +108,7 @@ def _stop_running(futures, executor, signum, handlers):
     signals are ignored until they have stopped."""
     for s in handlers:
         signal.signal(s, signal.SIG_IGN)
-    print(f"sweep.py: {signal.Signals(signum).name}: stopping {plural(len(futures), 'unfinished run')}: those in "
+    print(f"{PROG}: {signal.Signals(signum).name}: stopping {plural(len(futures), 'unfinished run')}: those in "
           "progress are sent SIGTERM, the others are not started", file=sys.stderr, flush=True)
     executor.stop()
     deadline = time.monotonic() + STOP_GRACE_S + 10

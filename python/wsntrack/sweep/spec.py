@@ -226,7 +226,9 @@ class SpecReader:
         # Beside the spec; else above it, where sweeps/ and scenarios/ sit side by side (the
         # repository, and an installed data directory); else in the repository of this package.
         above = self.path.resolve().parent.parent
-        candidates = [given] if given.is_absolute() else [self.path.parent / given, above / given, REPO / given]
+        repository = REPO if (REPO / "scenarios").is_dir() else None
+        candidates = [given] if given.is_absolute() else \
+            [self.path.parent / given, above / given] + ([repository / given] if repository else [])
         for candidate in candidates:
             try:
                 if candidate.is_file():
@@ -235,8 +237,8 @@ class SpecReader:
                 self.fail(node, f"scenario: no file {text} ({error.strerror})")
         self.fail(node, f"scenario: no file {text} " +
                   ("" if given.is_absolute() else
-                   f"beside the spec (in {self.path.parent.resolve()}), above it (in {above}) or in the "
-                   f"repository ({REPO})"))
+                   f"beside the spec (in {self.path.parent.resolve()}), above it (in {above})" +
+                   (f" or in the repository ({repository})" if repository else "")))
 
     def grid(self, spec, key_node, node):
         entries = self.items(node, "grid")

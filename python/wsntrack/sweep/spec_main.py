@@ -11,7 +11,7 @@ import shlex
 import sys
 from pathlib import Path
 
-from .common import REPO, UsageError, make_runs, plural, run_command, seeds_text, short_names
+from .common import PROG, UsageError, default_wsntrack, make_runs, plural, run_command, seeds_text, short_names
 from .plots import PLOT_FORMATS, draw_plots
 from .executors import DaskExecutor, LocalExecutor, require_distributed
 from .runner import check_with_wsntrack, reusable, run_spec_runs
@@ -57,16 +57,17 @@ Each run is `wsntrack run SCENARIO --seed S --out DIR/runs/NAME --overwrite --qu
 with absolute paths; -j runs at a time (default: the number of cores), or on a Dask cluster with
 --scheduler (below), with progress, failures and an ETA on stderr. A run that lost its DDS ports
 to a cluster started at the same moment (Cyclone's "failed to create unicast sockets") is started
-again, up to 3 times. A finished run leaves
+again (3 attempts in all). A finished run leaves
 DIR/runs/NAME/sweep_run.json: its command, the scenario file's SHA-256 and the SHA-256 of its
 metrics.json. Run again with the same DIR, the sweep skips
 every run whose record matches the run it would start and whose metrics.json is complete and
 unchanged, and runs the others: a sweep stopped with Ctrl-C or SIGTERM (each running wsntrack is
 sent SIGTERM by its PID, then SIGKILL after 20 s) resumes where it stopped, a failed run is run
-again. When the spec (or --seeds, --set, --wsntrack, or the scenario file's contents) changed
-since DIR was made, the sweep says what differs and stops, unless --force: then the runs whose
-command did not change are kept and the others are run. A changed title, notes, metrics or
-reference only changes the tables and plots.
+again. When what the runs are changed since DIR was made (the scenario file or its contents,
+grid, engines, seeds, set, in_process or the wsntrack executable's path, from the spec or from
+--seeds, --set, --engines, --in-process or --wsntrack), the sweep says what differs and stops,
+unless --force: then the runs whose command did not change are kept and the others are run. A
+changed title, notes, metrics, x or reference only changes the tables and plots.
 
 Outputs in DIR:
   results.csv   one row per run: engine, the grid keys, seed, status (ok, failed, interrupted,
@@ -171,8 +172,9 @@ def parse_spec_args(argv):
     flags.add_argument("--set-grid", action="append", default=[], metavar="KEY=V1,V2,...",
                        help="a swept key and its values (repeatable: the grid is the product of them)")
     parser.add_argument("--out", type=Path, default=None,
-                        help="sweep directory (default: runs/<spec name>, runs/sweep-<scenario>-<UTC time> for "
-                        "flags); the same DIR again resumes the sweep")
+                        help="sweep directory (default: runs/<spec name>; for flags runs/sweep-<scenario>-<hash of the "
+                        "grid, engines, seeds and set>, the same for the same flags); the same DIR again resumes "
+                        "the sweep")
     parser.add_argument("-j", "--jobs", type=int, default=None,
                         help="runs at a time (default: the number of cores, here %d)" % (os.cpu_count() or 1))
     parser.add_argument("--scheduler", default=None, metavar="ADDRESS",
@@ -190,7 +192,7 @@ def parse_spec_args(argv):
                         help="instead of the spec's metrics (default eps_k,eps_x_gated,ospa); every name of "
                         "`wsntrack components --json`'s quantities, settled_NAME, and the report counts")
     parser.add_argument("--in-process", action="store_true", help="wsntrack run --in-process, as the spec's in_process")
-    parser.add_argument("--wsntrack", type=Path, default=REPO / "build" / "bin" / "wsntrack",
+    parser.add_argument("--wsntrack", type=Path, default=default_wsntrack(),
                         help="the wsntrack executable (default: the wsntrack that `wsntrack sweep` was started as)")
     parser.add_argument("--x", default=None, metavar="METRIC",
                         help="plot each metric against METRIC, measured per run (the mean per grid point), instead "
@@ -241,12 +243,12 @@ def _compare_with_earlier(out, description, force):
                          "\nnothing run: choose another --out, or --force to go on here (runs whose command "
                          "did not change are kept, the others are run)")
     if changed:
-        print("sweep.py: --force: going on in a directory of a different sweep:\n" + "\n".join(changed),
+        print(f"{PROG}: --force: going on in a directory of a different sweep:\n" + "\n".join(changed),
               file=sys.stderr)
     elif earlier.get("form") == "spec":
         presentation = differences(earlier, description, PRESENTATION_FIELDS)
         if presentation:
-            print("sweep.py: tables and plots follow the changed spec:\n" + "\n".join(presentation),
+            print(f"{PROG}: tables and plots follow the changed spec:\n" + "\n".join(presentation),
                   file=sys.stderr)
 
 
@@ -258,7 +260,7 @@ def _prepare(args):
     if not os.access(wsntrack, os.X_OK):
         raise UsageError(f"--wsntrack: {args.wsntrack} is not an executable (build first: cmake --build build)")
     warnings = check_with_wsntrack(spec, wsntrack)
-    out = args.out or default_out(args)
+    out = args.out or default_out(args, spec)
     if out.exists() and not out.is_dir():
         raise UsageError(f"--out: {out} is not a directory")
     out = out.resolve()
@@ -282,17 +284,17 @@ def _write_outputs(out, spec, points, names, runs, stopped, plot_format):
     sys.stdout.flush()
     if stopped:
         unfinished = sum(r.status in ("interrupted", "not run") for r in runs)
-        print(f"sweep.py: stopped; {unfinished} of {len(runs)} runs unfinished. Run the same command again to "
+        print(f"{PROG}: stopped; {unfinished} of {len(runs)} runs unfinished. Run the same command again to "
               f"resume: finished runs are kept. Results so far: {out / 'results.csv'}", file=sys.stderr)
         return 128 + stopped
     plots = draw_plots(out / "plots", spec, points, cells, fixed_text, plot_format)
     failed = [r for r in runs if r.status == "failed"]
     if failed:
-        print(f"sweep.py: {len(failed)} of {len(runs)} runs failed (not counted in summary.csv; run the same "
+        print(f"{PROG}: {len(failed)} of {len(runs)} runs failed (not counted in summary.csv; run the same "
               "command again to retry them):", file=sys.stderr)
         for run in failed:
             print(f"  {run.label}: {run.reason or f'exit {run.exit_code}'}, log {run.log}", file=sys.stderr)
-    print(f"sweep.py: {out / 'results.csv'}, {out / 'summary.csv'}"
+    print(f"{PROG}: {out / 'results.csv'}, {out / 'summary.csv'}"
           f"{f', {len(plots)} plots in ' + str(out / 'plots') if plots else ''}", file=sys.stderr)
     return 1 if failed else 0
 
@@ -318,7 +320,7 @@ def _sweep(argv, spec, wsntrack, out, scenario_sha, description, executor, plot_
     (out / "sweep.json").write_text(json.dumps(description, indent=2, ensure_ascii=False) + "\n", encoding="utf-8")
 
     to_run = [run for run in runs if not reusable(run, scenario_sha, spec.metrics)]
-    print(f"sweep.py: {plural(len(runs), 'run')} ({plural(len(points), 'grid point')} x "
+    print(f"{PROG}: {plural(len(runs), 'run')} ({plural(len(points), 'grid point')} x "
           f"{plural(len(spec.engines), 'engine')} x {plural(len(spec.seeds), 'seed')}) into {out}: "
           f"{len(runs) - len(to_run)} complete from an earlier invocation, " +
           (f"{len(to_run)} to run, {executor.where(len(to_run))}" if to_run else "nothing to run"),
@@ -337,7 +339,7 @@ def spec_main(argv):
             print(warning, file=sys.stderr)
         executor = _executor(args, spec, wsntrack, out)
     except (UsageError, SpecError) as error:
-        print(f"sweep.py: {error}" if isinstance(error, UsageError) else str(error), file=sys.stderr)
+        print(f"{PROG}: {error}" if isinstance(error, UsageError) else str(error), file=sys.stderr)
         return 2
     try:
         return _sweep(argv, spec, wsntrack, out, scenario_sha, description, executor, args.plot_format)
