@@ -16,7 +16,7 @@ constexpr const char* kRunUsage =
     "                    [--set KEY=VALUE]... [--in-process] [--timeout S] [--stall-timeout S]\n"
     "                    [--tick-interval S] [--hosts FILE] [--security on|off]\n"
     "                    [--keep-credentials]\n"
-    "                    [--quiet] [--no-plot] [--plot-format png|svg]\n\n"
+    "                    [--quiet] [--no-plot] [--plot-format png|svg|pdf]\n\n"
     "Starts every process of the cluster on this host — sensor-node tiles, the network\n"
     "model, one supernode per tracking group and the aggregator — over Cyclone DDS on\n"
     "loopback (or, with --hosts, over the hosts a file lists, by unicast between their\n"
@@ -68,7 +68,7 @@ po::options_description runOptions(RunArguments& a) {
       "real-time pacing: at most one tick per this many seconds, to follow with 'wsntrack watch' "
       "(0: as fast as possible; outputs are the same either way)")(
       "quiet,q", "no progress display")("no-plot", "do not draw the plots (tools/plot_run.py) after the run")(
-      "plot-format", po::value(&a.plot_format)->default_value("png"), "format of the plots: png or svg")(
+      "plot-format", po::value(&a.plot_format)->default_value("png"), "format of the plots: png, svg or pdf")(
       "scenario", po::value(&a.scenario_path), "scenario file");
   return options;
 }
@@ -127,7 +127,8 @@ std::optional<std::string> checkRunOptions(const RunArguments& a) {
     }
   if (!a.hosts_file.empty() && a.in_process)
     return "--hosts spreads the run's processes over hosts; --in-process keeps them in one: give one of them";
-  if (a.plot_format != "png" && a.plot_format != "svg") return "--plot-format must be png or svg, got '" + a.plot_format + "'";
+  if (a.plot_format != "png" && a.plot_format != "svg" && a.plot_format != "pdf")
+    return "--plot-format must be png, svg or pdf, got '" + a.plot_format + "'";
   const double interval = a.tick_interval_s;
   if (!std::isfinite(interval) || interval < 0 || interval > 3600 || interval >= a.stall_timeout_s) {
     why << "--tick-interval must be in [0, 3600] seconds and below --stall-timeout, got " << interval;

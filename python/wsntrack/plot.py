@@ -39,7 +39,7 @@ def _run_tool(argv):
 
 
 def run_plots(run_dir, out=None, image_format="png"):
-    """The plots of a finished run (png or svg) into `out` (default RUN_DIR/plots); their paths."""
+    """The plots of a finished run (png, svg or pdf) into `out` (default RUN_DIR/plots); their paths."""
     directory = Path(out) if out else Path(run_dir) / "plots"
     _run_tool([str(run_dir), "--format", image_format] + (["--out", str(out)] if out else []))
     return sorted(directory.glob(f"*.{image_format}"))

@@ -114,7 +114,8 @@ TEST_CASE("options that are not scenario values are checked on their own", "[lau
   CHECK_FALSE(checkRunOptions(parsed({})));
   CHECK(checkRunOptions(parsed({"--timeout", "0"})) == "--timeout must be in (0, 604800] seconds, got 0");
   CHECK(checkRunOptions(parsed({"--stall-timeout", "nan"})) == "--stall-timeout must be in (0, 604800] seconds, got nan");
-  CHECK(checkRunOptions(parsed({"--plot-format", "pdf"})) == "--plot-format must be png or svg, got 'pdf'");
+  CHECK(checkRunOptions(parsed({"--plot-format", "jpg"})) == "--plot-format must be png, svg or pdf, got 'jpg'");
+  CHECK_FALSE(checkRunOptions(parsed({"--plot-format", "pdf"})).has_value());
   // Pacing must stay below the stall timeout, or every role would give up between two ticks.
   CHECK(checkRunOptions(parsed({"--tick-interval", "60"})) ==
         "--tick-interval must be in [0, 3600] seconds and below --stall-timeout, got 60");

@@ -362,9 +362,13 @@ EOF
 
     run_ok svg --seed 4 --plot-format svg
     for name in tracks cardinality ospa; do is_svg "svg/plots/$name.svg" || fail "svg/plots/$name.svg is not SVG"; done
+    run_ok pdf --seed 4 --plot-format pdf
+    for name in tracks cardinality ospa; do
+      [ "$(head -c 5 "pdf/plots/$name.pdf")" = "%PDF-" ] || fail "pdf/plots/$name.pdf is not PDF"
+    done
 
     run bad --plot-format gif && fail "--plot-format gif accepted"
-    grep -q "plot-format must be png or svg" bad.stderr || { cat bad.stderr >&2; fail "--plot-format message"; }
+    grep -q "plot-format must be png, svg or pdf" bad.stderr || { cat bad.stderr >&2; fail "--plot-format message"; }
     [ -e bad ] && fail "a bad --plot-format created a run directory"
 
     # A random layout: sensors.csv holds every sensor, and the plot draws them.

@@ -88,7 +88,7 @@ def _parser():
     parser = argparse.ArgumentParser(prog="plot_run.py", description=DESCRIPTION,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("run_dir", metavar="RUN_DIR", help="a run directory written by 'wsntrack run'")
-    parser.add_argument("--format", choices=("png", "svg"), help="image format of the plots (default png)")
+    parser.add_argument("--format", choices=("png", "svg", "pdf"), help="image format of the plots (default png)")
     parser.add_argument("--out", metavar="PATH",
                         help="where the plots go (a directory, default RUN_DIR/plots); with --animate a file "
                              "ending in .gif, .mp4 or .html, or a directory for replay.FORMAT (default "
