@@ -57,8 +57,11 @@ int main(int argc, char** argv) {
     const auto claims = parseClaims(argc == 8 ? argv[7] : "FAILED:1");
     const dds::Participant participant(domain);
     const dds::Topic<wsn_msg_ProcessStatus> status_topic(participant, dds::topic_names::kProcessStatus);
-    // A role's QoS and role marker: as like a real role's status writer as a stranger can make it.
-    dds::Writer<wsn_msg_ProcessStatus> writer(participant, status_topic, dds::Qos::lastValueTransientLocal());
+    // A role's QoS and role marker: as like a real role's status writer as a stranger can make it,
+    // but keeping every claim it wrote for late joiners, not each process's last: the launcher's
+    // reader may match after the first claim was written (a role's matched first; CI under ASan
+    // once counted 6 of 7 so), and the test counts every claim the launcher refused.
+    dds::Writer<wsn_msg_ProcessStatus> writer(participant, status_topic, dds::Qos::lastValueTransientLocal().keepingAll());
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(wait_s);
     while (writer.matchedReaders() < 1) {
       if (std::chrono::steady_clock::now() > deadline)
