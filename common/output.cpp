@@ -70,4 +70,15 @@ void writeTextFile(const std::string& path, const std::string& text) {
     throw std::runtime_error(path + ": rename failed (" + std::strerror(errno) + ")");
 }
 
+std::vector<std::string> splitCsvLine(const std::string& line) {
+  std::vector<std::string> fields;
+  std::string::size_type start = 0;
+  while (true) {
+    const auto comma = line.find(',', start);
+    fields.push_back(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) return fields;
+    start = comma + 1;
+  }
+}
+
 }  // namespace wsn::common

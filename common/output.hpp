@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace wsn::common {
 
@@ -28,6 +29,10 @@ class CsvFile {
   std::string path_;
   std::FILE* file_ = nullptr;
 };
+
+/// The fields of one line of the run's CSV files (a header or a row: no quoting, no commas in a
+/// field, as CsvFile writes them); an empty line is one empty field.
+std::vector<std::string> splitCsvLine(const std::string& line);
 
 /// Writes `text` to `path` via a temporary file and rename, so readers never see half a file.
 void writeTextFile(const std::string& path, const std::string& text);

@@ -9,8 +9,10 @@
 #include "aggregator/association.hpp"
 #include "aggregator/metric/metric.hpp"
 #include "aggregator/run_files.hpp"
+#include "aggregator/run_scorer.hpp"
 #include "common/config/field_table.hpp"
 #include "common/measurement.hpp"
+#include "common/output.hpp"
 #include "common/scenario_schema.hpp"
 #include "common/track_id.hpp"
 #include "common/version.hpp"
@@ -27,17 +29,6 @@ using Json = nlohmann::ordered_json;
 
 /// The catalogue's layout; raised when a key changes meaning or goes away (readers check it).
 constexpr int kCatalogueVersion = 1;
-
-std::vector<std::string> splitCsv(const std::string& header) {
-  std::vector<std::string> names;
-  std::string::size_type start = 0;
-  for (auto comma = header.find(','); ; comma = header.find(',', start)) {
-    names.push_back(header.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  return names;
-}
 
 /// A figure's label for a scenario key, from its doc's first clause: the clause and the key
 /// ("transmission failure rate pte"), a long clause alone, the key and a symbol ("window_size (ws)"),
@@ -137,39 +128,25 @@ Json metricsJson() {
   return out;
 }
 
-/// network.json's numbers a sweep can tabulate or put on an axis (network_model/run_files.cpp).
+/// network.json's numbers a sweep can tabulate or put on an axis, as the network model lists them.
 Json networkQuantitiesJson() {
-  const auto q = [](const char* name, const char* title, const char* label, const char* key, const char* meaning) {
-    return Json{{"name", name}, {"title", title}, {"label", label}, {"unit", ""},
-                {"path", {key}},  {"defined", Json::array()}, {"meaning", meaning}};
-  };
-  return Json::array({
-      q("reports", "reports", "reports sent", "sent", "reports the sensors sent towards a supernode"),
-      q("reports_lost", "reports lost", "reports lost", "lost", "reports lost on a hop (pte)"),
-      q("reports_unreachable", "unreachable", "reports unreachable", "unreachable",
-        "reports with no route to their supernode"),
-      q("reports_delayed", "received delayed", "reports received delayed", "delayed",
-        "reports delivered one tick or more late (pde)"),
-      q("delivery_ratio", "delivery ratio", "end-to-end delivery ratio", "delivered_to_total",
-        "reports delivered to a supernode within the run over reports sent"),
-      q("loss_ratio", "loss ratio", "end-to-end loss ratio", "lost_to_total",
-        "reports lost or unreachable over reports sent"),
-      q("mean_hops", "mean hops", "mean hops to the supernode", "mean_hops", "mean route length of the reports, in hops"),
-  });
+  Json out = Json::array();
+  for (const auto& q : network_model::networkQuantities())
+    out.push_back(Json{{"name", q.name}, {"title", q.title}, {"label", q.label}, {"unit", ""},
+                       {"path", {q.key}}, {"defined", Json::array()}, {"meaning", q.meaning}});
+  return out;
 }
 
 Json runFilesJson() {
-  std::vector<std::string> per_tick{"tick"};
-  const common::MetricsConfig defaults;
-  for (const auto& metric : aggregator::metricRegistry())
-    for (const auto& c : metric.create(defaults, {})->columns()) per_tick.push_back(c.name);
-  return Json{{"truth.csv", splitCsv(kTruthCsvHeader)},
-              {"sensors.csv", splitCsv(kSensorsCsvHeader)},
-              {"observations.csv", splitCsv(network_model::kObservationsHeader)},
-              {"tracks_supernode.csv", splitCsv(aggregator::supernodeTracksCsvHeader())},
-              {"tracks.csv", splitCsv(aggregator::globalTracksCsvHeader())},
-              {"tracks_settled.csv", splitCsv(aggregator::globalTracksCsvHeader())},
-              {"metrics_per_tick.csv", per_tick}};
+  // metrics_per_tick.csv's header is the scorer's, as the aggregator writes it.
+  const std::string per_tick = aggregator::RunScorer(aggregator::kLiveStream, common::MetricsConfig{}, {}).csvHeader();
+  return Json{{"truth.csv", common::splitCsvLine(kTruthCsvHeader)},
+              {"sensors.csv", common::splitCsvLine(kSensorsCsvHeader)},
+              {"observations.csv", common::splitCsvLine(network_model::kObservationsHeader)},
+              {"tracks_supernode.csv", common::splitCsvLine(aggregator::supernodeTracksCsvHeader())},
+              {"tracks.csv", common::splitCsvLine(aggregator::globalTracksCsvHeader())},
+              {"tracks_settled.csv", common::splitCsvLine(aggregator::globalTracksCsvHeader())},
+              {"metrics_per_tick.csv", common::splitCsvLine(per_tick)}};
 }
 
 Json trackIdJson() {

@@ -57,11 +57,6 @@ void MapFeed::close() {
   changed_.notify_all();
 }
 
-std::size_t MapFeed::ticks() const {
-  const std::lock_guard lock(mutex_);
-  return ticks_.size();
-}
-
 std::pair<std::string, int> parseHttpAddress(const std::string& text) {
   const auto colon = text.rfind(':');
   std::string address = colon == std::string::npos ? "127.0.0.1" : text.substr(0, colon);

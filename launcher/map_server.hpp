@@ -37,7 +37,6 @@ class MapFeed {
   bool next(Cursor& cursor, std::chrono::milliseconds wait, std::string& out);
   /// Ends every stream (the server stops).
   void close();
-  std::size_t ticks() const;
 
  private:
   mutable std::mutex mutex_;

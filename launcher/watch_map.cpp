@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/output.hpp"
 #include "common/sensor_layout.hpp"
 #include "common/track_id.hpp"
 #include "scenario/loader.hpp"
@@ -19,17 +20,6 @@ using Json = nlohmann::ordered_json;
 /// A finite number for JSON (NaN and infinities have no JSON form): null otherwise.
 Json number(double value) { return std::isfinite(value) ? Json(value) : Json(nullptr); }
 
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> cells;
-  std::string::size_type start = 0;
-  while (true) {
-    const auto comma = line.find(',', start);
-    cells.push_back(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
-    if (comma == std::string::npos) return cells;
-    start = comma + 1;
-  }
-}
-
 /// A CSV file of the run directory read row by row, its columns found by name.
 class CsvRows {
  public:
@@ -37,7 +27,7 @@ class CsvRows {
     if (!in_) throw std::runtime_error(path + ": cannot read it");
     std::string header;
     if (!std::getline(in_, header)) throw std::runtime_error(path + ":1: expected a header, got an empty file");
-    header_ = split(header);
+    header_ = common::splitCsvLine(header);
   }
 
   /// The position of column `name`; throws naming the file when the header lacks it.
@@ -53,7 +43,7 @@ class CsvRows {
     while (std::getline(in_, line)) {
       ++line_;
       if (line.empty()) continue;
-      cells = split(line);
+      cells = common::splitCsvLine(line);
       if (cells.size() != header_.size())
         throw std::runtime_error(where() + ": expected " + std::to_string(header_.size()) + " fields, got " +
                                  std::to_string(cells.size()));
@@ -209,37 +199,33 @@ std::vector<MapTick> readFinishedTicks(const std::string& run_dir) {
   return out;
 }
 
-MapTickAssembler::Held& MapTickAssembler::at(std::int32_t tick) {
+void MapTickAssembler::received(std::int32_t tick, const std::function<void(Held&)>& add) {
+  if (tick < forgotten_below_) return;
   auto& held = held_[tick];
   held.tick.tick = tick;
-  return held;
+  add(held);
+  if (held.given) complete_.push_back(held.tick);
+  settle();
 }
 
 void MapTickAssembler::onDeliveries(std::int32_t tick, std::vector<common::Observation> reports) {
-  if (tick < forgotten_below_) return;
-  auto& held = at(tick);
-  held.tick.reports.insert(held.tick.reports.end(), reports.begin(), reports.end());
-  if (held.given) complete_.push_back(held.tick);
+  received(tick, [&](Held& held) { held.tick.reports.insert(held.tick.reports.end(), reports.begin(), reports.end()); });
 }
 
 void MapTickAssembler::onTracks(std::int32_t tick, std::vector<common::TrackEstimate> tracks) {
-  if (tick < forgotten_below_) return;
-  auto& held = at(tick);
-  held.tick.tracks = std::move(tracks);
-  held.tracks = true;
   last_tracks_ = std::max(last_tracks_, tick);
-  if (held.given) complete_.push_back(held.tick);
-  settle();
+  received(tick, [&](Held& held) {
+    held.tick.tracks = std::move(tracks);
+    held.tracks = true;
+  });
 }
 
 void MapTickAssembler::onMetrics(std::int32_t tick, std::map<std::string, double> metrics) {
-  if (tick < forgotten_below_) return;
-  auto& held = at(tick);
-  held.tick.metrics = std::move(metrics);
-  held.metrics = true;
   last_metrics_ = std::max(last_metrics_, tick);
-  if (held.given) complete_.push_back(held.tick);
-  settle();
+  received(tick, [&](Held& held) {
+    held.tick.metrics = std::move(metrics);
+    held.metrics = true;
+  });
 }
 
 void MapTickAssembler::settle() {

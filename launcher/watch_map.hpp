@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -78,7 +79,9 @@ class MapTickAssembler {
   std::int32_t last_metrics_ = 0;
   std::int32_t forgotten_below_ = 0;  ///< ticks below this were given out and are no longer held
   std::vector<MapTick> complete_;
-  Held& at(std::int32_t tick);
+  /// Applies `add` to the tick's held data (nothing for a forgotten tick), gives the tick out again
+  /// when it was already, and gives out what is complete now.
+  void received(std::int32_t tick, const std::function<void(Held&)>& add);
   void settle();
 };
 

@@ -67,6 +67,23 @@ NetworkReport networkReport(const Topology& topology, const Router& router) {
   return report;
 }
 
+const std::vector<NetworkQuantity>& networkQuantities() {
+  static const std::vector<NetworkQuantity> quantities{
+      {"reports", "reports", "reports sent", "sent", "reports the sensors sent towards a supernode"},
+      {"reports_lost", "reports lost", "reports lost", "lost", "reports lost on a hop (pte)"},
+      {"reports_unreachable", "unreachable", "reports unreachable", "unreachable",
+       "reports with no route to their supernode"},
+      {"reports_delayed", "received delayed", "reports received delayed", "delayed",
+       "reports delivered one tick or more late (pde)"},
+      {"delivery_ratio", "delivery ratio", "end-to-end delivery ratio", "delivered_to_total",
+       "reports delivered to a supernode within the run over reports sent"},
+      {"loss_ratio", "loss ratio", "end-to-end loss ratio", "lost_to_total",
+       "reports lost or unreachable over reports sent"},
+      {"mean_hops", "mean hops", "mean hops to the supernode", "mean_hops", "mean route length of the reports, in hops"},
+  };
+  return quantities;
+}
+
 std::string networkJson(const NetworkReport& report) {
   const auto& c = report.total;
   // A report is "received" when it is not lost, as in Oh §VII-E; one due after the last tick is

@@ -45,6 +45,17 @@ inline constexpr const char* kDeadSupernodeFate = "dead_supernode";
 /// Every fate an observations.csv row can have (observationRow), for the catalogue.
 inline constexpr const char* kObservationFates[] = {"delivered", "lost", "unreachable", "after_end", kDeadSupernodeFate};
 
+/// A number of network.json that sweeps tabulate and plot (`wsntrack components --json` lists them).
+struct NetworkQuantity {
+  const char* name;     ///< a sweep's metric name
+  const char* title;    ///< its column title in a sweep's tables
+  const char* label;    ///< a figure's axis label
+  const char* key;      ///< its key in network.json
+  const char* meaning;
+};
+/// The quantities of networkJson() worth a sweep's table or axis, in the catalogue's order.
+const std::vector<NetworkQuantity>& networkQuantities();
+
 /// network.json: the report, its loss and delay ratios as Oh §VII-E counts them, and the paper's
 /// §VII-E counts as a reference named after the scenario they belong to (the paper's own example).
 std::string networkJson(const NetworkReport& report);

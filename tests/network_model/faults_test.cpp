@@ -337,6 +337,11 @@ TEST_CASE("network.json has the fault counts only for a run with faults", "[netw
   // The end-to-end delivery ratio: delivered within the run over sent, (45 + 33) / 100.
   CHECK(json.at("delivered_to_total").get<double>() == Approx(0.78).margin(1e-12));
   CHECK(plain.at("delivered_to_total").get<double>() == Approx(0.78).margin(1e-12));
+  // Every quantity the catalogue offers sweeps is a number network.json has.
+  for (const auto& q : nm::networkQuantities()) {
+    INFO(q.key);
+    CHECK(plain.at(q.key).is_number());
+  }
   REQUIRE(json.at("rehomes").size() == 1);
   const auto& rehome = json.at("rehomes")[0];
   CHECK(rehome.at("supernode") == 1);

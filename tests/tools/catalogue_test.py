@@ -107,6 +107,21 @@ class Catalogue(unittest.TestCase):
         self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
         self.assertIn("tracks.csv: the run's header", result.stdout)
 
+    def test_a_bad_catalogue_is_named_with_what_is_wrong(self):
+        code = ("import sys; sys.path.insert(0, sys.argv[1]); from wsntrack import catalogue\n"
+                "try:\n    catalogue.load()\nexcept catalogue.CatalogueError as error:\n    print(error)")
+        for text, expected in (('{"catalogue_version": 1,\n  "metrics": [', ":2: malformed catalogue"),
+                               ('{"catalogue_version": 99}', "expected a wsntrack catalogue of version 1, got version 99")):
+            path = WORK / "bad_catalogue.json"
+            path.write_text(text, encoding="utf-8")
+            result = subprocess.run([sys.executable, "-B", "-c", code, str(SOURCE / "python")], capture_output=True,
+                                    text=True, timeout=60, env=dict(os.environ, WSNTRACK_CATALOGUE=str(path)))
+            self.assertIn(f"{path}{expected}" if expected.startswith(":") else expected, result.stdout, result.stderr)
+        # An executable that is not wsntrack: its failure, named.
+        result = subprocess.run([sys.executable, "-B", "-c", code.replace("catalogue.load()", "catalogue.load('/bin/false')"),
+                                 str(SOURCE / "python")], capture_output=True, text=True, timeout=60)
+        self.assertIn("/bin/false components --json failed (exit 1)", result.stdout, result.stderr)
+
     def test_negative_control_a_class_added(self):
         result = self.changed(lambda c: c["target_classes"].append("submarine"))
         self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
@@ -125,4 +140,4 @@ if __name__ == "__main__":
     WORK.mkdir(parents=True, exist_ok=True)
     cases = unittest.defaultTestLoader.loadTestsFromTestCase(Catalogue)
     result = unittest.TextTestRunner(verbosity=2).run(cases)
-    sys.exit(0 if result.wasSuccessful() and result.testsRun == 4 else 1)
+    sys.exit(0 if result.wasSuccessful() and result.testsRun == 5 else 1)
