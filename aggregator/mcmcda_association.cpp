@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <utility>
 
-#include "common/class_evidence.hpp"
+#include "aggregator/track_fusion.hpp"
 #include "common/shared_derivations.hpp"
 
 namespace wsn::aggregator {
@@ -12,19 +13,65 @@ namespace {
 
 using supernode::mcmcda::McmcdaEngine;
 
+/// The supernode tracks each engine view holds now, by view index, in id order. Each reported
+/// supernode track belongs to the view that holds its newest element: the state it publishes is the
+/// target's since that element, and the chain may have given its older elements to another view
+/// when it re-decided a supernode's identities.
+std::map<std::size_t, std::vector<const common::TrackEstimate*>> tracksNow(
+    const std::vector<McmcdaEngine::LiveTrackView>& views,
+    const std::map<common::TrackId, const common::TrackEstimate*>& reported,
+    const std::map<common::SensorId, common::TrackId>& source_of) {
+  std::map<common::TrackId, std::pair<std::int32_t, std::size_t>> newest;  // source -> (tick, view)
+  for (std::size_t v = 0; v < views.size(); ++v)
+    for (const auto& key : views[v].observations)
+      if (const auto source = source_of.find(key.sensor);
+          source != source_of.end() && reported.contains(source->second)) {
+        const auto [it, inserted] = newest.try_emplace(source->second, key.tick, v);
+        if (!inserted && key.tick > it->second.first) it->second = {key.tick, v};
+      }
+  // A view's tracks now: the one whose element is the newest (the smaller id on a tie) and those
+  // whose estimates now pass the track-to-track test against it (aggregator/track_fusion.hpp); one
+  // that fails is another target the chain linked over a long gap, and is passed through as its
+  // supernode reports it. A supernode's two tracks of one target (its chain broke the track under
+  // delays) fuse like two supernodes' tracks.
+  std::map<std::size_t, std::vector<std::pair<std::int32_t, common::TrackId>>> candidates;  // view -> (tick, id)
+  for (const auto& [source, where] : newest) candidates[where.second].emplace_back(where.first, source);
+  std::map<std::size_t, std::vector<const common::TrackEstimate*>> members;  // view -> its tracks now, id order
+  for (auto& [view, found] : candidates) {
+    std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    const common::TrackEstimate* primary = reported.at(found.front().second);
+    auto& kept = members[view];
+    for (const auto& [element_tick, source] : found)
+      if (const auto* track = reported.at(source); track == primary || sameTarget(*primary, *track))
+        kept.push_back(track);
+    std::sort(kept.begin(), kept.end(), [](const auto* a, const auto* b) { return a->track < b->track; });
+  }
+  return members;
+}
+
 }  // namespace
 
 supernode::mcmcda::McmcdaParams trackLevelEngineDefaults() {
   supernode::mcmcda::McmcdaParams p;
-  // A supernode reports a track only once it holds confirm_observations (3) reports; the
-  // aggregator's elements are already those established tracks, so two of them suffice, and a
-  // third would only delay every global track by another tick.
+  // A supernode reports a track only once it holds confirm_observations reports; the aggregator's
+  // elements are already those established tracks, so two of them suffice, and a third would only
+  // delay every global track by another tick.
   p.confirm_observations = 2;
-  // A false element is a supernode track confirmed on clutter, far rarer than a false report
-  // (lambda_f = 6e-4 at the supernodes). On oh_quadrants, seeds 1-5, mean epsilon_K is flat in it:
-  // 0.1355 / 0.1325 / 0.1355 at 1e-4 / 1e-5 / 1e-6.
-  p.model.false_alarm_density = 1e-5;
   return p;
+}
+
+std::map<std::string, common::ParamDerivation> trackLevelDerivations() {
+  // An element is a supernode track at a tick its target was observed, so the model of eq. (3) over
+  // Yc is the supernodes' own: it is observed when a report of it reached its supernode (the same
+  // pd, by lag, and max_gap), its position errs by at most a report's error (a filtered position
+  // errs less), every false element is a false report a supernode confirmed (the supernodes'
+  // delivered false-report density bounds theirs), and targets are born, move and end as there.
+  auto derivations = supernode::mcmcda::paramDerivations();
+  // Not of the elements: they are already confirmed tracks (above), and one target gives one
+  // element per supernode track and tick, with nothing to merge.
+  derivations.erase("confirm_observations");
+  derivations.erase("merge_radius");
+  return derivations;
 }
 
 const common::config::FieldTable<McmcdaAssociationParams>& mcmcdaAssociationParamTable() {
@@ -46,13 +93,8 @@ AssociationSpec mcmcdaAssociationSpec() {
   spec.description =
       "track-level MCMCDA (Oh et al. §VI): the supernodes' tracks at the ticks they were observed form Yc, "
       "a sliding-window MCMCDA over the whole region links them into global tracks";
-  // The targets' model follows the scenario as at the supernodes; the rest describes supernode
-  // tracks rather than reports, and keeps the defaults above (docs/AGGREGATION.md).
-  spec.params = common::paramSpecs(mcmcdaAssociationParamTable(),
-                                   {{"initial_velocity_sigma", common::newTrackVelocityDerivation()},
-                                    {"max_speed", common::linkSpeedDerivation()},
-                                    {"termination_probability", common::terminationDerivation()},
-                                    {"birth_density", common::birthDensityDerivation()}});
+  // The model follows the scenario as at the supernodes (docs/AGGREGATION.md).
+  spec.params = common::paramSpecs(mcmcdaAssociationParamTable(), trackLevelDerivations());
   spec.create = [](const AssociationContext& context) -> std::unique_ptr<TrackAssociator> {
     return std::make_unique<McmcdaAssociator>(context);
   };
@@ -84,8 +126,7 @@ McmcdaAssociator::McmcdaAssociator(const McmcdaAssociationParams& params, const 
   engine_->setGroupOf(source_of);
 }
 
-std::vector<common::TrackEstimate> McmcdaAssociator::associate(std::int32_t tick,
-                                                                const std::vector<SupernodeTracks>& inputs) {
+void McmcdaAssociator::addElements(std::int32_t tick, const std::vector<SupernodeTracks>& inputs) {
   window_.advanceTo(tick);
   // Canonical order, so that neither the order of inputs nor of tracks changes element ids.
   struct Element {
@@ -126,6 +167,11 @@ std::vector<common::TrackEstimate> McmcdaAssociator::associate(std::int32_t tick
     source_.erase(entry.second);
     return true;
   });
+}
+
+std::vector<common::TrackEstimate> McmcdaAssociator::associate(std::int32_t tick,
+                                                                const std::vector<SupernodeTracks>& inputs) {
+  addElements(tick, inputs);
   engine_->step(window_);
 
   // The supernode tracks reported at this tick, by id. A handed-over track may be reported by both
@@ -138,25 +184,25 @@ std::vector<common::TrackEstimate> McmcdaAssociator::associate(std::int32_t tick
   for (const auto* input : by_supernode)
     for (const auto& track : input->tracks)
       if (common::isFinite(track)) reported.emplace(track.track, &track);
-  // The global tracks to report, with the supernode tracks each holds.
   const auto views = engine_->liveTracks();
-  std::vector<const supernode::mcmcda::McmcdaEngine::LiveTrackView*> chosen;
+  const auto members = tracksNow(views, reported, source_);
+  // The global tracks to report: a confirmed one while a supernode reports a track it holds now. It
+  // ends when they end: a supernode sees the raw reports and their delays, the aggregator only
+  // their outcome, so a supernode's judgement that its target has gone outranks the aggregator's.
+  std::vector<std::size_t> chosen;
   std::vector<ReportedIds::Global> globals;
   std::set<common::TrackId> live_ids;
-  std::set<common::TrackId> held;  // supernode tracks with an element in a reported global track
-  for (const auto& view : views) {
-    live_ids.insert(view.now.track);
-    if (!view.confirmed || !view.in_region) continue;
-    ReportedIds::Global global{view.now.track, {}};
-    bool supported = false;
-    for (const auto& key : view.observations)
-      if (const auto source = source_.find(key.sensor); source != source_.end()) {
-        global.sources.push_back(source->second);
-        supported = supported || reported.contains(source->second);
-      }
-    if (!supported && !view.probably_alive) continue;
-    held.insert(global.sources.begin(), global.sources.end());
-    chosen.push_back(&view);
+  std::set<common::TrackId> held;  // supernode tracks a reported global track holds now
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    live_ids.insert(views[v].now.track);
+    const auto now = members.find(v);
+    if (!views[v].confirmed || now == members.end()) continue;
+    ReportedIds::Global global{views[v].now.track, {}};
+    for (const auto* track : now->second) {
+      global.sources.push_back(track->track);
+      held.insert(track->track);
+    }
+    chosen.push_back(v);
     globals.push_back(std::move(global));
   }
   std::vector<const common::TrackEstimate*> passed;
@@ -167,26 +213,15 @@ std::vector<common::TrackEstimate> McmcdaAssociator::associate(std::int32_t tick
       passed_ids.push_back(id);
     }
 
-  const ReportedIds::Assignment ids = reported_ids_.assign(globals, passed_ids, live_ids);
+  const ReportedIds::Assignment ids =
+      reported_ids_.assign(globals, passed_ids, live_ids, [this] { return engine_->mintId(); });
   std::vector<common::TrackEstimate> out;
-  for (std::size_t n = 0; n < chosen.size(); ++n) {
-    common::TrackEstimate e = chosen[n]->now;
-    e.track = ids.global[n];
-    // The track-level engine sees positions only; the class and stop probability are fused from the supernode tracks
-    // it holds that were reported at this tick (in id order, so the result is canonical).
-    std::vector<std::span<const double>> classes;
-    std::vector<std::optional<double>> stopped;
-    for (const common::TrackId source : std::set<common::TrackId>(globals[n].sources.begin(), globals[n].sources.end()))
-      if (const auto it = reported.find(source); it != reported.end()) {
-        classes.emplace_back(it->second->class_probabilities);
-        stopped.push_back(it->second->stop_probability);
-      }
-    e.class_probabilities = common::fuseClassVectors(classes);
-    e.stop_probability = common::fuseStopProbabilities(stopped);
-    out.push_back(e);
+  // A global track's estimate is fused from its supernode tracks as they published them.
+  for (std::size_t n = 0; n < chosen.size(); ++n) out.push_back(fuseTrackEstimates(ids.global[n], members.at(chosen[n])));
+  for (std::size_t n = 0; n < passed.size(); ++n) {
+    out.push_back(*passed[n]);
+    out.back().track = ids.passed[n];
   }
-  for (std::size_t n = 0; n < passed.size(); ++n)
-    if (ids.passed[n] != 0) out.push_back(*passed[n]);
   std::sort(out.begin(), out.end(),
             [](const common::TrackEstimate& a, const common::TrackEstimate& b) { return a.track < b.track; });
   return out;
@@ -194,51 +229,59 @@ std::vector<common::TrackEstimate> McmcdaAssociator::associate(std::int32_t tick
 
 ReportedIds::Assignment ReportedIds::assign(const std::vector<Global>& globals,
                                             const std::vector<common::TrackId>& passed,
-                                            const std::set<common::TrackId>& live_engine_ids) {
+                                            const std::set<common::TrackId>& live_engine_ids,
+                                            const std::function<common::TrackId()>& mint) {
   std::erase_if(alias_, [&](const auto& entry) { return !live_engine_ids.contains(entry.first); });
   Assignment out;
   out.global.assign(globals.size(), 0);
   std::set<common::TrackId> used;
-  // First, tracks already reported at the previous tick keep their id (in input order, so a
-  // conflict between an engine id and an alias of it goes to the engine id, the smaller index).
+  const auto take = [&](common::TrackId& slot, common::TrackId id) {
+    slot = id;
+    used.insert(id);
+  };
+  // First, the id its supernode tracks were reported under at the previous tick (the most of them,
+  // the smallest on a tie), when free: a supernode's identities are decided on the raw reports, and
+  // the chain may re-form a target's global track under another engine id.
   for (std::size_t n = 0; n < globals.size(); ++n) {
-    const auto alias = alias_.find(globals[n].engine_id);
-    const common::TrackId id = alias != alias_.end() ? alias->second : globals[n].engine_id;
-    if (previous_.contains(id) && !used.contains(id)) {
-      out.global[n] = id;
-      used.insert(id);
-    }
-  }
-  // Then tracks new to the output: the free previous id most of their supernode tracks were
-  // reported under (the smallest on a tie), else their engine id.
-  for (std::size_t n = 0; n < globals.size(); ++n) {
-    if (out.global[n] != 0) continue;
-    const common::TrackId engine_id = globals[n].engine_id;
     std::map<common::TrackId, std::int32_t> votes;
     for (const auto source : globals[n].sources)
       if (const auto owner = owner_.find(source); owner != owner_.end()) ++votes[owner->second];
-    common::TrackId id = engine_id;
+    common::TrackId best_id = 0;
     std::int32_t best = 0;
     for (const auto& [candidate, count] : votes)
       if (count > best && !used.contains(candidate)) {
-        id = candidate;
+        best_id = candidate;
         best = count;
       }
-    if (used.contains(id)) id = engine_id;  // an engine id is unique among live tracks; an alias may not be
-    if (id != engine_id) alias_[engine_id] = id;
-    out.global[n] = id;
-    used.insert(id);
+    if (best_id != 0) take(out.global[n], best_id);
   }
-  owner_.clear();
+  // Then a track the engine continues keeps the id it was reported under at the previous tick (a
+  // target's new supernode track joining its global track), in input order.
+  for (std::size_t n = 0; n < globals.size(); ++n) {
+    if (out.global[n] != 0) continue;
+    const auto alias = alias_.find(globals[n].engine_id);
+    const common::TrackId id = alias != alias_.end() ? alias->second : globals[n].engine_id;
+    if (previous_.contains(id) && !used.contains(id)) take(out.global[n], id);
+  }
+  // Else its engine id, or a fresh one when another track has that.
+  for (std::size_t n = 0; n < globals.size(); ++n) {
+    if (out.global[n] != 0) continue;
+    take(out.global[n], used.contains(globals[n].engine_id) ? mint() : globals[n].engine_id);
+  }
+  for (std::size_t n = 0; n < globals.size(); ++n)
+    if (out.global[n] != globals[n].engine_id) alias_[globals[n].engine_id] = out.global[n];
+  const auto previous_owner = std::exchange(owner_, {});
   for (std::size_t n = 0; n < globals.size(); ++n)
     for (const auto source : globals[n].sources) owner_[source] = out.global[n];
-  // A passed-through supernode track is reported under its own id unless a global track has it.
+  // A passed-through supernode track is reported under the id it was reported under at the previous
+  // tick, else its own, else a fresh one: every track a supernode reports is in the output.
   for (const auto id : passed) {
-    const bool free = !used.contains(id);
-    out.passed.push_back(free ? id : 0);
-    if (!free) continue;
-    used.insert(id);
-    owner_[id] = id;
+    const auto before = previous_owner.find(id);
+    common::TrackId chosen = before != previous_owner.end() && !used.contains(before->second) ? before->second : id;
+    if (used.contains(chosen)) chosen = mint();
+    out.passed.push_back(0);
+    take(out.passed.back(), chosen);
+    owner_[id] = chosen;
   }
   previous_ = std::move(used);
   return out;

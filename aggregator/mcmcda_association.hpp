@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <set>
@@ -20,27 +21,29 @@ namespace wsn::aggregator {
 /// defaults for track-level data.
 AssociationSpec mcmcdaAssociationSpec();
 
-/// The ids under which the aggregator reports its global tracks, tick by tick. A track the output
-/// already had keeps its id. A chain that re-forms a target's track under a new engine id for a
-/// tick (it splits off the newest elements and merges them back when more evidence arrives) would
-/// make the target change id twice, so a track new to the output is reported under the id its
-/// supernode tracks were reported under at the previous tick, when that id is free now, and keeps
-/// that alias while its engine track lives.
+/// The ids under which the aggregator reports its global tracks, tick by tick. Identity follows
+/// the supernodes' tracks, whose identities are decided on the raw reports: a global track is
+/// reported under the id its supernode tracks were reported under at the previous tick, when that
+/// is free; else, when the engine continues a track reported at the previous tick (a target's new
+/// supernode track joins its global track), under that track's id; else under its engine id, or a
+/// fresh one. A chain that re-forms a target's track under a new engine id (it splits off the
+/// newest elements and merges them back when more evidence arrives) therefore changes no id.
 class ReportedIds {
  public:
-  /// A global track to report: the engine's id and the supernode tracks of its elements.
+  /// A global track to report: the engine's id and the supernode tracks it holds now.
   struct Global {
     common::TrackId engine_id = 0;
     std::vector<common::TrackId> sources;
   };
   struct Assignment {
     std::vector<common::TrackId> global;  ///< per Global, in input order
-    std::vector<common::TrackId> passed;  ///< per passed-through supernode track: its id, or 0 when taken
+    std::vector<common::TrackId> passed;  ///< per passed-through supernode track
   };
   /// One tick: `globals` sorted by engine id, `passed` the supernode tracks reported as they are,
-  /// `live_engine_ids` every track the engine still keeps (aliases of the others are forgotten).
+  /// `live_engine_ids` every track the engine still keeps (aliases of the others are forgotten),
+  /// `mint` a fresh id of the aggregator's space.
   Assignment assign(const std::vector<Global>& globals, const std::vector<common::TrackId>& passed,
-                    const std::set<common::TrackId>& live_engine_ids);
+                    const std::set<common::TrackId>& live_engine_ids, const std::function<common::TrackId()>& mint);
 
  private:
   std::map<common::TrackId, common::TrackId> alias_;  // engine id -> the id it is reported under
@@ -50,6 +53,11 @@ class ReportedIds {
 
 /// The MCMCDA engine's defaults for track-level association (why each differs: the .cpp).
 supernode::mcmcda::McmcdaParams trackLevelEngineDefaults();
+
+/// How the track-level model follows the scenario: the supernode engine's derivations (Yc's
+/// elements are observed, err, appear and end as the supernodes' reports do), less those that
+/// describe raw reports only (confirm_observations, merge_radius).
+std::map<std::string, common::ParamDerivation> trackLevelDerivations();
 
 /// The "mcmcda" association's parameters: its own window and every MCMCDA engine parameter.
 struct McmcdaAssociationParams {
@@ -78,17 +86,20 @@ const common::config::FieldTable<McmcdaAssociationParams>& mcmcdaAssociationPara
 ///    track per tick) holds for Yc as it does for the supernodes' input.
 ///  - The window, the anchors, the chain and the identities are the supernode engine's
 ///    (supernode/mcmcda), run on the whole region, its random stream keyed one past the last real
-///    supernode and its new ids the aggregator's "gN" (as the gated merge's). A global track that continues no
-///    previous one takes the id of the supernode track of its first element, so a target keeps
-///    the id its first supernode gave it.
-///  - Reporting. A confirmed global track in the region is reported while its target is probably
-///    alive by the engine's rule, or while a supernode still reports one of its member tracks: a
-///    supernode sees the raw reports and their delays, the aggregator only the outcome, so the
-///    supernode's judgement that a target is still there outranks the aggregator's. A supernode
-///    track that no reported global track holds (its first tick: one element cannot form an MCMCDA
-///    track) is passed through under its own id, which the global track it grows into then takes.
-///    The reported state is the aggregator's filter over the elements, predicted to the tick; a
-///    passed-through track's is the supernode's.
+///    supernode and its new ids the aggregator's "gN" (as the gated merge's). The model's parameters
+///    are the supernodes' (trackLevelDerivations). Ids follow the supernode tracks (ReportedIds).
+///  - Which supernode tracks a global track holds now: each supernode track reported at this tick
+///    belongs to the global track that holds its newest element, with the newest such element's
+///    track and those whose estimates pass the track-to-track test against it (sameTarget); one
+///    that fails is another target the chain linked over a long gap and is passed through.
+///  - Reporting. A confirmed global track is reported while a supernode reports a track it holds
+///    now, and ends when they end: a supernode sees the raw reports and their delays, the
+///    aggregator only the outcome. Its estimate is fused from those supernode tracks as they
+///    published them (aggregator/track_fusion.hpp): one passes through, several are combined by
+///    covariance intersection; the chain's own filter over the elements, which would treat
+///    already filtered states as raw reports, is not what the user sees. Every reported
+///    supernode track is in the output: one that no reported global track holds (its first tick:
+///    one element cannot form an MCMCDA track) is passed through, and ReportedIds names it.
 class McmcdaAssociator final : public TrackAssociator {
  public:
   /// `context.params` must be resolved against mcmcdaAssociationSpec(); the motion model is the
@@ -108,6 +119,9 @@ class McmcdaAssociator final : public TrackAssociator {
   const supernode::mcmcda::McmcdaEngine& engine() const { return *engine_; }
 
  private:
+  /// Yc's new elements of the tick's inputs, each (track, tick) once, into the window.
+  void addElements(std::int32_t tick, const std::vector<SupernodeTracks>& inputs);
+
   // Track ids are unique across supernodes and a handed-over track keeps its id, so (track, tick)
   // names one observation even when the sender and the receiver both report the track.
   using ElementKey = std::pair<common::TrackId, std::int32_t>;

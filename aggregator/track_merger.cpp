@@ -8,8 +8,8 @@
 #include <string>
 #include <tuple>
 
+#include "aggregator/track_fusion.hpp"
 #include "common/assignment.hpp"
-#include "common/class_evidence.hpp"
 
 namespace wsn::aggregator {
 namespace {
@@ -51,32 +51,12 @@ double joinCost(const Cluster& cluster, const TrackEstimate& track, double gate_
   return same_id ? 0.0 : sum / static_cast<double>(cluster.members.size());
 }
 
-/// The mean of the members' states, summed in member order (deterministic rounding).
-TrackEstimate meanState(const Cluster& cluster, TrackId id) {
-  TrackEstimate merged;
-  merged.track = id;
-  for (const auto& member : cluster.members) {
-    merged.x += member.track.x;
-    merged.y += member.track.y;
-    merged.vx += member.track.vx;
-    merged.vy += member.track.vy;
-    for (std::size_t k = 0; k < merged.covariance.size(); ++k) merged.covariance[k] += member.track.covariance[k];
-  }
-  const auto n = static_cast<double>(cluster.members.size());
-  merged.x /= n;
-  merged.y /= n;
-  merged.vx /= n;
-  merged.vy /= n;
-  // The members' mean covariance: conservative for a mean of estimates of one target (their
-  // errors are correlated through shared observations, so the 1/n of independent ones would lie).
-  for (auto& value : merged.covariance) value /= n;
-  std::vector<std::span<const double>> classes;
-  for (const auto& member : cluster.members) classes.emplace_back(member.track.class_probabilities);
-  merged.class_probabilities = common::fuseClassVectors(classes);
-  std::vector<std::optional<double>> stopped;
-  for (const auto& member : cluster.members) stopped.push_back(member.track.stop_probability);
-  merged.stop_probability = common::fuseStopProbabilities(stopped);
-  return merged;
+/// The cluster's global track: its members' estimates fused (aggregator/track_fusion.hpp), in
+/// member order, which is canonical.
+TrackEstimate fusedState(const Cluster& cluster, TrackId id) {
+  std::vector<const TrackEstimate*> members;
+  for (const auto& member : cluster.members) members.push_back(&member.track);
+  return fuseTrackEstimates(id, members);
 }
 
 }  // namespace
@@ -206,7 +186,7 @@ std::vector<TrackEstimate> TrackMerger::merge(std::int32_t tick, const std::vect
   // 4. Merged states, sorted by global id.
   std::vector<TrackEstimate> merged;
   merged.reserve(rows);
-  for (std::size_t r = 0; r < rows; ++r) merged.push_back(meanState(clusters[r], global_ids[r]));
+  for (std::size_t r = 0; r < rows; ++r) merged.push_back(fusedState(clusters[r], global_ids[r]));
   std::sort(merged.begin(), merged.end(), canonicalLess);
   return merged;
 }

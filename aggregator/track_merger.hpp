@@ -55,7 +55,8 @@ const common::config::FieldTable<TrackMergerConfig>& gatedMergeParamTable();
 ///     without a candidate (two far-apart tracks reported under one id) gets a fresh id minted by
 ///     the aggregator, `serial` with the supernode field 0 — a field no supernode uses, since
 ///     supernode ids start at (0 + 1) << 48.
-///  4. Merged state: the mean of the members' x, y, vx, vy, summed in canonical order.
+///  4. Merged state: the members' estimates fused in canonical order (aggregator/track_fusion.hpp:
+///     covariance intersection; one member passes through).
 ///
 /// Output sorted by global id. The result is a pure function of the sequence of merge() calls and
 /// does not depend on the order of `inputs` or of the tracks within one supernode.

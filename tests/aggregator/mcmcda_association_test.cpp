@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "aggregator/association.hpp"
+#include "aggregator/track_fusion.hpp"
 #include "aggregator/track_merger.hpp"
 
 using wsn::aggregator::makeAssociator;
@@ -169,7 +170,9 @@ TEST_CASE("The association registry names its methods and checks their parameter
   const auto context = twoSupernodes();
   CHECK(context.supernode_count == 2);
   CHECK(context.params.at("confirm_observations").value == 2);
-  CHECK(context.params.at("false_alarm_density").value == 1e-5);
+  // Without the scenario's statistics, the engine's fixed default.
+  CHECK(context.params.at("false_alarm_density").value ==
+        wsn::supernode::mcmcda::McmcdaParams{}.model.false_alarm_density);
   CHECK(context.params.at("window_size").value == 10);
 
   Scenario unknown;
@@ -194,7 +197,7 @@ TEST_CASE("The association registry names its methods and checks their parameter
                                         "got 2.5"));
 }
 
-TEST_CASE("The track-level association derives the targets' model and keeps the supernode-track defaults",
+TEST_CASE("The track-level association derives its model as the supernodes do and keeps two elements to confirm",
           "[aggregator][mcmcda_association]") {
   // Fast targets (speed bound 9.917 per tick): with the fixed link speed of 3 per tick the
   // association could not join a fast target's consecutive supernode tracks at all.
@@ -203,55 +206,81 @@ TEST_CASE("The track-level association derives the targets' model and keeps the 
   stats.velocity_sigma = {3.606, "fast class"};
   stats.termination_probability = {0.065, "lifetimes"};
   stats.birth_density = {2e-5, "10 drawn targets"};
+  stats.position_sigma = {0.0826, "probe"};
+  stats.sensing_probability = {0.9, "probe"};
+  stats.delivery_probability = {0.5, "topology"};
+  stats.on_time_probability = {0.5, "topology"};
+  stats.arrival_by_lag = {0.5};
+  stats.false_report_density = {6.25e-6, "probe"};
   stats.process_noise_sigma = 0.15;
   stats.delta = 1.0;
   Scenario s;
   s.source_path = "test.yaml";
   resolveAssociationParams(s, [&]() -> const wsn::common::ObservationStatistics& { return stats; });
   const auto& p = s.aggregator.params;
-  // v-bar = 9.917 + 3 sqrt 2 x 0.2 (measurement_sigma, a fixed default here) = 10.766.
-  CHECK(p.at("max_speed").value == Approx(9.917 + 3.0 * std::sqrt(2.0) * 0.2));
+  // An element errs by at most a report's error: sigma 0.0826, and v-bar = 9.917 + 3 sqrt 2 x 0.0826.
+  CHECK(p.at("measurement_sigma").value == Approx(0.0826));
+  CHECK(p.at("max_speed").value == Approx(9.917 + 3.0 * std::sqrt(2.0) * 0.0826));
   CHECK(p.at("initial_velocity_sigma").value == Approx(std::hypot(3.606, 0.15)));
   CHECK(p.at("termination_probability").value == 0.065);
   CHECK(p.at("birth_density").value == 2e-5);
-  CHECK(s.derived.contains("aggregator.params.max_speed"));
-  CHECK(p.at("measurement_sigma").value == 0.2);
+  // Observed when a report reached its supernode: pd = 0.9 sensed x 0.5 arrived = 0.45, and a run
+  // of misses ends a track once 0.55^k <= 0.01: k = 8 (0.55^7 = 0.0152, 0.55^8 = 0.0084).
+  CHECK(p.at("detection_probability").value == Approx(0.45));
+  CHECK(p.at("max_gap").value == 8);
+  // A false element is a delivered false report a supernode confirmed: at most 6.25e-6 x 0.5.
+  CHECK(p.at("false_alarm_density").value == Approx(3.125e-6));
+  for (const char* key : {"measurement_sigma", "max_speed", "detection_probability", "max_gap", "false_alarm_density"})
+    CHECK(s.derived.contains(std::string("aggregator.params.") + key));
+  // The elements are confirmed tracks already, and one per supernode track and tick.
   CHECK(p.at("confirm_observations").value == 2);
-  CHECK(p.at("false_alarm_density").value == 1e-5);
+  CHECK(p.at("merge_radius").value == 0);
+  CHECK_FALSE(s.derived.contains("aggregator.params.confirm_observations"));
 }
 
 TEST_CASE("A track the chain re-forms under a new id is reported under its old one", "[aggregator][mcmcda_association]") {
   using wsn::aggregator::ReportedIds;
   ReportedIds ids;
+  TrackId next = 1000;
+  const auto mint = [&] { return next++; };
   // Tick 1: engine track 100 holds supernode track 7.
-  auto a = ids.assign({{100, {7}}}, {}, {100});
+  auto a = ids.assign({{100, {7}}}, {}, {100}, mint);
   CHECK(a.global == std::vector<TrackId>{100});
   // Tick 2: the chain split the target's newest elements off into engine track 200 (100 lives on
   // unreported): 200 is new to the output and its supernode track was reported as 100.
-  a = ids.assign({{200, {7}}}, {}, {100, 200});
+  a = ids.assign({{200, {7}}}, {}, {100, 200}, mint);
   CHECK(a.global == std::vector<TrackId>{100});
-  // Tick 3: still 200 in the engine; the alias holds.
-  a = ids.assign({{200, {7, 7}}}, {}, {200});
+  // Tick 3: still 200 in the engine; its supernode track's id holds.
+  a = ids.assign({{200, {7}}}, {}, {200}, mint);
   CHECK(a.global == std::vector<TrackId>{100});
-  // Tick 4: the chain merged back into 100 while 200 lives: the previous output's id goes to
-  // the first claimant in input order, the other is reported under its engine id.
-  a = ids.assign({{100, {7}}, {200, {8}}}, {}, {100, 200});
+  // Tick 4: the chain merged back into 100 while 200 lives on with a new target's track 8: 7 keeps
+  // its global id, and 200, reported as 100 before, finds it taken and is reported under its own.
+  a = ids.assign({{100, {7}}, {200, {8}}}, {}, {100, 200}, mint);
   CHECK(a.global == std::vector<TrackId>{100, 200});
+  CHECK(next == 1000);
 }
 
-TEST_CASE("A new track takes the free id most of its supernode tracks had", "[aggregator][mcmcda_association]") {
+TEST_CASE("A global track takes the free id most of its supernode tracks had", "[aggregator][mcmcda_association]") {
   using wsn::aggregator::ReportedIds;
   ReportedIds ids;
-  auto a = ids.assign({{100, {7}}, {101, {8}}}, {9}, {100, 101});
+  TrackId next = 1000;
+  const auto mint = [&] { return next++; };
+  auto a = ids.assign({{100, {7}}, {101, {8}}}, {9}, {100, 101}, mint);
   CHECK(a.global == std::vector<TrackId>{100, 101});
   CHECK(a.passed == std::vector<TrackId>{9});  // passed through under its own id
-  // Engine track 300 holds two elements of supernode track 8 and one of 9 (passed through as 9):
-  // 101 has two votes, 9 one; 101 wins. 100 is reported as before.
-  a = ids.assign({{100, {7}}, {300, {8, 8, 9}}}, {}, {100, 300});
-  CHECK(a.global == std::vector<TrackId>{100, 101});
-  // A passed-through supernode track whose id is taken is dropped (0).
-  a = ids.assign({{100, {7}}}, {100}, {100});
-  CHECK(a.passed == std::vector<TrackId>{0});
+  // Engine track 300 holds supernode tracks 8 and 9 now (a handoff: 8 coasting, 9 new at the
+  // receiver); 101 and 9 have one vote each and the smaller id wins. 100 is reported as before.
+  a = ids.assign({{100, {7}}, {300, {8, 9}}}, {}, {100, 300}, mint);
+  CHECK(a.global == std::vector<TrackId>{100, 9});
+  // Identity follows the supernode track: engine track 100 now holds supernode track 8, last
+  // reported in 9, and track 7, passed through, keeps 100, its global id of the previous tick.
+  a = ids.assign({{100, {8}}}, {7}, {100}, mint);
+  CHECK(a.global == std::vector<TrackId>{9});
+  CHECK(a.passed == std::vector<TrackId>{100});
+  // A passed-through supernode track whose ids are both taken is reported under a fresh one.
+  a = ids.assign({{100, {7}}, {101, {8}}}, {100}, {100, 101}, mint);
+  CHECK(a.global == std::vector<TrackId>{100, 9});
+  CHECK(a.passed == std::vector<TrackId>{1000});
 }
 
 TEST_CASE("A track both supernodes pass through is the lower supernode's, whatever the input order",
@@ -292,5 +321,68 @@ TEST_CASE("A track-level global track carries the class and stop probability of 
     if (t == 9 || t == 10) CHECK(global[0].class_probabilities.empty());  // coasting, nothing reported
     // The stop probability likewise: supernode 1's, and none while supernode 0's track has none.
     CHECK(global[0].stop_probability == (t >= 11 ? std::optional<double>(0.25) : std::nullopt));
+  }
+}
+
+TEST_CASE("A global track reports its one supernode track as published and ends when it ends",
+          "[aggregator][mcmcda_association]") {
+  // The supernode's estimate is already filtered: the aggregator passes it through (state and
+  // covariance), and it stops the tick the supernode stops, whatever its own engine thinks.
+  const TrackId a = id(0, 1);
+  auto associator = makeAssociator(twoSupernodes());
+  for (std::int32_t t = 1; t <= 12; ++t) {
+    std::vector<SupernodeTracks> in{{0, {}}, {1, {}}};
+    if (t <= 8) {
+      TrackEstimate e = observedAt(a, t, t);
+      e.y = 50.0 + 0.05 * (t % 3);  // not a straight line: a re-filtered state would differ
+      e.covariance = {0.01, 0, 0, 0, 0, 0.01, 0, 0, 0, 0, 0.02, 0, 0, 0, 0, 0.02};
+      in[0].tracks.push_back(e);
+    }
+    const auto global = associator->associate(t, in);
+    INFO("tick " << t);
+    if (t > 8) {
+      CHECK(global.empty());
+      continue;
+    }
+    REQUIRE(global.size() == 1);
+    TrackEstimate expected = in[0].tracks[0];
+    CHECK(global[0] == expected);
+  }
+}
+
+TEST_CASE("A handed-over target's two supernode tracks are fused while both are reported",
+          "[aggregator][mcmcda_association]") {
+  // Supernode 0 observes the target up to tick 8 and reports its track coasting (larger position
+  // covariance, a well-learnt velocity) at ticks 9 and 10; supernode 1 observes it from tick 9 under
+  // a new id (a sharp position, a poor velocity). Over those two ticks one global track holds both,
+  // and its state is their covariance intersection, nearer the observed position.
+  const TrackId a = id(0, 1);
+  const TrackId b = id(1, 7);
+  auto associator = makeAssociator(twoSupernodes());
+  for (std::int32_t t = 1; t <= 14; ++t) {
+    std::vector<SupernodeTracks> in{{0, {}}, {1, {}}};
+    if (t <= 10) {
+      TrackEstimate e = observedAt(a, t, std::min(t, 8));
+      const double grow = t <= 8 ? 1.0 : 4.0 * (t - 8);
+      e.covariance = {0.01 * grow, 0, 0, 0, 0, 0.01 * grow, 0, 0, 0, 0, 0.005, 0, 0, 0, 0, 0.005};
+      in[0].tracks.push_back(e);
+    }
+    if (t >= 9) {
+      TrackEstimate e = observedAt(b, t, t);
+      e.y = 50.3;
+      e.covariance = {0.01, 0, 0, 0, 0, 0.01, 0, 0, 0, 0, 0.05, 0, 0, 0, 0, 0.05};  // a new track's velocity is poor
+      in[1].tracks.push_back(e);
+    }
+    const auto global = associator->associate(t, in);
+    INFO("tick " << t);
+    REQUIRE(global.size() == 1);
+    CHECK(global[0].track == a);
+    if (t == 9 || t == 10) {
+      const TrackEstimate* members[] = {&in[0].tracks[0], &in[1].tracks[0]};
+      const auto fused = wsn::aggregator::fuseTrackEstimates(a, members);
+      CHECK(global[0] == fused);
+      CHECK(global[0].y > 50.15);  // nearer supernode 1's observed track than the coasting one
+      CHECK(global[0].y < 50.3);
+    }
   }
 }
