@@ -127,7 +127,7 @@ void McmcdaEngine::associate(const ObservationWindow& window, std::int32_t newes
   const Partition best = sampler.bestState();
   last_step_ = StepStats{wp.problem.size(), static_cast<std::int32_t>(best.size()), sampler.bestLogPosterior(),
                          sampler.stats()};
-  learnDelivery(window, wp.problem, best);
+  learnDelays(window);
   // Step 5: ω̂'s tracks under the ids they continue, and the anchored tracks a report of the next
   // window could still continue.
   const std::int32_t next_oldest = std::max(1, newest_tick_ + 1 - window.windowSize() + 1);
@@ -136,11 +136,17 @@ void McmcdaEngine::associate(const ObservationWindow& window, std::int32_t newes
 }
 
 void McmcdaEngine::commitLeavingObservations(std::int32_t oldest) {
+  // A track of one report (confirmation at one report) stays while eq. (3) prefers a target to a
+  // false alarm for its report, given the ticks it has gone unseen since, whose reports would mostly
+  // have arrived by now if it were there; its report is past the newest tick's, where confirmation
+  // at one report decides.
+  std::erase_if(tracks_, [&](const LiveTrack& t) {
+    return isNewborn(t) && t.observations.front().tick < newest_tick_ && !loneTargetLikely(t);
+  });
   // Observations that leave the window are committed: the track's filtered state at the last of
-  // them becomes its anchor, so the chain continues the track without re-deciding its past. A
-  // newborn whose report leaves (a window of one tick) was not continued: it ends, as it would
-  // have a tick later in a longer window.
-  std::erase_if(tracks_, [&](const LiveTrack& t) { return isNewborn(t) && t.observations.front().tick < oldest; });
+  // them becomes its anchor, so the chain continues the track without re-deciding its past. So is a
+  // track of one report: its existence carries on from window to window, and a report up to
+  // max_gap ticks later may still continue it.
   for (auto& track : tracks_) {
     std::size_t gone = 0;
     while (gone < track.observations.size() && track.observations[gone].tick < oldest) ++gone;
@@ -196,9 +202,9 @@ WindowProblem McmcdaEngine::buildProblem(const ObservationWindow& window) const 
                        std::move(anchor_of), std::move(anchor_index)};
 }
 
-void McmcdaEngine::learnDelivery(const ObservationWindow& window, const Problem& problem, const Partition& best) {
+void McmcdaEngine::learnDelays(const ObservationWindow& window) {
   // Learn from the oldest slot once it is final (the window is full: anything later is stale),
-  // and from each tick once.
+  // and from each tick once. Every delivered report counts, whatever ω̂ made of it.
   const std::int32_t settled = window.newestTick() - window.windowSize() + 1;
   if (settled < 1 || settled <= settled_tick_) return;
   settled_tick_ = settled;
@@ -207,12 +213,6 @@ void McmcdaEngine::learnDelivery(const ObservationWindow& window, const Problem&
     const auto delay = static_cast<std::size_t>(std::max(0, o.tick_delivered - o.tick_generated));
     delay_counts_[std::min(delay, delay_counts_.size() - 1)] += 1.0;
     delay_total_ += 1.0;
-  }
-  for (const auto& track : best) {
-    if (problem.tick(track.front()) > settled || problem.tick(track.back()) < settled) continue;
-    alive_ticks_ += 1.0;
-    for (const auto i : track)
-      if (problem.tick(i) == settled && !problem.isAnchor(i)) hits_ += 1.0;
   }
 }
 
@@ -224,22 +224,50 @@ double McmcdaEngine::deliveredBy(std::int32_t age) const {
   return on_time / (delay_total_ + 1.0);
 }
 
-bool McmcdaEngine::probablyAlive(const LiveTrack& track) const {
-  // A target last seen m ticks ago is still there with probability alive / (alive + ended):
-  // it survived each of those ticks (1 - pz) and its report for the tick of age a was not seen,
-  // which has probability 1 - pd F(a) with F the delay distribution (a report of age a is in the
-  // window only if its delay was at most a); against having ended after some of them. pd is
-  // learnt like F, starting from the parameter with the weight of two ticks.
+double McmcdaEngine::arrivedBy(std::int32_t age) const {
+  // pd of eq. (3) is the chance that a live target's report of a tick is in the window, averaged
+  // over the window's ticks (derived so: sensed x arrived by each lag, averaged). Its share by age
+  // follows the delays: pd_a = pd F(a) / mean_j F(j), F learnt from every delivered report. Not
+  // learnt from ω̂'s tracks, whose hits over the ticks between their first and last report count
+  // the bursts of a lossy network and none of the silences around them, nor a target seen once.
+  double mean = 0.0;
+  const auto lags = std::max<std::size_t>(1, delay_counts_.size());
+  for (std::size_t j = 0; j < lags; ++j) mean += deliveredBy(static_cast<std::int32_t>(j));
+  mean /= static_cast<double>(lags);
+  return std::min(1.0, params_.model.detection_probability * deliveredBy(age) / mean);
+}
+
+double McmcdaEngine::unseenLikelihood(std::int32_t seen, std::int32_t tick, double& there_at_tick) const {
+  // A target last seen at tick s ended after some tick k >= s, or is still there at the newest tick
+  // n. Ending after k weighs (1 - pz)^(k - s) pz times the chance that none of its reports of ticks
+  // s + 1 .. k is in the window, prod (1 - pd_a) with a = n - j the age of tick j (arrivedBy); being
+  // there still, (1 - pz)^(n - s) prod over s + 1 .. n. It is there at `tick` when it ended at or
+  // after it, or has not.
   const double pz = params_.model.termination_probability;
-  const double pd = (hits_ + 2.0 * params_.model.detection_probability) / (alive_ticks_ + 2.0);
-  const std::int32_t unseen = newest_tick_ - track.lastSeenTick();
-  double alive = 1.0;
-  double ended = 0.0;
-  for (std::int32_t i = 1; i <= unseen; ++i) {
-    ended += alive * pz;
-    alive *= (1.0 - pz) * (1.0 - pd * deliveredBy(unseen - i));
+  double alive = 1.0;  // there through tick j - 1
+  double gone = 0.0;   // ended before `tick`
+  double later = 0.0;  // ended at or after `tick`, before the newest
+  for (std::int32_t j = seen + 1; j <= newest_tick_; ++j) {
+    (j > tick ? later : gone) += alive * pz;
+    alive *= (1.0 - pz) * (1.0 - arrivedBy(newest_tick_ - j));
   }
-  return alive >= ended;
+  there_at_tick = alive + later;
+  return alive + later + gone;
+}
+
+bool McmcdaEngine::probablyAlive(const LiveTrack& track, std::int32_t tick) const {
+  double there = 0.0;
+  const double all = unseenLikelihood(track.lastSeenTick(), tick, there);
+  return there >= all - there;
+}
+
+bool McmcdaEngine::loneTargetLikely(const LiveTrack& track) const {
+  // Eq. (3) for the report of a one-report track: a target born at its tick (lambda_b), detected
+  // (pd), and unseen since, however it ended (unseenLikelihood); against a false alarm (lambda_f).
+  double there = 0.0;
+  const ModelParams& m = params_.model;
+  return m.birth_density * m.detection_probability * unseenLikelihood(track.lastSeenTick(), newest_tick_, there) >=
+         m.false_alarm_density;
 }
 
 std::vector<McmcdaEngine::LiveTrackView> McmcdaEngine::liveTracks() const {
@@ -251,7 +279,7 @@ std::vector<McmcdaEngine::LiveTrackView> McmcdaEngine::liveTracks() const {
     // No sensor sees a target outside the region: a track that coasted out of it followed a
     // target that left.
     out.push_back({estimate(track.id, now, track.lastSeenTick()), track.observations,
-                   track.totalObservations() >= params_.confirm_observations, probablyAlive(track),
+                   track.totalObservations() >= params_.confirm_observations, probablyAlive(track, newest_tick_),
                    region_.contains({now.x, now.y})});
   }
   return out;
@@ -323,9 +351,10 @@ std::optional<std::vector<common::TrackEstimate>> McmcdaEngine::revisedTracks(st
     if (tick < first) continue;
     if (tick > track.observations.back().tick) {
       // Past its last observation (a report still in transit, near the end of a run or a
-      // handoff): reported as the live estimate reports it, the filtered state predicted, while
-      // its target is more likely there than gone and inside the region.
-      if (!isLive(track) || !probablyAlive(track)) continue;
+      // handoff): the filtered state predicted, while its target is more likely there than gone
+      // at `tick`, judged by the reports of the ticks after it that have had time to arrive, and
+      // inside the region.
+      if (!isLive(track) || !probablyAlive(track, tick)) continue;
       const TrackState& last = track.states.back();
       const TrackState predicted = motion_.predict(last, tick - last.tick);
       if (!region_.contains({predicted.x, predicted.y})) continue;

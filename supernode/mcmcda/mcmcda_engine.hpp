@@ -22,11 +22,15 @@ EngineSpec engineSpec();
 
 /// Online MCMCDA. Association is revised inside the window only: when an observation leaves the
 /// window, its track's filtered state there becomes the track's *anchor* (Problem's prior element),
-/// so the chain continues the track under its id without re-deciding the past. Output is the
-/// filtered (not smoothed) state of each confirmed track, predicted to the newest tick, for every
-/// track that may still continue (last observation at most d-bar - 1 ticks old) and whose target
-/// is more likely there than gone (probablyAlive); the estimate for an earlier tick of the window
-/// is available through tracksAt().
+/// so the chain continues the track under its id without re-deciding the past. With confirmation
+/// at one report a track of one report is one too: it lives on while eq. (3) prefers a target to a
+/// false alarm for its report, and is anchored when its report leaves, so a target seen once in a
+/// while under heavy loss keeps its track from window to window. Output is the filtered (not
+/// smoothed) state of each confirmed track, predicted to the newest tick, for every track that may
+/// still continue (a report of the window could still follow its last observation within d-bar
+/// ticks) and whose target is more likely there than gone (probablyAlive: pd of eq. (3) shared out
+/// over the report ages by the delays learnt from every delivered report); the estimate for an
+/// earlier tick of the window is available through tracksAt().
 class McmcdaEngine final : public Engine {
  public:
   explicit McmcdaEngine(const EngineContext& context);
@@ -78,6 +82,10 @@ class McmcdaEngine final : public Engine {
   using GroupOf = mcmcda::GroupOf;
   void setGroupOf(GroupOf group_of) { group_of_ = std::move(group_of); }
 
+  /// A fresh id of the engine's id space, never given to one of its tracks (the aggregator reports
+  /// a supernode track under one when its own id is taken).
+  common::TrackId mintId();
+
   /// Statistics of the last step, for benchmarks and logs.
   struct StepStats {
     std::int32_t observations = 0;  ///< problem size, anchors included
@@ -104,18 +112,25 @@ class McmcdaEngine final : public Engine {
   }
   /// The track may still be continued in the current window.
   bool isLive(const LiveTrack& track) const { return canContinue(track, oldest_tick_); }
-  /// A one-report track of confirmation at one report (adoptBest, start_state.hpp), not yet continued.
+  /// A one-report track of confirmation at one report (adoptBest, start_state.hpp), its report in the window.
   static bool isNewborn(const LiveTrack& track) {
     return !track.anchor && track.past_observations == 0 && track.observations.size() == 1;
   }
-  /// The track's target is more likely still there than gone, given how long it has been unseen,
-  /// the detection probability and the delays learnt so far.
-  bool probablyAlive(const LiveTrack& track) const;
+  /// The track's target is more likely there at `tick` (at most the newest) than gone, given the
+  /// ticks since its last observation, the detection probability and the delays learnt so far.
+  bool probablyAlive(const LiveTrack& track, std::int32_t tick) const;
+  /// The chance that a target last seen at `seen` gives no report in the window after it, ending
+  /// at some tick or not; `there_at_tick` the part of it in which it is there at `tick`.
+  double unseenLikelihood(std::int32_t seen, std::int32_t tick, double& there_at_tick) const;
+  /// Eq. (3) prefers a target to a false alarm for the report of a one-report track, given its silence since.
+  bool loneTargetLikely(const LiveTrack& track) const;
   /// P(a report's delay <= age), learnt from settled slots.
   double deliveredBy(std::int32_t age) const;
-  /// Updates the delay histogram and detection counts from the slot that just became final.
-  void learnDelivery(const ObservationWindow& window, const Problem& problem, const Partition& best);
-  common::TrackId mintId();
+  /// P(a live target's report of the tick `age` ticks back is in the window): pd shared out by
+  /// the delays learnt so far.
+  double arrivedBy(std::int32_t age) const;
+  /// Updates the delay histogram from the slot that just became final.
+  void learnDelays(const ObservationWindow& window);
 
   std::uint32_t stream_key_;
   common::track_id::Space ids_;
@@ -130,13 +145,10 @@ class McmcdaEngine final : public Engine {
   std::uint64_t next_serial_ = 1;
   IdProposer propose_id_;
   GroupOf group_of_;
-  // What the engine learns about delivery: delays of the reports in settled slots, and how often
-  // a track of ω̂ that spans a settled tick has a report there.
+  // What the engine learns about delivery: the delays of the reports in settled slots.
   std::int32_t settled_tick_ = 0;
   std::vector<double> delay_counts_;
   double delay_total_ = 0.0;
-  double alive_ticks_ = 0.0;
-  double hits_ = 0.0;
   std::uint64_t rejected_handoffs_ = 0;
   StepStats last_step_;
 };

@@ -1,6 +1,8 @@
 #include "supernode/mcmcda/start_state.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <iterator>
 #include <map>
 #include <set>
 #include <tuple>
@@ -11,6 +13,12 @@ namespace {
 
 /// Element lists, one per (possibly future) track; a list of two or more is a track of the start state.
 using TrackLists = std::vector<std::vector<std::int32_t>>;
+
+/// A track of one report in the window and no past (confirmation at one report): ω̂ cannot hold it,
+/// since a track of eq. (3) has two elements at least.
+bool isOneReportTrack(const LiveTrack& track) {
+  return !track.anchor && track.past_observations == 0 && track.observations.size() == 1;
+}
 
 /// The previous ω̂ restricted to the window, cut where a link no longer holds (the chain places what
 /// is left out): one list per previous track, its anchor first. Marks each element found as
@@ -135,6 +143,71 @@ void joinNewestGreedily(const Problem& problem, const McmcdaParams& params, Trac
   }
 }
 
+/// The one list of `a` and `b`'s elements in tick order, when it is a track: at most one anchor,
+/// first; no two elements at one tick; every consecutive pair linked. Empty otherwise.
+std::vector<std::int32_t> interleaved(const Problem& problem, const std::vector<std::int32_t>& a,
+                                      const std::vector<std::int32_t>& b) {
+  std::vector<std::int32_t> merged;
+  merged.reserve(a.size() + b.size());
+  std::merge(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(merged),
+             [&](std::int32_t i, std::int32_t j) { return problem.tick(i) < problem.tick(j); });
+  for (std::size_t k = 1; k < merged.size(); ++k)
+    if (!problem.linked(merged[k - 1], merged[k])) return {};  // also refuses a second anchor and a shared tick
+  return merged;
+}
+
+/// Step 3c: two lists that hold one target's elements in turns become one, when the one track
+/// scores higher under eq. (3) than the two (a list of fewer than two elements scores 0: its
+/// element is a false alarm, or its anchor's target ended). A delayed network hands a target's
+/// reports over out of order: its newest reports start a track of their own while the older are on
+/// their way, and a late report arrives for a tick inside a track. The chain's moves can seldom
+/// repair this: merge joins one track's end to another's start, and interleaving two tracks needs a
+/// death first, which the posterior all but forbids. Only lists whose spans overlap are tried
+/// (the others are merge's), best gain first, each list in one merge per tick.
+void mergeInterleaved(const Problem& problem, TrackLists& lists) {
+  const auto score = [&](const std::vector<std::int32_t>& list) {
+    return list.size() >= 2 ? problem.trackScore(list) : 0.0;
+  };
+  std::vector<double> scores;
+  for (const auto& list : lists) scores.push_back(list.empty() ? 0.0 : score(list));
+  struct Candidate {
+    double gain;
+    std::size_t first;
+    std::size_t second;
+  };
+  std::vector<Candidate> candidates;
+  const double reach_per_tick = problem.params().max_speed;
+  for (std::size_t i = 0; i < lists.size(); ++i) {
+    if (lists[i].empty()) continue;
+    for (std::size_t j = i + 1; j < lists.size(); ++j) {
+      const auto& a = lists[i];
+      const auto& b = lists[j];
+      if (b.empty()) continue;
+      const std::int32_t a_first = problem.tick(a.front()), a_last = problem.tick(a.back());
+      const std::int32_t b_first = problem.tick(b.front()), b_last = problem.tick(b.back());
+      if (a_last < b_first || b_last < a_first) continue;  // one after the other: the chain's merge
+      // The two last elements of one track lie within reach of each other.
+      const auto& ea = problem.observation(a.back());
+      const auto& eb = problem.observation(b.back());
+      if (!Problem::withinReach(ea.x - eb.x, ea.y - eb.y, reach_per_tick * std::abs(a_last - b_last))) continue;
+      const auto merged = interleaved(problem, a, b);
+      if (merged.empty()) continue;
+      const double gain = score(merged) - scores[i] - scores[j];
+      if (gain > 0.0) candidates.push_back({gain, i, j});
+    }
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+    return std::tie(y.gain, x.first, x.second) < std::tie(x.gain, y.first, y.second);
+  });
+  std::vector<bool> changed(lists.size(), false);
+  for (const auto& c : candidates) {
+    if (changed[c.first] || changed[c.second]) continue;
+    lists[c.first] = interleaved(problem, lists[c.first], lists[c.second]);
+    lists[c.second].clear();
+    changed[c.first] = changed[c.second] = true;
+  }
+}
+
 /// Which previous track each track of ω̂ continues, and the reverse; -1 for none.
 struct Continuation {
   std::vector<std::int32_t> previous_of;   ///< track of ω̂ -> previous track
@@ -206,18 +279,27 @@ class TrackNamer {
 };
 
 /// Confirmation at one report means a report is decisive: nothing but a target could have made it
-/// (lambda_f ~ 0). A report of the newest tick that ω̂ leaves out of every track is then a target
-/// born now, reported at once; its next report makes it a track of ω̂, which keeps its id by the
-/// overlap of continuations(). One not continued is gone a tick later, as eq. (3) would call it a
-/// false alarm.
-void addNewborns(const WindowProblem& wp, const Partition& best, TrackNamer& namer, std::vector<LiveTrack>& next) {
+/// (lambda_f ~ 0), so a report that ω̂ leaves out of every track is a target of its own, a track of
+/// one report. A report of the newest tick is such a target born now, reported at once; a previous
+/// one-report track whose report ω̂ still leaves out goes on under its id (its report, once it
+/// leaves the window, becomes its anchor like any track's), and its next report makes it a track of
+/// ω̂, which keeps its id by the overlap of continuations(). How long one is reported without a
+/// further report is the engine's coasting rule, as for any track.
+void addNewborns(const WindowProblem& wp, const Partition& best, std::span<const std::int32_t> owner,
+                 std::vector<LiveTrack>& previous, TrackNamer& namer, std::vector<LiveTrack>& next) {
   const Problem& problem = wp.problem;
   std::vector<bool> in_track(static_cast<std::size_t>(problem.size()), false);
   for (const auto& track : best)
     for (const auto i : track) in_track[static_cast<std::size_t>(i)] = true;
   std::vector<TrackState> states;
-  for (std::int32_t i = problem.newestBegin(); i < problem.size(); ++i) {
+  for (std::int32_t i = 0; i < problem.size(); ++i) {
     if (in_track[static_cast<std::size_t>(i)] || problem.isAnchor(i)) continue;
+    const std::int32_t k = owner[static_cast<std::size_t>(i)];
+    if (k >= 0 && isOneReportTrack(previous[static_cast<std::size_t>(k)])) {
+      next.push_back(std::move(previous[static_cast<std::size_t>(k)]));
+      continue;
+    }
+    if (k >= 0 || i < problem.newestBegin()) continue;
     const std::int32_t lone[] = {i};
     LiveTrack track;
     track.id = namer.name(lone);
@@ -240,6 +322,14 @@ StartState startState(const WindowProblem& wp, const std::vector<LiveTrack>& tra
   // New observations of a known group follow the track that holds their group's latest member.
   if (group_of) joinGroups(wp, claimed, group_of, lists);
   joinNewestGreedily(wp.problem, params, lists);
+  // Every element no list holds (a late report, one cut out above) is a list of its own, which
+  // mergeInterleaved may place inside a track.
+  std::vector<bool> in_list(n, false);
+  for (const auto& list : lists)
+    for (const auto i : list) in_list[static_cast<std::size_t>(i)] = true;
+  for (std::int32_t i = 0; i < wp.problem.size(); ++i)
+    if (!in_list[static_cast<std::size_t>(i)] && !wp.problem.isAnchor(i)) lists.push_back({i});
+  mergeInterleaved(wp.problem, lists);
   for (auto& list : lists)
     if (list.size() >= 2) start.partition.push_back(std::move(list));
   return start;
@@ -254,7 +344,8 @@ std::vector<LiveTrack> adoptBest(std::vector<LiveTrack> previous, const WindowPr
   // tracks kept below for a late continuation.
   std::set<common::TrackId> in_use;
   for (std::size_t k = 0; k < previous.size(); ++k)
-    if (continued.successor_of[k] >= 0 || previous[k].anchor) in_use.insert(previous[k].id);
+    if (continued.successor_of[k] >= 0 || previous[k].anchor || isOneReportTrack(previous[k]))
+      in_use.insert(previous[k].id);
   TrackNamer namer(wp, ids, std::move(in_use));
 
   // The new track set: ω̂'s tracks, plus the previous anchored tracks nobody continued that a later
@@ -283,7 +374,7 @@ std::vector<LiveTrack> adoptBest(std::vector<LiveTrack> previous, const WindowPr
     }
     next.push_back(std::move(track));
   }
-  if (params.confirm_observations <= 1) addNewborns(wp, best, namer, next);
+  if (params.confirm_observations <= 1) addNewborns(wp, best, owner, previous, namer, next);
   for (std::size_t k = 0; k < previous.size(); ++k) {
     auto& track = previous[k];
     if (continued.successor_of[k] >= 0 || !track.anchor) continue;

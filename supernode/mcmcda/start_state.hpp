@@ -38,16 +38,18 @@ struct StartState {
 /// Step 3: the previous tracks' ω̂ restricted to the window, cut where a link no longer holds; new
 /// observations appended to the track of their group's latest member (when `group_of` is set: ω_init
 /// "from the tracks themselves"); the newest tick's observations joined greedily, nearest first, to
-/// tracks that ended one tick before. `tracks` are the tracks `wp` was built from.
+/// tracks that ended one tick before; then two tracks (or a track and a lone observation) whose
+/// ticks interleave joined into one where eq. (3) prefers it, best gain first. `tracks` are the
+/// tracks `wp` was built from.
 StartState startState(const WindowProblem& wp, const std::vector<LiveTrack>& tracks, const GroupOf& group_of,
                       const McmcdaParams& params);
 
 /// Step 5: the track set after the chain, sorted by id. A track of ω̂ that starts at an anchor is
 /// that anchor's track; any other keeps the id of the previous track it shares most observations
 /// with (`owner`, from startState), or gets a new one from `ids`. With confirmation at one report, a
-/// report of the newest tick left out of every track is a newborn track of its own. Previous
-/// anchored tracks nobody continued stay while a report in a window starting at `next_oldest` could
-/// still continue them.
+/// report of the newest tick left out of every track is a newborn track of its own, and a previous
+/// one-report track whose report is still left out goes on. Previous anchored tracks nobody
+/// continued stay while a report in a window starting at `next_oldest` could still continue them.
 std::vector<LiveTrack> adoptBest(std::vector<LiveTrack> previous, const WindowProblem& wp, const Partition& best,
                                  std::span<const std::int32_t> owner, const NewTrackIds& ids,
                                  const McmcdaParams& params, std::int32_t next_oldest);
