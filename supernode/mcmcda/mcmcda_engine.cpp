@@ -133,16 +133,17 @@ void McmcdaEngine::associate(const ObservationWindow& window, std::int32_t newes
   const std::int32_t next_oldest = std::max(1, newest_tick_ + 1 - window.windowSize() + 1);
   tracks_ = adoptBest(std::move(tracks_), wp, best, start.owner, {propose_id_, [this] { return mintId(); }}, params_,
                       next_oldest);
-}
-
-void McmcdaEngine::commitLeavingObservations(std::int32_t oldest) {
-  // A track of one report (confirmation at one report) stays while eq. (3) prefers a target to a
-  // false alarm for its report, given the ticks it has gone unseen since, whose reports would mostly
-  // have arrived by now if it were there; its report is past the newest tick's, where confirmation
-  // at one report decides.
+  // A track of one report (confirmation at one report) that the chain did not continue stays while
+  // eq. (3) prefers a target to a false alarm for its report, given the ticks it has gone unseen
+  // since, whose reports would mostly have arrived by now if it were there. Judged after the chain,
+  // which has seen the window's newest reports; a report of the newest tick is decided by
+  // confirmation at one report.
   std::erase_if(tracks_, [&](const LiveTrack& t) {
     return isNewborn(t) && t.observations.front().tick < newest_tick_ && !loneTargetLikely(t);
   });
+}
+
+void McmcdaEngine::commitLeavingObservations(std::int32_t oldest) {
   // Observations that leave the window are committed: the track's filtered state at the last of
   // them becomes its anchor, so the chain continues the track without re-deciding its past. So is a
   // track of one report: its existence carries on from window to window, and a report up to
