@@ -38,6 +38,9 @@ struct LiveTrack {
   }
   const TrackState& lastState() const { return states.empty() ? anchor.value().prior : states.back(); }
   std::int32_t totalObservations() const { return past_observations + static_cast<std::int32_t>(observations.size()); }
+  /// A track of one report in the window and no past (confirmation at one report): ω̂ cannot hold
+  /// it, since a track of eq. (3) has two elements at least.
+  bool isOneReport() const { return !anchor && past_observations == 0 && observations.size() == 1; }
   /// A report in a window starting at `oldest` could still continue the track: one generated up to
   /// d-bar (`max_gap`) ticks after the last may arrive late, as long as its slot is in the window.
   bool canContinue(std::int32_t oldest, std::int32_t max_gap) const { return lastSeenTick() + max_gap >= oldest; }

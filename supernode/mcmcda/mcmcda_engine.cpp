@@ -71,7 +71,13 @@ McmcdaEngine::McmcdaEngine(const EngineContext& context)
 
 McmcdaEngine::McmcdaEngine(const McmcdaParams& params, const common::Rect& region, std::uint64_t seed,
                            std::uint32_t stream_key, common::track_id::Space ids)
-    : stream_key_(stream_key), ids_(ids), seed_(seed), region_(region), params_(params), motion_(params_.model) {}
+    : stream_key_(stream_key),
+      ids_(ids),
+      seed_(seed),
+      region_(region),
+      params_(params),
+      motion_(params_.model),
+      arrived_by_age_{std::min(1.0, params_.model.detection_probability)} {}
 
 common::TrackId McmcdaEngine::mintId() { return ids_.mint(next_serial_++); }
 
@@ -139,7 +145,7 @@ void McmcdaEngine::associate(const ObservationWindow& window, std::int32_t newes
   // which has seen the window's newest reports; a report of the newest tick is decided by
   // confirmation at one report.
   std::erase_if(tracks_, [&](const LiveTrack& t) {
-    return isNewborn(t) && t.observations.front().tick < newest_tick_ && !loneTargetLikely(t);
+    return t.isOneReport() && t.observations.front().tick < newest_tick_ && !loneTargetLikely(t);
   });
 }
 
@@ -209,33 +215,32 @@ void McmcdaEngine::learnDelays(const ObservationWindow& window) {
   const std::int32_t settled = window.newestTick() - window.windowSize() + 1;
   if (settled < 1 || settled <= settled_tick_) return;
   settled_tick_ = settled;
-  if (delay_counts_.empty()) delay_counts_.assign(static_cast<std::size_t>(window.windowSize()), 0.0);
+  if (delay_counts_.empty()) {
+    delay_counts_.assign(static_cast<std::size_t>(window.windowSize()), 0.0);
+    arrived_by_age_.assign(delay_counts_.size(), 0.0);
+  }
   for (const auto& o : window.slot(settled)) {
     const auto delay = static_cast<std::size_t>(std::max(0, o.tick_delivered - o.tick_generated));
     delay_counts_[std::min(delay, delay_counts_.size() - 1)] += 1.0;
     delay_total_ += 1.0;
   }
-}
-
-double McmcdaEngine::deliveredBy(std::int32_t age) const {
-  // P(delay <= age) from the settled slots, with one pseudo-observation on time so that it starts
-  // at "no delays" rather than undefined.
-  double on_time = 1.0;
-  for (std::size_t d = 0; d < delay_counts_.size() && d <= static_cast<std::size_t>(age); ++d) on_time += delay_counts_[d];
-  return on_time / (delay_total_ + 1.0);
-}
-
-double McmcdaEngine::arrivedBy(std::int32_t age) const {
   // pd of eq. (3) is the chance that a live target's report of a tick is in the window, averaged
   // over the window's ticks (derived so: sensed x arrived by each lag, averaged). Its share by age
-  // follows the delays: pd_a = pd F(a) / mean_j F(j), F learnt from every delivered report. Not
-  // learnt from ω̂'s tracks, whose hits over the ticks between their first and last report count
-  // the bursts of a lossy network and none of the silences around them, nor a target seen once.
+  // follows the delays: pd_a = pd F(a) / mean_j F(j), F(a) = P(delay <= a) from every delivered
+  // report, with one pseudo-report on time so that it starts at "no delays". Not learnt from ω̂'s
+  // tracks, whose hits over the ticks between their first and last report count the bursts of a
+  // lossy network and none of the silences around them, nor a target seen once.
+  std::vector<double> delivered(delay_counts_.size());
+  double on_time = 1.0;
+  for (std::size_t d = 0; d < delay_counts_.size(); ++d) {
+    on_time += delay_counts_[d];
+    delivered[d] = on_time / (delay_total_ + 1.0);
+  }
   double mean = 0.0;
-  const auto lags = std::max<std::size_t>(1, delay_counts_.size());
-  for (std::size_t j = 0; j < lags; ++j) mean += deliveredBy(static_cast<std::int32_t>(j));
-  mean /= static_cast<double>(lags);
-  return std::min(1.0, params_.model.detection_probability * deliveredBy(age) / mean);
+  for (const double f : delivered) mean += f;
+  mean /= static_cast<double>(delivered.size());
+  for (std::size_t d = 0; d < delivered.size(); ++d)
+    arrived_by_age_[d] = std::min(1.0, params_.model.detection_probability * delivered[d] / mean);
 }
 
 double McmcdaEngine::unseenLikelihood(std::int32_t seen, std::int32_t tick, double& there_at_tick) const {
@@ -397,7 +402,7 @@ std::vector<TrackPrediction> McmcdaEngine::predictions() const {
     // it the same way, and late reports may still revive it there. A newborn (one report, no past)
     // is not: the receiver would take it for an established track and keep it going, where here
     // it is gone a tick later unless a report continues it.
-    if (!isLive(track) || isNewborn(track)) continue;
+    if (!isLive(track) || track.isOneReport()) continue;
     const TrackState& last = track.lastState();
     const TrackState next = motion_.predict(last, newest_tick_ + 1 - last.tick);
     out.push_back({track.id, {next.x, next.y}});

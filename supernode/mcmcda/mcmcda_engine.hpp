@@ -3,6 +3,7 @@
 // handed-over tracks and a greedy guess for the newest tick, runs nmc iterations and keeps ω̂.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <utility>
@@ -112,10 +113,6 @@ class McmcdaEngine final : public Engine {
   }
   /// The track may still be continued in the current window.
   bool isLive(const LiveTrack& track) const { return canContinue(track, oldest_tick_); }
-  /// A one-report track of confirmation at one report (adoptBest, start_state.hpp), its report in the window.
-  static bool isNewborn(const LiveTrack& track) {
-    return !track.anchor && track.past_observations == 0 && track.observations.size() == 1;
-  }
   /// The track's target is more likely there at `tick` (at most the newest) than gone, given the
   /// ticks since its last observation, the detection probability and the delays learnt so far.
   bool probablyAlive(const LiveTrack& track, std::int32_t tick) const;
@@ -124,12 +121,12 @@ class McmcdaEngine final : public Engine {
   double unseenLikelihood(std::int32_t seen, std::int32_t tick, double& there_at_tick) const;
   /// Eq. (3) prefers a target to a false alarm for the report of a one-report track, given its silence since.
   bool loneTargetLikely(const LiveTrack& track) const;
-  /// P(a report's delay <= age), learnt from settled slots.
-  double deliveredBy(std::int32_t age) const;
   /// P(a live target's report of the tick `age` ticks back is in the window): pd shared out by
-  /// the delays learnt so far.
-  double arrivedBy(std::int32_t age) const;
-  /// Updates the delay histogram from the slot that just became final.
+  /// the delays learnt so far (arrived_by_age_).
+  double arrivedBy(std::int32_t age) const {
+    return arrived_by_age_[std::min(static_cast<std::size_t>(std::max(age, 0)), arrived_by_age_.size() - 1)];
+  }
+  /// Updates the delay histogram from the slot that just became final, and arrived_by_age_ with it.
   void learnDelays(const ObservationWindow& window);
 
   std::uint32_t stream_key_;
@@ -145,10 +142,12 @@ class McmcdaEngine final : public Engine {
   std::uint64_t next_serial_ = 1;
   IdProposer propose_id_;
   GroupOf group_of_;
-  // What the engine learns about delivery: the delays of the reports in settled slots.
+  // What the engine learns about delivery: the delays of the reports in settled slots, and from
+  // them pd_a by age (the last entry holds for every later age).
   std::int32_t settled_tick_ = 0;
   std::vector<double> delay_counts_;
   double delay_total_ = 0.0;
+  std::vector<double> arrived_by_age_;
   std::uint64_t rejected_handoffs_ = 0;
   StepStats last_step_;
 };

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 #include <map>
+#include <optional>
 #include <set>
 #include <tuple>
 #include <utility>
@@ -13,12 +14,6 @@ namespace {
 
 /// Element lists, one per (possibly future) track; a list of two or more is a track of the start state.
 using TrackLists = std::vector<std::vector<std::int32_t>>;
-
-/// A track of one report in the window and no past (confirmation at one report): ω̂ cannot hold it,
-/// since a track of eq. (3) has two elements at least.
-bool isOneReportTrack(const LiveTrack& track) {
-  return !track.anchor && track.past_observations == 0 && track.observations.size() == 1;
-}
 
 /// The previous ω̂ restricted to the window, cut where a link no longer holds (the chain places what
 /// is left out): one list per previous track, its anchor first. Marks each element found as
@@ -168,8 +163,12 @@ void mergeInterleaved(const Problem& problem, TrackLists& lists) {
   const auto score = [&](const std::vector<std::int32_t>& list) {
     return list.size() >= 2 ? problem.trackScore(list) : 0.0;
   };
-  std::vector<double> scores;
-  for (const auto& list : lists) scores.push_back(list.empty() ? 0.0 : score(list));
+  // Each list's own score, computed when a pair that holds it first passes the cheap tests.
+  std::vector<std::optional<double>> scores(lists.size());
+  const auto scoreOf = [&](std::size_t k) {
+    if (!scores[k]) scores[k] = score(lists[k]);
+    return *scores[k];
+  };
   struct Candidate {
     double gain;
     std::size_t first;
@@ -177,12 +176,14 @@ void mergeInterleaved(const Problem& problem, TrackLists& lists) {
   };
   std::vector<Candidate> candidates;
   const double reach_per_tick = problem.params().max_speed;
+  // Two lone observations never interleave (their spans are ticks), so every pair holds a track:
+  // each track against every other list, a pair of tracks once.
   for (std::size_t i = 0; i < lists.size(); ++i) {
-    if (lists[i].empty()) continue;
-    for (std::size_t j = i + 1; j < lists.size(); ++j) {
+    if (lists[i].size() < 2) continue;
+    for (std::size_t j = 0; j < lists.size(); ++j) {
       const auto& a = lists[i];
       const auto& b = lists[j];
-      if (b.empty()) continue;
+      if (j == i || b.empty() || (b.size() >= 2 && j < i)) continue;
       const std::int32_t a_first = problem.tick(a.front()), a_last = problem.tick(a.back());
       const std::int32_t b_first = problem.tick(b.front()), b_last = problem.tick(b.back());
       if (a_last < b_first || b_last < a_first) continue;  // one after the other: the chain's merge
@@ -192,8 +193,8 @@ void mergeInterleaved(const Problem& problem, TrackLists& lists) {
       if (!Problem::withinReach(ea.x - eb.x, ea.y - eb.y, reach_per_tick * std::abs(a_last - b_last))) continue;
       const auto merged = interleaved(problem, a, b);
       if (merged.empty()) continue;
-      const double gain = score(merged) - scores[i] - scores[j];
-      if (gain > 0.0) candidates.push_back({gain, i, j});
+      const double gain = score(merged) - scoreOf(i) - scoreOf(j);
+      if (gain > 0.0) candidates.push_back({gain, std::min(i, j), std::max(i, j)});
     }
   }
   std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
@@ -295,7 +296,7 @@ void addNewborns(const WindowProblem& wp, const Partition& best, std::span<const
   for (std::int32_t i = 0; i < problem.size(); ++i) {
     if (in_track[static_cast<std::size_t>(i)] || problem.isAnchor(i)) continue;
     const std::int32_t k = owner[static_cast<std::size_t>(i)];
-    if (k >= 0 && isOneReportTrack(previous[static_cast<std::size_t>(k)])) {
+    if (k >= 0 && previous[static_cast<std::size_t>(k)].isOneReport()) {
       next.push_back(std::move(previous[static_cast<std::size_t>(k)]));
       continue;
     }
@@ -344,7 +345,7 @@ std::vector<LiveTrack> adoptBest(std::vector<LiveTrack> previous, const WindowPr
   // tracks kept below for a late continuation.
   std::set<common::TrackId> in_use;
   for (std::size_t k = 0; k < previous.size(); ++k)
-    if (continued.successor_of[k] >= 0 || previous[k].anchor || isOneReportTrack(previous[k]))
+    if (continued.successor_of[k] >= 0 || previous[k].anchor || previous[k].isOneReport())
       in_use.insert(previous[k].id);
   TrackNamer namer(wp, ids, std::move(in_use));
 
