@@ -3,6 +3,7 @@
 // masks). The node's sensors decide what they see with it, and trackers weigh a miss with it.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "common/geometry.hpp"
@@ -41,5 +42,34 @@ bool hiddenBy(const Terrain* terrain, SightBlockers blockers, Vec2 from, Vec2 p)
 
 /// PD x Pe at p: the sensor's PD where p is in its sector and sight, else 0.
 double detectionProbabilityAt(const SensorCoverage& sensor, Vec2 p, const Terrain* terrain);
+
+/// 1 - prod_i (1 - PD_i(p)): the chance that at least one of `sensors` detects a target at p,
+/// each sensor deciding on its own (ONERA eq. 15 over a field).
+double sensedProbabilityAt(const std::vector<SensorCoverage>& sensors, Vec2 p, const Terrain* terrain);
+
+/// The mean of sensedProbabilityAt over `region`, at the centres of a cells_per_side^2 grid: the
+/// region average that a field's single detection probability stands for.
+double meanSensedProbability(const std::vector<SensorCoverage>& sensors, const Rect& region, const Terrain* terrain,
+                             int cells_per_side = 200);
+
+/// How a field's detection is shared out over its region: sensedProbabilityAt(p) / the region's
+/// mean, so that a model's one detection probability pd, times share(p), is the detection
+/// probability at p and still averages to pd. Without coverage (a grid of identical sensors) every
+/// point has share 1.
+class DetectionShare {
+ public:
+  DetectionShare() = default;
+  /// `sensors` are the ones a tracker hears; `region_mean` the whole field's meanSensedProbability.
+  DetectionShare(std::vector<SensorCoverage> sensors, std::shared_ptr<const Terrain> terrain, double region_mean);
+  bool uniform() const { return sensors_.empty() || region_mean_ <= 0.0; }
+  double at(Vec2 p) const {
+    return uniform() ? 1.0 : sensedProbabilityAt(sensors_, p, terrain_.get()) / region_mean_;
+  }
+
+ private:
+  std::vector<SensorCoverage> sensors_;
+  std::shared_ptr<const Terrain> terrain_;
+  double region_mean_ = 0.0;
+};
 
 }  // namespace wsn::common

@@ -34,6 +34,9 @@ struct EngineContext {
   std::vector<common::SensorCoverage> coverage;
   /// The roads and masks; null without a `terrain:` section.
   std::shared_ptr<const common::Terrain> terrain;
+  /// The whole field's common::meanSensedProbability over the region (every supernode's sensors):
+  /// the average the derived detection probability stands for; 0 without coverage.
+  double coverage_region_mean = 0.0;
 };
 
 /// The context of supernode `supernode`'s engine; scenario.tracker.params must be resolved.

@@ -44,6 +44,9 @@ void resolveEngineParams(common::Scenario& scenario, const common::StatisticsSou
 EngineContext engineContext(const common::Scenario& scenario, std::uint32_t supernode) {
   std::vector<common::SensorCoverage> coverage;
   if (scenario.sensor_model.settings) coverage = scenario.sensor_model.settings->coverage(scenario);
+  std::shared_ptr<const common::Terrain> terrain;
+  if (!scenario.terrain.empty()) terrain = std::make_shared<const common::Terrain>(scenario.terrain);
+  const double region_mean = common::meanSensedProbability(coverage, scenario.region, terrain.get());
   if (scenario.supernodes.size() > 1 && !coverage.empty()) {
     // A supernode hears only its tracking group, the sensors the network model routes to it (Oh
     // §V: g(i), the supernode nearest the sensor's true position). Scanning the others would
@@ -53,8 +56,6 @@ EngineContext engineContext(const common::Scenario& scenario, std::uint32_t supe
       return nearestSupernode(scenario.supernodes, layout.truePosition(sensor.sensor)) != supernode;
     });
   }
-  std::shared_ptr<const common::Terrain> terrain;
-  if (!scenario.terrain.empty()) terrain = std::make_shared<const common::Terrain>(scenario.terrain);
   return {scenario.tracker.engine,
           supernode,
           scenario.region,
@@ -64,7 +65,8 @@ EngineContext engineContext(const common::Scenario& scenario, std::uint32_t supe
           scenario.tracker.window_size,
           scenario.tracker.params,
           std::move(coverage),
-          std::move(terrain)};
+          std::move(terrain),
+          region_mean};
 }
 
 std::unique_ptr<Engine> makeEngine(const EngineContext& context) {

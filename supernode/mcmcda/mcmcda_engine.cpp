@@ -67,7 +67,9 @@ EngineSpec engineSpec() {
 
 McmcdaEngine::McmcdaEngine(const EngineContext& context)
     : McmcdaEngine(McmcdaParams::fromContext(context), context.region, context.seed, context.supernode,
-                   common::track_id::Space::ofSupernode(context.supernode)) {}
+                   common::track_id::Space::ofSupernode(context.supernode)) {
+  detection_share_ = common::DetectionShare(context.coverage, context.terrain, context.coverage_region_mean);
+}
 
 McmcdaEngine::McmcdaEngine(const McmcdaParams& params, const common::Rect& region, std::uint64_t seed,
                            std::uint32_t stream_key, common::track_id::Space ids)
@@ -243,19 +245,24 @@ void McmcdaEngine::learnDelays(const ObservationWindow& window) {
     arrived_by_age_[d] = std::min(1.0, params_.model.detection_probability * delivered[d] / mean);
 }
 
-double McmcdaEngine::unseenLikelihood(std::int32_t seen, std::int32_t tick, double& there_at_tick) const {
+double McmcdaEngine::unseenLikelihood(const LiveTrack& track, std::int32_t tick, double& there_at_tick) const {
   // A target last seen at tick s ended after some tick k >= s, or is still there at the newest tick
   // n. Ending after k weighs (1 - pz)^(k - s) pz times the chance that none of its reports of ticks
-  // s + 1 .. k is in the window, prod (1 - pd_a) with a = n - j the age of tick j (arrivedBy); being
-  // there still, (1 - pz)^(n - s) prod over s + 1 .. n. It is there at `tick` when it ended at or
-  // after it, or has not.
+  // s + 1 .. k is in the window, prod (1 - pd_a) with a = n - j the age of tick j, at the track's
+  // predicted position then (arrivedBy); being there still, (1 - pz)^(n - s) prod over s + 1 .. n.
+  // It is there at `tick` when it ended at or after it, or has not.
   const double pz = params_.model.termination_probability;
+  const TrackState& last = track.lastState();
   double alive = 1.0;  // there through tick j - 1
   double gone = 0.0;   // ended before `tick`
   double later = 0.0;  // ended at or after `tick`, before the newest
-  for (std::int32_t j = seen + 1; j <= newest_tick_; ++j) {
+  for (std::int32_t j = track.lastSeenTick() + 1; j <= newest_tick_; ++j) {
     (j > tick ? later : gone) += alive * pz;
-    alive *= (1.0 - pz) * (1.0 - arrivedBy(newest_tick_ - j));
+    const double ahead = j - last.tick;
+    const double arrived = detection_share_.uniform()
+                               ? arrivedBy(newest_tick_ - j)
+                               : arrivedBy(newest_tick_ - j, {last.x + ahead * last.vx, last.y + ahead * last.vy});
+    alive *= (1.0 - pz) * (1.0 - arrived);
   }
   there_at_tick = alive + later;
   return alive + later + gone;
@@ -263,17 +270,19 @@ double McmcdaEngine::unseenLikelihood(std::int32_t seen, std::int32_t tick, doub
 
 bool McmcdaEngine::probablyAlive(const LiveTrack& track, std::int32_t tick) const {
   double there = 0.0;
-  const double all = unseenLikelihood(track.lastSeenTick(), tick, there);
+  const double all = unseenLikelihood(track, tick, there);
   return there >= all - there;
 }
 
 bool McmcdaEngine::loneTargetLikely(const LiveTrack& track) const {
   // Eq. (3) for the report of a one-report track: a target born at its tick (lambda_b), detected
-  // (pd), and unseen since, however it ended (unseenLikelihood); against a false alarm (lambda_f).
+  // where it was (pd there), and unseen since, however it ended (unseenLikelihood); against a
+  // false alarm (lambda_f).
   double there = 0.0;
   const ModelParams& m = params_.model;
-  return m.birth_density * m.detection_probability * unseenLikelihood(track.lastSeenTick(), newest_tick_, there) >=
-         m.false_alarm_density;
+  const TrackState& at_report = track.lastState();
+  const double pd = std::min(1.0, m.detection_probability * detection_share_.at({at_report.x, at_report.y}));
+  return m.birth_density * pd * unseenLikelihood(track, newest_tick_, there) >= m.false_alarm_density;
 }
 
 std::vector<McmcdaEngine::LiveTrackView> McmcdaEngine::liveTracks() const {

@@ -30,7 +30,8 @@ EngineSpec engineSpec();
 /// smoothed) state of each confirmed track, predicted to the newest tick, for every track that may
 /// still continue (a report of the window could still follow its last observation within d-bar
 /// ticks) and whose target is more likely there than gone (probablyAlive: pd of eq. (3) shared out
-/// over the report ages by the delays learnt from every delivered report); the estimate for an
+/// over the report ages by the delays learnt from every delivered report, and over the field by
+/// where its sensors see, when the sensor model says); the estimate for an
 /// earlier tick of the window is available through tracksAt().
 class McmcdaEngine final : public Engine {
  public:
@@ -116,15 +117,21 @@ class McmcdaEngine final : public Engine {
   /// The track's target is more likely there at `tick` (at most the newest) than gone, given the
   /// ticks since its last observation, the detection probability and the delays learnt so far.
   bool probablyAlive(const LiveTrack& track, std::int32_t tick) const;
-  /// The chance that a target last seen at `seen` gives no report in the window after it, ending
-  /// at some tick or not; `there_at_tick` the part of it in which it is there at `tick`.
-  double unseenLikelihood(std::int32_t seen, std::int32_t tick, double& there_at_tick) const;
+  /// The chance that the track's target, last seen at its last observation, gives no report in the
+  /// window after it, ending at some tick or not; `there_at_tick` the part of it in which it is
+  /// there at `tick`.
+  double unseenLikelihood(const LiveTrack& track, std::int32_t tick, double& there_at_tick) const;
   /// Eq. (3) prefers a target to a false alarm for the report of a one-report track, given its silence since.
   bool loneTargetLikely(const LiveTrack& track) const;
   /// P(a live target's report of the tick `age` ticks back is in the window): pd shared out by
   /// the delays learnt so far (arrived_by_age_).
   double arrivedBy(std::int32_t age) const {
     return arrived_by_age_[std::min(static_cast<std::size_t>(std::max(age, 0)), arrived_by_age_.size() - 1)];
+  }
+  /// The same for a target at `where`: shared out over the field too, where the sensors' coverage
+  /// is known (detection_share_), at most 1.
+  double arrivedBy(std::int32_t age, common::Vec2 where) const {
+    return std::min(1.0, arrivedBy(age) * detection_share_.at(where));
   }
   /// Updates the delay histogram from the slot that just became final, and arrived_by_age_ with it.
   void learnDelays(const ObservationWindow& window);
@@ -133,6 +140,9 @@ class McmcdaEngine final : public Engine {
   common::track_id::Space ids_;
   std::uint64_t seed_;
   common::Rect region_;  ///< the surveillance region
+  /// Where the field's sensors see well and where not (field sensors); uniform for a grid of
+  /// identical sensors, and for the aggregator's engine.
+  common::DetectionShare detection_share_;
   McmcdaParams params_;
   MotionModel motion_;
   std::int32_t newest_tick_ = 0;

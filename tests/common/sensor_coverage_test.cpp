@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace wsn::common {
 namespace {
@@ -51,6 +52,47 @@ TEST_CASE("PD x Pe is the sensor's PD in its sector and sight and 0 elsewhere", 
   CHECK(detectionProbabilityAt(camera, {0, 60}, &terrain) == 0.0);    // outside the 90 deg sector
   CHECK(detectionProbabilityAt(camera, {101, 0}, &terrain) == 0.0);   // beyond the range
   CHECK(detectionProbabilityAt(camera, {60, 0}, nullptr) == 0.8);     // open ground
+}
+
+
+SensorCoverage disc(SensorId id, Vec2 at, double range, double pd) {
+  SensorCoverage c;
+  c.sensor = id;
+  c.position = at;
+  c.fov = 2 * kPi;
+  c.range = range;
+  c.detection_probability = pd;
+  return c;
+}
+
+TEST_CASE("a point seen by two sensors is missed only when both miss it", "[coverage]") {
+  const std::vector<SensorCoverage> field = {disc(0, {0, 0}, 10, 0.8), disc(1, {10, 0}, 10, 0.5)};
+  CHECK(sensedProbabilityAt(field, {5, 0}, nullptr) == Approx(1.0 - 0.2 * 0.5));
+  CHECK(sensedProbabilityAt(field, {-5, 0}, nullptr) == Approx(0.8));
+  CHECK(sensedProbabilityAt(field, {30, 0}, nullptr) == 0.0);
+  CHECK(sensedProbabilityAt({}, {0, 0}, nullptr) == 0.0);
+}
+
+TEST_CASE("the region mean of sensing is the covered share of the region times its PD", "[coverage]") {
+  // One disc of radius 10 and PD 0.6 inside a 100 x 100 region: pi 10^2 / 10^4 x 0.6 = 0.01885,
+  // up to the grid's rendering of the disc (a 1 m grid: within 1 %).
+  const Rect region{0, 0, 100, 100};
+  const double mean = meanSensedProbability({disc(0, {50, 50}, 10, 0.6)}, region, nullptr, 100);
+  CHECK(mean == Approx(kPi * 100.0 / 1e4 * 0.6).epsilon(0.01));
+  // Two overlapping discs count their common part once, at 1 - (1 - pd)^2.
+  const double both = meanSensedProbability({disc(0, {50, 50}, 10, 0.6), disc(1, {50, 50}, 10, 0.6)}, region, nullptr, 100);
+  CHECK(both == Approx(kPi * 100.0 / 1e4 * (1.0 - 0.4 * 0.4)).epsilon(0.01));
+  CHECK(meanSensedProbability({}, region, nullptr) == 0.0);
+}
+
+TEST_CASE("the detection share is sensing over its region mean and 1 without coverage", "[coverage]") {
+  const DetectionShare none;
+  CHECK(none.uniform());
+  CHECK(none.at({3, 4}) == 1.0);
+  const DetectionShare field({disc(0, {0, 0}, 10, 0.8)}, nullptr, 0.04);
+  CHECK_FALSE(field.uniform());
+  CHECK(field.at({1, 1}) == Approx(0.8 / 0.04));
+  CHECK(field.at({50, 50}) == 0.0);
 }
 
 }  // namespace

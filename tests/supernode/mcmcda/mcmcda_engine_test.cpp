@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <set>
 #include <vector>
 
@@ -452,6 +453,47 @@ TEST_CASE("a track of one report outlives the window its report leaves and a lat
   // Tick 7's report joined the anchored track: its velocity is now learnt from the two reports.
   CHECK(outputs[6].tracks[0].vx == Approx(1.0).margin(0.2));
   CHECK(outputs[6].tracks[0].last_seen_tick == 7);
+}
+
+TEST_CASE("an unseen track coasts where no sensor looks and ends where its sensor would have seen it") {
+  // Heavy loss on average (pd 0.1, confirmation at one report, window 4, max_gap 8), but the field's
+  // sensors are known: one disc of radius 5 at (20, 20) with PD 0.9 covers 0.7 % of the region, so
+  // there a target is seen at pd 0.1 x 0.9 / 0.00707 > 1, capped at 1, and nowhere else at all. Two
+  // targets at rest, reported at ticks 1 to 3 and then silent: the one in the disc would have been
+  // seen at tick 4, so its track ends there; the one outside coasts while a report could still
+  // continue it (through tick 13: tick 3 + max_gap 8 leaves the window that tick 14 opens), as both
+  // do when the coverage is not known.
+  common::Scenario scenario = mcmcdaScenario(4, 8);
+  scenario.tracker.params["confirm_observations"] = {1, 0};
+  scenario.tracker.params["false_alarm_density"] = {1e-9, 0};
+  scenario.tracker.params["detection_probability"] = {0.1, 0};
+  scenario.tracker.params["termination_probability"] = {0.02, 0};
+  resolveEngineParams(scenario, wsn::common::kNoStatistics);
+  const auto deliver = [](std::int32_t t) {
+    std::vector<Observation> obs;
+    if (t <= 3) obs = {observation(t, t, 20.0, 20.0, 0), observation(t, t, 70.0, 70.0, 1)};
+    return obs;
+  };
+  const auto reported = [](const SupernodeTracker::TickOutput& out, double x) {
+    return std::ranges::count_if(out.tracks, [&](const common::TrackEstimate& e) { return std::abs(e.x - x) < 1.0; });
+  };
+  EngineContext context = engineContext(scenario, 0);
+  SupernodeTracker without_coverage(SupernodeConfig{context, scenario.supernodes});
+  common::SensorCoverage disc{0, {20.0, 20.0}, 0.0, 2 * std::numbers::pi, 5.0, 0.9, common::SightBlockers::none};
+  context.coverage = {disc};
+  context.coverage_region_mean = common::meanSensedProbability(context.coverage, context.region, nullptr);
+  REQUIRE(context.coverage_region_mean == Approx(std::numbers::pi * 25.0 / 1e4 * 0.9).epsilon(0.02));
+  SupernodeTracker with_coverage(SupernodeConfig{context, scenario.supernodes});
+  for (std::int32_t t = 1; t <= 16; ++t) {
+    INFO("tick " << t);
+    const auto plain = without_coverage.step(t, deliver(t), {});
+    const auto covered = with_coverage.step(t, deliver(t), {});
+    const std::int32_t coasting = t <= 13 ? 1 : 0;
+    CHECK(reported(plain, 20.0) == coasting);
+    CHECK(reported(plain, 70.0) == coasting);
+    CHECK(reported(covered, 20.0) == (t <= 3 ? 1 : 0));
+    CHECK(reported(covered, 70.0) == coasting);
+  }
 }
 
 }  // namespace wsn::supernode::mcmcda
