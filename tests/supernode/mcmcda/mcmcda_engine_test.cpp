@@ -37,6 +37,18 @@ common::Scenario mcmcdaScenario(std::int32_t window_size = 10, double max_gap = 
   return s;
 }
 
+/// Heavy loss: pd 0.1, pz 0.02, confirmation at one report, next to no clutter, a window of 4 ticks
+/// and max_gap 8.
+common::Scenario heavyLossScenario() {
+  common::Scenario scenario = mcmcdaScenario(4, 8);
+  scenario.tracker.params["confirm_observations"] = {1, 0};
+  scenario.tracker.params["false_alarm_density"] = {1e-9, 0};
+  scenario.tracker.params["detection_probability"] = {0.1, 0};
+  scenario.tracker.params["termination_probability"] = {0.02, 0};
+  resolveEngineParams(scenario, wsn::common::kNoStatistics);
+  return scenario;
+}
+
 struct Target {
   double x0, y0, vx, vy;
   double x(std::int32_t t) const { return x0 + vx * (t - 1); }
@@ -432,12 +444,7 @@ TEST_CASE("a track of one report outlives the window its report leaves and a lat
   // and the track goes on from it as an anchor, reported all along (alive 0.882^m against ended
   // 0.02 (1 - 0.882^m) / 0.118 while m <= 15), and tick 7's report continues it under its id.
   const Target target{40, 40, 1.0, 0.5};
-  common::Scenario scenario = mcmcdaScenario(4, 8);
-  scenario.tracker.params["confirm_observations"] = {1, 0};
-  scenario.tracker.params["false_alarm_density"] = {1e-9, 0};
-  scenario.tracker.params["detection_probability"] = {0.1, 0};
-  scenario.tracker.params["termination_probability"] = {0.02, 0};
-  resolveEngineParams(scenario, wsn::common::kNoStatistics);
+  const common::Scenario scenario = heavyLossScenario();
   const auto outputs = run(scenario, 8, [&](std::int32_t t) {
     std::vector<Observation> obs;
     if (t == 1 || t == 7) obs.push_back(observation(t, t, target.x(t), target.y(t), 0));
@@ -463,12 +470,7 @@ TEST_CASE("an unseen track coasts where no sensor looks and ends where its senso
   // seen at tick 4, so its track ends there; the one outside coasts while a report could still
   // continue it (through tick 13: tick 3 + max_gap 8 leaves the window that tick 14 opens), as both
   // do when the coverage is not known.
-  common::Scenario scenario = mcmcdaScenario(4, 8);
-  scenario.tracker.params["confirm_observations"] = {1, 0};
-  scenario.tracker.params["false_alarm_density"] = {1e-9, 0};
-  scenario.tracker.params["detection_probability"] = {0.1, 0};
-  scenario.tracker.params["termination_probability"] = {0.02, 0};
-  resolveEngineParams(scenario, wsn::common::kNoStatistics);
+  const common::Scenario scenario = heavyLossScenario();
   const auto deliver = [](std::int32_t t) {
     std::vector<Observation> obs;
     if (t <= 3) obs = {observation(t, t, 20.0, 20.0, 0), observation(t, t, 70.0, 70.0, 1)};
