@@ -36,7 +36,7 @@ inline ParamDerivation liveEdgeMissDerivation(std::int32_t at_least, std::int32_
             const ObservationStatistics& s = stats();
             const auto pd = s.detectionByLag();
             const std::int32_t cap = at_most == 0 ? s.window_size : at_most;
-            const std::int32_t k = std::max(at_least, rareLiveEdgeMissRun(pd, 0.01, cap));
+            const std::int32_t k = std::max(at_least, rareLiveEdgeMissRun(pd, kRareMissRun, cap));
             return Derived{static_cast<double>(k),
                            (at_least > 1 ? "max(" + std::to_string(at_least) + ", " : std::string()) +
                                "smallest k with prod_{j<k} (1 - pd_j) <= 0.01" + (at_least > 1 ? ")" : "") +

@@ -64,6 +64,10 @@ inline std::int32_t rareMissRun(double pd, double tolerance, std::int32_t max_k)
   return static_cast<std::int32_t>(std::clamp(k, 1.0, static_cast<double>(max_k)));
 }
 
+/// How unlikely a run of misses must be, for a live target, before a track is given up (1 %): the
+/// tolerance of every derived miss count (common::liveEdgeMissDerivation).
+inline constexpr double kRareMissRun = 0.01;
+
 /// The smallest k >= 1 such that a live target shows no report at any of the newest k ticks, as an
 /// engine sees them when it decides at the newest tick, with probability <= tolerance:
 /// prod_{j < k} (1 - pd_by_lag[j]), where pd_by_lag[j] is the probability that the report of the

@@ -150,10 +150,24 @@ GnnParams GnnParams::fromContext(const EngineContext& context) {
 GnnEngine::GnnEngine(const EngineContext& context)
     : supernode_(context.supernode),
       region_(context.region),
+      detection_share_(context.coverage, context.terrain, context.coverage_region_mean),
       params_(GnnParams::fromContext(context)),
       model_(context.dynamics.delta, context.dynamics.process_noise_sigma,
              params_.measurement_sigma),
       replay_(&Track::id, &byId) {}
+
+bool GnnEngine::silenceIsRare(Track& track) const {
+  // max_misses silent ticks are rare (common::kRareMissRun) for a live target on the field's
+  // average, rho^max_misses with rho = kRareMissRun^(1 / max_misses) a tick. Where the sensors'
+  // coverage is known a silent tick weighs what they would have seen at the track's position,
+  // 1 - (1 - rho) share(x): a track left at a sensor its target has passed ends within a few ticks,
+  // one in ground no sensor covers only after max_misses.
+  if (detection_share_.uniform()) return false;
+  const double rho = std::pow(common::kRareMissRun, 1.0 / params_.max_misses);
+  const double share = detection_share_.at({track.state.x(kX), track.state.x(kY)});
+  track.silence *= 1.0 - std::min(1.0, (1.0 - rho) * share);
+  return track.silence <= common::kRareMissRun;
+}
 
 std::vector<int> GnnEngine::associate(const std::vector<Track>& tracks,
                                       std::span<const common::Observation> slot) const {
@@ -211,6 +225,7 @@ void GnnEngine::processTick(std::vector<Track>& tracks, std::int32_t tick,
     }
     if (hit) {
       ++track.hits;
+      track.silence = 1.0;
       if (track.confirmed) {
         track.misses = 0;
       } else if (track.hits >= params_.confirm_hits) {
@@ -221,7 +236,7 @@ void GnnEngine::processTick(std::vector<Track>& tracks, std::int32_t tick,
       ++track.misses;
       // A tentative track of age hits + misses still has N - age ticks to collect M - hits
       // hits: it cannot make it once misses > N - M.
-      const bool dead = track.confirmed ? track.misses >= params_.max_misses
+      const bool dead = track.confirmed ? track.misses >= params_.max_misses || silenceIsRare(track)
                                         : track.misses > confirm_window - params_.confirm_hits;
       // A track that coasted out of the region can never be observed again: it followed a
       // target that left, and keeping it for max_misses ticks only adds a false track.

@@ -59,6 +59,9 @@ class GnnEngine final : public Engine {
     /// Tentative: misses since birth (so hits + misses is the track's age in ticks);
     /// confirmed: consecutive misses since the last hit.
     std::int32_t misses = 0;
+    /// Where the sensors' coverage is known (confirmed tracks): the chance that a live target at
+    /// the track's predicted positions went unseen through its misses since the last hit.
+    double silence = 1.0;
     bool confirmed = false;
   };
 
@@ -71,11 +74,16 @@ class GnnEngine final : public Engine {
   /// Optimal gated assignment of observations to (predicted) tracks: for each track, the index
   /// of its observation in `slot` or -1.
   std::vector<int> associate(const std::vector<Track>& tracks, std::span<const common::Observation> slot) const;
+  /// A confirmed track's miss at its predicted position: updates its silence and tells whether a
+  /// live target's silence so long would be rarer than common::kRareMissRun (coverage known only).
+  bool silenceIsRare(Track& track) const;
   /// One GNN scan at `tick` on tracks whose state is at tick - 1.
   void processTick(std::vector<Track>& tracks, std::int32_t tick, std::span<const common::Observation> slot) const;
 
   std::uint32_t supernode_;
   common::Rect region_;  ///< the surveillance region: no sensor sees a target outside it
+  /// Where the field's sensors see well and where not (field sensors); uniform otherwise.
+  common::DetectionShare detection_share_;
   GnnParams params_;
   common::ConstantVelocityModel model_;
   WindowReplay<Track> replay_;

@@ -2,6 +2,7 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <vector>
 
@@ -194,6 +195,42 @@ TEST_CASE("a confirmed track is deleted after max_misses consecutive misses", "[
   h.step(9);
   CHECK(h.engine.confirmedTracks().empty());
   CHECK(h.engine.predictions().empty());
+}
+
+TEST_CASE("a confirmed track ends soon where a sensor would have seen it and coasts where none looks", "[gnn]") {
+  // max_misses 20: twenty silent ticks are 1 % likely on the field's average, rho = 0.01^(1/20) =
+  // 0.794 a tick. The field's one sensor, a disc of radius 5 at (20, 20) with PD 0.9, covers 0.7 %
+  // of the region: a miss there weighs 1 - (1 - rho) x 0.9 / 0.00707 < 0, so the target at rest in
+  // it ends at its first miss; the one at (70, 70), where no sensor looks, coasts all 20 ticks, as
+  // both do when the coverage is not known.
+  common::Scenario s = gnnScenario();
+  s.tracker.params["max_misses"] = {20, 0};
+  resolveEngineParams(s, wsn::common::kNoStatistics);
+  EngineContext context = engineContext(s, 0);
+  GnnEngine without_coverage(context);
+  context.coverage = {{0, {20.0, 20.0}, 0.0, 2 * std::numbers::pi, 5.0, 0.9, common::SightBlockers::none}};
+  context.coverage_region_mean = common::meanSensedProbability(context.coverage, context.region, nullptr);
+  GnnEngine with_coverage(context);
+  ObservationWindow window(s.tracker.window_size);
+  const auto near = [](const std::vector<common::TrackEstimate>& tracks, common::Vec2 at) {
+    return std::ranges::count_if(tracks, [&](const common::TrackEstimate& e) { return positionError(e, at) < 1.0; });
+  };
+  for (std::int32_t t = 1; t <= 30; ++t) {
+    window.advanceTo(t);
+    if (t <= 6) {
+      window.insert(observation(t, t, 20.0, 20.0, 0));
+      window.insert(observation(t, t, 70.0, 70.0, 1));
+    }
+    without_coverage.step(window);
+    with_coverage.step(window);
+    if (t < 6) continue;  // confirmed by then
+    INFO("tick " << t);
+    const std::int32_t coasting = t < 6 + 20 ? 1 : 0;
+    CHECK(near(without_coverage.confirmedTracks(), {20.0, 20.0}) == coasting);
+    CHECK(near(without_coverage.confirmedTracks(), {70.0, 70.0}) == coasting);
+    CHECK(near(with_coverage.confirmedTracks(), {20.0, 20.0}) == (t == 6 ? 1 : 0));
+    CHECK(near(with_coverage.confirmedTracks(), {70.0, 70.0}) == coasting);
+  }
 }
 
 TEST_CASE("a tentative track that can no longer reach M hits in N ticks is deleted", "[gnn]") {
