@@ -39,6 +39,12 @@ struct EngineContext {
   double coverage_region_mean = 0.0;
 };
 
+/// How the context's sensors see over the field (common::DetectionShare): where a miss weighs what
+/// the sensors would have seen; uniform without coverage.
+inline common::DetectionShare detectionShare(const EngineContext& context) {
+  return common::DetectionShare(context.coverage, context.terrain, context.coverage_region_mean);
+}
+
 /// The context of supernode `supernode`'s engine; scenario.tracker.params must be resolved.
 EngineContext engineContext(const common::Scenario& scenario, std::uint32_t supernode);
 

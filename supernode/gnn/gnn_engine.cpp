@@ -150,7 +150,7 @@ GnnParams GnnParams::fromContext(const EngineContext& context) {
 GnnEngine::GnnEngine(const EngineContext& context)
     : supernode_(context.supernode),
       region_(context.region),
-      detection_share_(context.coverage, context.terrain, context.coverage_region_mean),
+      detection_share_(detectionShare(context)),
       params_(GnnParams::fromContext(context)),
       model_(context.dynamics.delta, context.dynamics.process_noise_sigma,
              params_.measurement_sigma),

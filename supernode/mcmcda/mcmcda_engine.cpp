@@ -68,7 +68,7 @@ EngineSpec engineSpec() {
 McmcdaEngine::McmcdaEngine(const EngineContext& context)
     : McmcdaEngine(McmcdaParams::fromContext(context), context.region, context.seed, context.supernode,
                    common::track_id::Space::ofSupernode(context.supernode)) {
-  detection_share_ = common::DetectionShare(context.coverage, context.terrain, context.coverage_region_mean);
+  detection_share_ = detectionShare(context);
 }
 
 McmcdaEngine::McmcdaEngine(const McmcdaParams& params, const common::Rect& region, std::uint64_t seed,
@@ -259,10 +259,7 @@ double McmcdaEngine::unseenLikelihood(const LiveTrack& track, std::int32_t tick,
   for (std::int32_t j = track.lastSeenTick() + 1; j <= newest_tick_; ++j) {
     (j > tick ? later : gone) += alive * pz;
     const double ahead = j - last.tick;
-    const double arrived = detection_share_.uniform()
-                               ? arrivedBy(newest_tick_ - j)
-                               : arrivedBy(newest_tick_ - j, {last.x + ahead * last.vx, last.y + ahead * last.vy});
-    alive *= (1.0 - pz) * (1.0 - arrived);
+    alive *= (1.0 - pz) * (1.0 - arrivedBy(newest_tick_ - j, {last.x + ahead * last.vx, last.y + ahead * last.vy}));
   }
   there_at_tick = alive + later;
   return alive + later + gone;
@@ -408,9 +405,9 @@ std::vector<TrackPrediction> McmcdaEngine::predictions() const {
   std::vector<TrackPrediction> out;
   for (const auto& track : tracks_) {
     // Handed on even when judged gone for now: the misses travel with it, so the receiver judges
-    // it the same way, and late reports may still revive it there. A newborn (one report, no past)
-    // is not: the receiver would take it for an established track and keep it going, where here
-    // it is gone a tick later unless a report continues it.
+    // it the same way, and late reports may still revive it there. A one-report track is not: the
+    // receiver would take it for an established track and keep it going, where here it lives only
+    // while eq. (3) prefers a target to a false alarm for its one report (loneTargetLikely).
     if (!isLive(track) || track.isOneReport()) continue;
     const TrackState& last = track.lastState();
     const TrackState next = motion_.predict(last, newest_tick_ + 1 - last.tick);

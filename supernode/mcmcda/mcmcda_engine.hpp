@@ -31,8 +31,8 @@ EngineSpec engineSpec();
 /// still continue (a report of the window could still follow its last observation within d-bar
 /// ticks) and whose target is more likely there than gone (probablyAlive: pd of eq. (3) shared out
 /// over the report ages by the delays learnt from every delivered report, and over the field by
-/// where its sensors see, when the sensor model says); the estimate for an
-/// earlier tick of the window is available through tracksAt().
+/// where its sensors see, when the sensor model says); the estimate for an earlier tick of the
+/// window is available through tracksAt().
 class McmcdaEngine final : public Engine {
  public:
   explicit McmcdaEngine(const EngineContext& context);
@@ -129,7 +129,7 @@ class McmcdaEngine final : public Engine {
     return arrived_by_age_[std::min(static_cast<std::size_t>(std::max(age, 0)), arrived_by_age_.size() - 1)];
   }
   /// The same for a target at `where`: shared out over the field too, where the sensors' coverage
-  /// is known (detection_share_), at most 1.
+  /// is known (detection_share_), at most 1; without coverage, arrivedBy(age) exactly.
   double arrivedBy(std::int32_t age, common::Vec2 where) const {
     return std::min(1.0, arrivedBy(age) * detection_share_.at(where));
   }

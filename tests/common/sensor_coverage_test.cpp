@@ -93,6 +93,10 @@ TEST_CASE("the detection share is sensing over its region mean and 1 without cov
   CHECK_FALSE(field.uniform());
   CHECK(field.at({1, 1}) == Approx(0.8 / 0.04));
   CHECK(field.at({50, 50}) == 0.0);
+  // A field whose sensors see nothing of the region has no scale to share out by: uniform.
+  const DetectionShare blind({disc(0, {0, 0}, 10, 0.8)}, nullptr, 0.0);
+  CHECK(blind.uniform());
+  CHECK(blind.at({1, 1}) == 1.0);
 }
 
 }  // namespace
