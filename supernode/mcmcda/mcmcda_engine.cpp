@@ -207,8 +207,8 @@ WindowProblem McmcdaEngine::buildProblem(const ObservationWindow& window) const 
     if (entries[i].anchor_of >= 0)
       anchor_index[static_cast<std::size_t>(entries[i].anchor_of)] = static_cast<std::int32_t>(i);
   }
-  return WindowProblem{Problem(params_.model, std::move(observations), window.newestTick()), std::move(keys),
-                       std::move(anchor_of), std::move(anchor_index)};
+  return WindowProblem{Problem(params_.model, std::move(observations), window.newestTick(), &detection_share_),
+                       std::move(keys), std::move(anchor_of), std::move(anchor_index)};
 }
 
 void McmcdaEngine::learnDelays(const ObservationWindow& window) {
@@ -272,14 +272,16 @@ bool McmcdaEngine::probablyAlive(const LiveTrack& track, std::int32_t tick) cons
 }
 
 bool McmcdaEngine::loneTargetLikely(const LiveTrack& track) const {
-  // Eq. (3) for the report of a one-report track: a target born at its tick (lambda_b), detected
-  // where it was (pd there), and unseen since, however it ended (unseenLikelihood); against a
-  // false alarm (lambda_f).
+  // Eq. (3) for the report of a one-report track, as the chain weighs a report left out of every
+  // track (Problem::unassignedLogDensity): a target born unseen at its tick or before (lambda_b x
+  // unseenBirthWeight), detected where it was (pd there), and unseen since, however it ended
+  // (unseenLikelihood: by report age, as the delays say); against a false alarm (lambda_f).
   double there = 0.0;
   const ModelParams& m = params_.model;
   const TrackState& at_report = track.lastState();
   const double pd = std::min(1.0, m.detection_probability * detection_share_.at({at_report.x, at_report.y}));
-  return m.birth_density * pd * unseenLikelihood(track, newest_tick_, there) >= m.false_alarm_density;
+  return m.birth_density * unseenBirthWeight(m, at_report.tick) * pd * unseenLikelihood(track, newest_tick_, there) >=
+         m.false_alarm_density;
 }
 
 std::vector<McmcdaEngine::LiveTrackView> McmcdaEngine::liveTracks() const {

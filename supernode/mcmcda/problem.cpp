@@ -89,8 +89,14 @@ double MotionModel::correct(TrackState& s, double zx, double zy) const {
   return -(log_two_pi_ + std::log(S) + 0.5 * (nux * nux + nuy * nuy) / S);
 }
 
-Problem::Problem(const ModelParams& params, std::vector<ProblemObservation> observations, std::int32_t last_tick)
-    : params_(params), observations_(std::move(observations)), last_tick_(last_tick), motion_(params) {
+double unseenBirthWeight(const ModelParams& params, std::int32_t tick) {
+  const double r = (1.0 - params.termination_probability) * (1.0 - params.detection_probability);
+  return (1.0 - std::pow(r, std::max(tick, 1))) / (1.0 - r);
+}
+
+Problem::Problem(const ModelParams& params, std::vector<ProblemObservation> observations, std::int32_t last_tick,
+                 const common::DetectionShare* share)
+    : params_(params), observations_(std::move(observations)), last_tick_(last_tick), motion_(params), share_(share) {
   const auto& p = params_;
   require(p.detection_probability > 0.0 && p.detection_probability < 1.0, "detection probability must be in (0, 1)");
   require(p.termination_probability > 0.0 && p.termination_probability < 1.0,
@@ -103,13 +109,36 @@ Problem::Problem(const ModelParams& params, std::vector<ProblemObservation> obse
   require(p.stop_probability > 0.0 && p.stop_probability < 1.0, "stop probability must be in (0, 1)");
   for (std::size_t i = 1; i < observations_.size(); ++i)
     require(observations_[i - 1].tick <= observations_[i].tick, "observations must be sorted by tick");
+  require(observations_.empty() || observations_.back().tick <= last_tick_, "observations must not be after the last tick");
+  if (share_ != nullptr && share_->uniform()) share_ = nullptr;
 
   log_pd_ = std::log(p.detection_probability);
   log_miss_ = std::log1p(-p.detection_probability);
   log_continue_ = std::log1p(-p.termination_probability);
-  log_terminate_ = std::log(p.termination_probability);
-  log_birth_ = std::log(p.birth_density);
-  log_false_alarm_ = std::log(p.false_alarm_density);
+  // The silence after every tick an element (an anchor too) can hold, with the model's one pd.
+  const std::int32_t oldest = observations_.empty() ? last_tick_ : std::min(last_tick_, observations_.front().tick);
+  const double unseen = (1.0 - p.termination_probability) * (1.0 - p.detection_probability);
+  log_silence_.assign(static_cast<std::size_t>(last_tick_ - oldest) + 1, 0.0);
+  double ended = 0.0;
+  double alive = 1.0;
+  for (std::size_t k = 1; k < log_silence_.size(); ++k) {
+    ended += alive * p.termination_probability;
+    alive *= unseen;
+    log_silence_[k] = std::log(ended + alive);
+  }
+  // Per element: a track born there, and the element left out of every track. A lone report's
+  // target: its heading is unknown, so its silence is judged with the field's pd.
+  log_birth_at_.assign(observations_.size(), 0.0);
+  log_unassigned_.assign(observations_.size(), 0.0);
+  for (std::size_t i = 0; i < observations_.size(); ++i) {
+    const auto& o = observations_[i];
+    if (o.anchor) continue;
+    const double born = p.birth_density * unseenBirthWeight(p, o.tick);
+    log_birth_at_[i] = std::log(born);
+    const double lone_target =
+        born * p.detection_probability * std::exp(log_silence_[static_cast<std::size_t>(last_tick_ - o.tick)]);
+    log_unassigned_[i] = std::log(p.false_alarm_density + lone_target);
+  }
 
   buildSuccessors();
 }
@@ -222,24 +251,45 @@ double Problem::trackScore(std::span<const std::int32_t> track, TrackState* fina
   const std::int32_t first = track.front();
   const bool anchored = isAnchor(first);
   // Kalman likelihood from the second element on (eq. 8): sum log N(nu; 0, S), S = (P_pp + r^2) I.
-  const double log_likelihood = filter(track, nullptr, final_state);
+  TrackState last;
+  const double log_likelihood = filter(track, nullptr, &last);
+  if (final_state != nullptr) *final_state = last;
 
   // Eq. (3)'s prior terms for this track. A birth brings lambda_b (the uniform density of the
-  // birth position is inside it, as 1/V is inside lambda_f for a false alarm); an anchor is a
-  // continuing target and brings no birth term, but leaving it unassigned would have meant "ended
-  // at once" (p_z), which this track replaces.
+  // birth position is inside it, as 1/V is inside lambda_f for a false alarm), at any tick its
+  // target went unseen before its first report; an anchor is a continuing target and brings no
+  // birth term, but left unassigned it would have meant its target's silence since its tick,
+  // which this track replaces. After the last element, the silence to T.
   const std::int32_t t_start = observation(first).tick;
   const std::int32_t t_end = observation(track.back()).tick;
   const std::int32_t detections = anchored ? n - 1 : n;
   const std::int32_t alive_ticks = anchored ? t_end - t_start : t_end - t_start + 1;
   double prior = (t_end - t_start) * log_continue_ + detections * log_pd_ + (alive_ticks - detections) * log_miss_;
-  if (t_end < last_tick_) prior += log_terminate_;
+  prior += logSilence(t_end, last);
   if (anchored) {
-    if (t_start < last_tick_) prior -= log_terminate_;
+    prior -= logSilence(t_start, observation(first).prior);
   } else {
-    prior += log_birth_;
+    prior += log_birth_at_[static_cast<std::size_t>(first)];
   }
-  return prior + log_likelihood - detections * log_false_alarm_;
+  double unassigned = 0.0;
+  for (const auto i : track) unassigned += log_unassigned_[static_cast<std::size_t>(i)];
+  return prior + log_likelihood - unassigned;
+}
+
+double Problem::silence(std::int32_t last, const TrackState& state) const {
+  const double pz = params_.termination_probability;
+  double ended = 0.0;
+  double alive = 1.0;
+  for (std::int32_t j = last + 1; j <= last_tick_; ++j) {
+    ended += alive * pz;
+    double pd = params_.detection_probability;
+    if (share_ != nullptr) {
+      const double ahead = (j - state.tick) * params_.delta;
+      pd = std::min(1.0, pd * share_->at({state.x + ahead * state.vx, state.y + ahead * state.vy}));
+    }
+    alive *= (1.0 - pz) * (1.0 - pd);
+  }
+  return ended + alive;
 }
 
 void Problem::filterTrack(std::span<const std::int32_t> track, std::vector<TrackState>& states) const {

@@ -7,6 +7,8 @@
 #include <span>
 #include <vector>
 
+#include "common/sensor_coverage.hpp"
+
 namespace wsn::supernode::mcmcda {
 
 /// The model of eq. (3) and eq. (8) as the sampler sees it.
@@ -79,11 +81,20 @@ struct ProblemObservation {
   TrackState prior;  ///< anchors only: the track's state at `tick`
 };
 
+/// Sum_{b <= tick} of r^(tick - b), r = (1 - pz)(1 - pd): how many more ways a target whose first
+/// report is of `tick` came to be than eq. (3)'s "born at its first report" counts. It was born at
+/// some tick b from the run's first (tick 1) on and went unseen, and on, until `tick`; at pd near 1
+/// this is 1, under heavy loss up to 1 / (1 - r).
+double unseenBirthWeight(const ModelParams& params, std::int32_t tick);
+
 class Problem {
  public:
   /// `observations` must be sorted by tick; `last_tick` is T of eq. (3) (the newest tick of the
-  /// window). Throws std::invalid_argument on unsorted input or parameters out of range.
-  Problem(const ModelParams& params, std::vector<ProblemObservation> observations, std::int32_t last_tick);
+  /// window). Where the sensors' coverage is known, `share` (which must outlive the problem) shares
+  /// pd out over the field for the silence after a track's last element; null means pd everywhere.
+  /// Throws std::invalid_argument on unsorted input or parameters out of range.
+  Problem(const ModelParams& params, std::vector<ProblemObservation> observations, std::int32_t last_tick,
+          const common::DetectionShare* share = nullptr);
 
   const ModelParams& params() const { return params_; }
   std::int32_t size() const { return static_cast<std::int32_t>(observations_.size()); }
@@ -123,11 +134,30 @@ class Problem {
   }
 
   /// log pi contribution of a track relative to leaving its observations unassigned: eq. (3)'s
-  /// prior terms and Kalman likelihood for the track minus the terms of its observations as false
-  /// alarms (or, for an anchor, as a track that ended at once). log pi(omega) = sum over tracks
-  /// + const. `track` lists observation indices in tick order and must be a valid track.
-  /// When `final_state` is given, it receives the filtered state at the last observation.
+  /// prior terms and Kalman likelihood for the track minus the terms of its observations left out
+  /// of every track (unassignedLogDensity; for an anchor, its target's silence since its tick).
+  /// log pi(omega) = sum over tracks + const. `track` lists observation indices in tick order and
+  /// must be a valid track. When `final_state` is given, it receives the filtered state at the
+  /// last observation.
+  ///
+  /// Eq. (3) as Oh et al. write it dates a target's birth at its first report and its end right
+  /// after its last (p_z). Both ticks are unobserved, and under heavy loss a live target is unseen
+  /// most ticks, so each is summed over: the birth over the ticks before the first report
+  /// (unseenBirthWeight), the end over the ticks after the last, or none (the silence, which sums
+  /// "ended at tick k" and "still there at T").
   double trackScore(std::span<const std::int32_t> track, TrackState* final_state = nullptr) const;
+
+  /// log of what an observation left out of every track stands for, per unit area: a false alarm
+  /// (lambda_f), or the only report of a target in the window — born unseen before it, detected,
+  /// and silent since: lambda_b x unseenBirthWeight x pd x silence(T - tick). Without the second,
+  /// the chain weighed joining two targets' lone reports into one track against two false alarms,
+  /// not against two targets. Anchors: 0.
+  double unassignedLogDensity(std::int32_t i) const { return log_unassigned_[static_cast<std::size_t>(i)]; }
+  /// The chance that a target last observed at tick `last` gives no observation in last + 1 .. T,
+  /// having ended at one of those ticks or not at all: sum_k [prod_{j<k} q_j] p_z + prod_j q_j,
+  /// q_j = (1 - p_z)(1 - pd_j), pd_j the detection probability at the position `state` (its
+  /// filtered state at `last`) predicts for tick j (the model's pd without coverage).
+  double silence(std::int32_t last, const TrackState& state) const;
 
   /// The filtered state of `track` at each of its elements (tick order) into `states`.
   void filterTrack(std::span<const std::int32_t> track, std::vector<TrackState>& states) const;
@@ -155,9 +185,13 @@ class Problem {
   double log_pd_ = 0.0;
   double log_miss_ = 0.0;
   double log_continue_ = 0.0;
-  double log_terminate_ = 0.0;
-  double log_birth_ = 0.0;
-  double log_false_alarm_ = 0.0;
+  const common::DetectionShare* share_ = nullptr;  ///< null: pd is the same everywhere
+  std::vector<double> log_silence_;     ///< log silence by T - last, with pd the same everywhere
+  std::vector<double> log_birth_at_;    ///< per element: log lambda_b B(tick), a track born there
+  std::vector<double> log_unassigned_;  ///< per element: unassignedLogDensity
+  double logSilence(std::int32_t last, const TrackState& state) const {
+    return share_ == nullptr ? log_silence_[static_cast<std::size_t>(last_tick_ - last)] : std::log(silence(last, state));
+  }
 };
 
 }  // namespace wsn::supernode::mcmcda

@@ -91,8 +91,9 @@ void joinGroups(const WindowProblem& wp, const std::vector<bool>& claimed, const
   }
 }
 
-/// Step 3b: the newest tick's observations joined greedily to lists that ended one tick before,
-/// nearest (in Mahalanobis distance) first, within the gate.
+/// Step 3b: the newest tick's observations joined greedily to lists whose last element they can
+/// follow (up to d-bar ticks before: under heavy loss a target's previous report is seldom of the
+/// tick before), nearest (in Mahalanobis distance over the gap) first, within the gate.
 void joinNewestGreedily(const Problem& problem, const McmcdaParams& params, TrackLists& lists) {
   std::vector<bool> used(static_cast<std::size_t>(problem.size()), false);
   for (const auto& list : lists)
@@ -108,7 +109,7 @@ void joinNewestGreedily(const Problem& problem, const McmcdaParams& params, Trac
   const std::int32_t newest_begin = problem.newestBegin();
   for (std::size_t k = 0; k < lists.size(); ++k) {
     const auto& list = lists[k];
-    if (list.empty() || problem.tick(list.back()) != problem.lastTick() - 1) continue;
+    if (list.empty() || problem.tick(list.back()) >= problem.lastTick()) continue;
     // A lone report starts a list only as a newborn track (confirmation at one report).
     if (list.size() == 1 && !problem.isAnchor(list.front()) && params.confirm_observations > 1) continue;
     TrackState last;
@@ -116,7 +117,7 @@ void joinNewestGreedily(const Problem& problem, const McmcdaParams& params, Trac
       problem.trackScore(list, &last);
     else
       last = problem.observation(list.front()).prior;
-    const TrackState predicted = problem.motion().predict(last, 1);
+    const TrackState predicted = problem.motion().predict(last, problem.lastTick() - last.tick);
     const double S = predicted.cov.pp + r2;
     for (std::int32_t i = newest_begin; i < problem.size(); ++i) {
       if (used[static_cast<std::size_t>(i)] || !problem.linked(list.back(), i)) continue;

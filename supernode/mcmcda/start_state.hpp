@@ -38,7 +38,7 @@ struct StartState {
 /// Step 3: the previous tracks' ω̂ restricted to the window, cut where a link no longer holds; new
 /// observations appended to the track of their group's latest member (when `group_of` is set: ω_init
 /// "from the tracks themselves"); the newest tick's observations joined greedily, nearest first, to
-/// tracks that ended one tick before; then two tracks (or a track and a lone observation) whose
+/// tracks whose last element they can follow; then two tracks (or a track and a lone observation) whose
 /// ticks interleave joined into one where eq. (3) prefers it, best gain first. `tracks` are the
 /// tracks `wp` was built from.
 StartState startState(const WindowProblem& wp, const std::vector<LiveTrack>& tracks, const GroupOf& group_of,

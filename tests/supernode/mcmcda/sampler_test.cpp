@@ -12,6 +12,7 @@
 #include <catch2/catch.hpp>
 
 #include "common/rng.hpp"
+#include "common/sensor_coverage.hpp"
 #include "supernode/mcmcda/problem.hpp"
 #include "supernode/mcmcda/sampler.hpp"
 
@@ -218,11 +219,65 @@ TEST_CASE("mcmcda track score matches eq. 3 by hand for a two-observation track"
   // Prior at y1: position variance r^2 = 0.25, velocity variance 1. One tick later the predicted
   // position variance is 0.25 + 1 = 1.25, so S = 1.25 + 0.25 = 1.5 per axis, nu = (1, 0).
   const double log_likelihood = -std::log(2.0 * std::numbers::pi * 1.5) - 0.5 * 1.0 / 1.5;
-  // Birth, one continuation, two detections, no miss, terminated before T = 3; minus the two
-  // false alarms the observations would otherwise be.
-  const double prior = std::log(0.01) + std::log(0.9) + 2.0 * std::log(0.8) + std::log(0.1) - 2.0 * std::log(0.02);
+  // Birth at the run's first tick (no earlier tick to have been born unseen at), one
+  // continuation, two detections, no miss; then the silence of the one tick to T = 3: the target
+  // ended (pz 0.1) or lived on unseen ((1 - pz)(1 - pd) = 0.18), 0.28 in all.
+  const double prior = std::log(0.01) + std::log(0.9) + 2.0 * std::log(0.8) + std::log(0.28);
+  // Minus what the two observations would be left out of every track: a false alarm (0.02) or a
+  // target seen once. The one of tick 1: born then, detected, silent for two ticks (silence 0.1
+  // + 0.018 + 0.0324 = 0.1504): 0.01 x 0.8 x 0.1504. The one of tick 2: born at tick 2, or at
+  // tick 1 and unseen (weight 1 + 0.18), detected, silent one tick: 0.01 x 1.18 x 0.8 x 0.28.
+  const double unassigned = std::log(0.02 + 0.01 * 0.8 * 0.1504) + std::log(0.02 + 0.01 * 1.18 * 0.8 * 0.28);
+  CHECK(problem.unassignedLogDensity(0) == Approx(std::log(0.0212032)).epsilon(1e-12));
+  CHECK(problem.unassignedLogDensity(1) == Approx(std::log(0.0226432)).epsilon(1e-12));
   const std::vector<std::int32_t> track = {0, 1};
-  CHECK(problem.trackScore(track) == Approx(prior + log_likelihood).epsilon(1e-12));
+  CHECK(problem.trackScore(track) == Approx(prior - unassigned + log_likelihood).epsilon(1e-12));
+}
+
+TEST_CASE("mcmcda birth weight counts the ticks a target may have gone unseen before its first report", "[mcmcda]") {
+  const ModelParams p = handParams();
+  // r = (1 - pz)(1 - pd) = 0.18: born at the tick itself, or one tick before and unseen, ...
+  CHECK(unseenBirthWeight(p, 1) == Approx(1.0).epsilon(1e-12));
+  CHECK(unseenBirthWeight(p, 3) == Approx(1.0 + 0.18 + 0.0324).epsilon(1e-12));
+  // Long after the run's start: 1 / (1 - r).
+  CHECK(unseenBirthWeight(p, 10'000) == Approx(1.0 / 0.82).epsilon(1e-12));
+  // The same track two ticks later in the run: its birth weighs 1.2124 against 1, and so does each
+  // of its observations' chance of being a target seen once.
+  const Problem early(p, {{1, 0.0, 0.0, false, {}}, {2, 1.0, 0.0, false, {}}}, 3);
+  const Problem late(p, {{3, 0.0, 0.0, false, {}}, {4, 1.0, 0.0, false, {}}}, 5);
+  const std::vector<std::int32_t> track = {0, 1};
+  const double unassigned_early = std::log(0.02 + 0.01 * 1.0 * 0.8 * 0.1504) + std::log(0.02 + 0.01 * 1.18 * 0.8 * 0.28);
+  const double unassigned_late =
+      std::log(0.02 + 0.01 * 1.2124 * 0.8 * 0.1504) + std::log(0.02 + 0.01 * 1.218232 * 0.8 * 0.28);
+  CHECK(late.trackScore(track) - early.trackScore(track) ==
+        Approx(std::log(1.2124) - unassigned_late + unassigned_early).epsilon(1e-12));
+}
+
+TEST_CASE("mcmcda keeps two lone reports of a heavy-loss field apart that it joined against two false alarms", "[mcmcda]") {
+  // The derived model of oh_paper_density at pte = 0.8 (pd 0.025, about 40 ticks between a
+  // target's reports) and two reports of different targets 25 units and 8 ticks apart, 3.2 units a
+  // tick: a link, and the nearer of the two in seed 10's window at tick 25.
+  ModelParams p;
+  p.detection_probability = 0.02537;
+  p.termination_probability = 0.02874;
+  p.birth_density = 2e-5;
+  p.false_alarm_density = 1.586e-7;
+  p.measurement_sigma = 0.0826;
+  p.initial_velocity_sigma = 1.427;
+  p.max_speed = 5.95;
+  p.max_gap = 10;
+  const Problem problem(p, {{17, 49.44, 71.87, false, {}}, {25, 45.46, 46.77, false, {}}}, 25);
+  const std::vector<std::int32_t> join = {0, 1};
+  const double score = problem.trackScore(join);
+  // Against two false alarms, which is all a report left out of every track was, the join wins...
+  const double against_false_alarms =
+      score + problem.unassignedLogDensity(0) + problem.unassignedLogDensity(1) - 2.0 * std::log(p.false_alarm_density);
+  CHECK(against_false_alarms > 0.0);
+  // ...but each report is far likelier the only report of a target than a false alarm (a birth
+  // at tick 17 or before, weighted by the unseen ticks, against lambda_f), and against two such
+  // targets the join loses.
+  CHECK(problem.unassignedLogDensity(0) > std::log(p.false_alarm_density) + 2.0);
+  CHECK(score < 0.0);
 }
 
 TEST_CASE("mcmcda track score of an anchored track matches eq. 3 by hand", "[mcmcda]") {
@@ -234,16 +289,54 @@ TEST_CASE("mcmcda track score of an anchored track matches eq. 3 by hand", "[mcm
   // Two ticks ahead: P_pp = 0.25 + 4 * 0.01 = 0.29, S = 0.29 + 0.25 = 0.54; nu = 2.5 - 2 = 0.5.
   const double S = 0.54;
   const double log_likelihood = -std::log(2.0 * std::numbers::pi * S) - 0.5 * 0.25 / S;
-  // Continued two ticks, one detection, one miss, terminated before T; no birth. Left alone the
-  // anchor would have ended at once (log pz), which this replaces; the observation is no longer a
-  // false alarm.
-  const double prior = 2.0 * std::log(0.9) + std::log(0.8) + std::log(0.2) + std::log(0.1) - std::log(0.1) -
-                       std::log(0.02);
+  // Continued two ticks, one detection, one miss, no birth; then the silence of the two ticks to
+  // T: with q = (1 - pz)(1 - pd) = 0.18, silence(k) = pz (1 + q + .. + q^(k-1)) + q^k, so
+  // silence(2) = 0.1 + 0.018 + 0.0324 = 0.1504. Left alone the anchor would have had the silence
+  // of its four ticks, 0.1 (1 + 0.18 + 0.0324 + 0.005832) + 0.00104976 = 0.12287296, which this
+  // replaces. The observation is no longer left out of every track: a false alarm, or a target
+  // born at tick 2 or before (1.18), detected, silent two ticks.
+  const double silence2 = 0.1504;
+  const double silence4 = 0.12287296;
+  const double unassigned = std::log(0.02 + 0.01 * 1.18 * 0.8 * silence2);
+  const double prior =
+      2.0 * std::log(0.9) + std::log(0.8) + std::log(0.2) + std::log(silence2) - std::log(silence4) - unassigned;
   const std::vector<std::int32_t> track = {0, 1};
   CHECK(problem.trackScore(track) == Approx(prior + log_likelihood).epsilon(1e-12));
-  // Reaching T, no termination term.
+  CHECK(problem.unassignedLogDensity(0) == 0.0);  // an anchor is never a report left out
+  // Reaching T = 2: no silence after the track, the anchor's own is silence(2), and the
+  // observation at T seen once has no silence to weigh.
   const Problem reaching(p, {anchor, {2, 2.5, 0.0, false, {}}}, 2);
-  CHECK(reaching.trackScore(track) == Approx(prior - std::log(0.1) + log_likelihood).epsilon(1e-12));
+  const double reaching_prior =
+      2.0 * std::log(0.9) + std::log(0.8) + std::log(0.2) - std::log(silence2) - std::log(0.02 + 0.01 * 1.18 * 0.8);
+  CHECK(reaching.trackScore(track) == Approx(reaching_prior + log_likelihood).epsilon(1e-12));
+}
+
+TEST_CASE("mcmcda silence after a track follows the sensors coverage along its predicted path", "[mcmcda]") {
+  ModelParams p = handParams();
+  p.detection_probability = 0.2;
+  // One sensor of PD 1 covering the disc of radius 1 at (3, 0) in a 10 x 10 region: its share at a
+  // point inside is 1 / mean, the region mean being pi / 100.
+  common::SensorCoverage sensor;
+  sensor.sensor = 1;
+  sensor.position = {3.0, 0.0};
+  sensor.fov = 2.0 * std::numbers::pi;
+  sensor.range = 1.0;
+  sensor.detection_probability = 1.0;
+  const common::DetectionShare share({sensor}, nullptr, std::numbers::pi / 100.0);
+  const Problem problem(p, {{0, 0.0, 0.0, false, {}}}, 4, &share);
+  // A target last seen at (0, 0) at tick 0, moving at +1 per tick: at tick 1 it is outside the
+  // disc (pd 0 there), from tick 2 on inside it (pd min(1, 0.2 x 100 / pi) = 1). Silent
+  // through tick 4: it ended at tick 1 (pz), or at tick 2 after an unseen tick 1 (0.9 pz); it could
+  // not have been there at tick 2 unseen. 0.1 + 0.9 x 0.1 = 0.19.
+  const TrackState moving{0, 0.0, 0.0, 1.0, 0.0, {}};
+  CHECK(problem.silence(0, moving) == Approx(0.19).epsilon(1e-12));
+  // At rest at the origin the sensor never sees it: pd 0 every tick, and the silence is certain.
+  const TrackState resting{0, 0.0, 0.0, 0.0, 0.0, {}};
+  CHECK(problem.silence(0, resting) == Approx(1.0).epsilon(1e-12));
+  // Without coverage: the model's pd everywhere, q = 0.9 x 0.8 = 0.72.
+  const Problem uniform(p, {{0, 0.0, 0.0, false, {}}}, 4);
+  const double q = 0.72;
+  CHECK(uniform.silence(0, moving) == Approx(0.1 * (1 + q + q * q + q * q * q) + q * q * q * q).epsilon(1e-12));
 }
 
 TEST_CASE("mcmcda problem and sampler reject bad input with what is wrong", "[mcmcda]") {
