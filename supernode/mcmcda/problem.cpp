@@ -109,7 +109,8 @@ Problem::Problem(const ModelParams& params, std::vector<ProblemObservation> obse
   require(p.stop_probability > 0.0 && p.stop_probability < 1.0, "stop probability must be in (0, 1)");
   for (std::size_t i = 1; i < observations_.size(); ++i)
     require(observations_[i - 1].tick <= observations_[i].tick, "observations must be sorted by tick");
-  require(observations_.empty() || observations_.back().tick <= last_tick_, "observations must not be after the last tick");
+  require(observations_.empty() || observations_.back().tick <= last_tick_,
+          "observations must not be after the last tick");
   if (share_ != nullptr && share_->uniform()) share_ = nullptr;
 
   log_pd_ = std::log(p.detection_probability);

@@ -190,7 +190,8 @@ class Problem {
   std::vector<double> log_birth_at_;    ///< per element: log lambda_b B(tick), a track born there
   std::vector<double> log_unassigned_;  ///< per element: unassignedLogDensity
   double logSilence(std::int32_t last, const TrackState& state) const {
-    return share_ == nullptr ? log_silence_[static_cast<std::size_t>(last_tick_ - last)] : std::log(silence(last, state));
+    if (share_ == nullptr) return log_silence_[static_cast<std::size_t>(last_tick_ - last)];
+    return std::log(silence(last, state));
   }
 };
 

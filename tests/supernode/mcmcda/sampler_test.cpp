@@ -246,14 +246,16 @@ TEST_CASE("mcmcda birth weight counts the ticks a target may have gone unseen be
   const Problem early(p, {{1, 0.0, 0.0, false, {}}, {2, 1.0, 0.0, false, {}}}, 3);
   const Problem late(p, {{3, 0.0, 0.0, false, {}}, {4, 1.0, 0.0, false, {}}}, 5);
   const std::vector<std::int32_t> track = {0, 1};
-  const double unassigned_early = std::log(0.02 + 0.01 * 1.0 * 0.8 * 0.1504) + std::log(0.02 + 0.01 * 1.18 * 0.8 * 0.28);
+  const double unassigned_early =
+      std::log(0.02 + 0.01 * 1.0 * 0.8 * 0.1504) + std::log(0.02 + 0.01 * 1.18 * 0.8 * 0.28);
   const double unassigned_late =
       std::log(0.02 + 0.01 * 1.2124 * 0.8 * 0.1504) + std::log(0.02 + 0.01 * 1.218232 * 0.8 * 0.28);
   CHECK(late.trackScore(track) - early.trackScore(track) ==
         Approx(std::log(1.2124) - unassigned_late + unassigned_early).epsilon(1e-12));
 }
 
-TEST_CASE("mcmcda keeps two lone reports of a heavy-loss field apart that it joined against two false alarms", "[mcmcda]") {
+TEST_CASE("mcmcda keeps two lone reports of a heavy-loss field apart that it joined against two false alarms",
+          "[mcmcda]") {
   // The derived model of oh_paper_density at pte = 0.8 (pd 0.025, about 40 ticks between a
   // target's reports) and two reports of different targets 25 units and 8 ticks apart, 3.2 units a
   // tick: a link, and the nearer of the two in seed 10's window at tick 25.
