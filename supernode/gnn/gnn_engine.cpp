@@ -152,6 +152,7 @@ GnnEngine::GnnEngine(const EngineContext& context)
       region_(context.region),
       detection_share_(detectionShare(context)),
       params_(GnnParams::fromContext(context)),
+      unseen_tick_weight_(std::pow(common::kRareMissRun, 1.0 / params_.max_misses)),
       model_(context.dynamics.delta, context.dynamics.process_noise_sigma,
              params_.measurement_sigma),
       replay_(&Track::id, &byId) {}
@@ -163,9 +164,8 @@ bool GnnEngine::silenceIsRare(Track& track) const {
   // 1 - (1 - rho) share(x): a track left at a sensor its target has passed ends within a few ticks,
   // one in ground no sensor covers only after max_misses.
   if (detection_share_.uniform()) return false;
-  const double rho = std::pow(common::kRareMissRun, 1.0 / params_.max_misses);
   const double share = detection_share_.at({track.state.x(kX), track.state.x(kY)});
-  track.silence *= 1.0 - std::min(1.0, (1.0 - rho) * share);
+  track.silence *= 1.0 - std::min(1.0, (1.0 - unseen_tick_weight_) * share);
   return track.silence <= common::kRareMissRun;
 }
 

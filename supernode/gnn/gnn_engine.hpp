@@ -85,6 +85,9 @@ class GnnEngine final : public Engine {
   /// Where the field's sensors see well and where not (field sensors); uniform otherwise.
   common::DetectionShare detection_share_;
   GnnParams params_;
+  /// rho = common::kRareMissRun^(1 / max_misses): one silent tick of a live target on the field's
+  /// average (silenceIsRare).
+  double unseen_tick_weight_;
   common::ConstantVelocityModel model_;
   WindowReplay<Track> replay_;
   std::uint64_t rejected_handoffs_ = 0;

@@ -246,23 +246,17 @@ void McmcdaEngine::learnDelays(const ObservationWindow& window) {
 }
 
 double McmcdaEngine::unseenLikelihood(const LiveTrack& track, std::int32_t tick, double& there_at_tick) const {
-  // A target last seen at tick s ended after some tick k >= s, or is still there at the newest tick
-  // n. Ending after k weighs (1 - pz)^(k - s) pz times the chance that none of its reports of ticks
-  // s + 1 .. k is in the window, prod (1 - pd_a) with a = n - j the age of tick j, at the track's
-  // predicted position then (arrivedBy); being there still, (1 - pz)^(n - s) prod over s + 1 .. n.
-  // It is there at `tick` when it ended at or after it, or has not.
-  const double pz = params_.model.termination_probability;
+  // The target's silence since its last observation (silenceAfter), each tick j's report in the
+  // window by now with the probability of its age n - j at the track's predicted position then
+  // (arrivedBy). It is there at `tick` when it ended after it, or has not.
   const TrackState& last = track.lastState();
-  double alive = 1.0;  // there through tick j - 1
-  double gone = 0.0;   // ended before `tick`
-  double later = 0.0;  // ended at or after `tick`, before the newest
-  for (std::int32_t j = track.lastSeenTick() + 1; j <= newest_tick_; ++j) {
-    (j > tick ? later : gone) += alive * pz;
-    const double ahead = j - last.tick;
-    alive *= (1.0 - pz) * (1.0 - arrivedBy(newest_tick_ - j, {last.x + ahead * last.vx, last.y + ahead * last.vy}));
-  }
-  there_at_tick = alive + later;
-  return alive + later + gone;
+  const auto arrived = [&](std::int32_t j) {
+    return arrivedBy(newest_tick_ - j, predictedPosition(last, j, params_.model.delta));
+  };
+  const Silence s =
+      silenceAfter(track.lastSeenTick(), newest_tick_, tick, params_.model.termination_probability, arrived);
+  there_at_tick = s.thereAtSplit();
+  return s.total();
 }
 
 bool McmcdaEngine::probablyAlive(const LiveTrack& track, std::int32_t tick) const {

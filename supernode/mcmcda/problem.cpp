@@ -118,14 +118,12 @@ Problem::Problem(const ModelParams& params, std::vector<ProblemObservation> obse
   log_continue_ = std::log1p(-p.termination_probability);
   // The silence after every tick an element (an anchor too) can hold, with the model's one pd.
   const std::int32_t oldest = observations_.empty() ? last_tick_ : std::min(last_tick_, observations_.front().tick);
-  const double unseen = (1.0 - p.termination_probability) * (1.0 - p.detection_probability);
-  log_silence_.assign(static_cast<std::size_t>(last_tick_ - oldest) + 1, 0.0);
-  double ended = 0.0;
-  double alive = 1.0;
-  for (std::size_t k = 1; k < log_silence_.size(); ++k) {
-    ended += alive * p.termination_probability;
-    alive *= unseen;
-    log_silence_[k] = std::log(ended + alive);
+  const auto everywhere = [&](std::int32_t) { return p.detection_probability; };
+  log_silence_.resize(static_cast<std::size_t>(last_tick_ - oldest) + 1);
+  for (std::size_t k = 0; k < log_silence_.size(); ++k) {
+    const std::int32_t last = last_tick_ - static_cast<std::int32_t>(k);
+    const Silence quiet = silenceAfter(last, last_tick_, last_tick_, p.termination_probability, everywhere);
+    log_silence_[k] = std::log(quiet.total());
   }
   // Per element: a track born there, and the element left out of every track. A lone report's
   // target: its heading is unknown, so its silence is judged with the field's pd.
@@ -278,19 +276,11 @@ double Problem::trackScore(std::span<const std::int32_t> track, TrackState* fina
 }
 
 double Problem::silence(std::int32_t last, const TrackState& state) const {
-  const double pz = params_.termination_probability;
-  double ended = 0.0;
-  double alive = 1.0;
-  for (std::int32_t j = last + 1; j <= last_tick_; ++j) {
-    ended += alive * pz;
-    double pd = params_.detection_probability;
-    if (share_ != nullptr) {
-      const double ahead = (j - state.tick) * params_.delta;
-      pd = std::min(1.0, pd * share_->at({state.x + ahead * state.vx, state.y + ahead * state.vy}));
-    }
-    alive *= (1.0 - pz) * (1.0 - pd);
-  }
-  return ended + alive;
+  const double pd = params_.detection_probability;
+  const auto at_path = [&](std::int32_t tick) {
+    return share_ == nullptr ? pd : std::min(1.0, pd * share_->at(predictedPosition(state, tick, params_.delta)));
+  };
+  return silenceAfter(last, last_tick_, last_tick_, params_.termination_probability, at_path).total();
 }
 
 void Problem::filterTrack(std::span<const std::int32_t> track, std::vector<TrackState>& states) const {

@@ -81,6 +81,34 @@ struct ProblemObservation {
   TrackState prior;  ///< anchors only: the track's state at `tick`
 };
 
+/// Where `state` puts its target at `tick` (constant velocity over ticks of `delta`): the position
+/// at which a coasting track's misses are weighed.
+inline common::Vec2 predictedPosition(const TrackState& state, std::int32_t tick, double delta) {
+  const double ahead = (tick - state.tick) * delta;
+  return {state.x + ahead * state.vx, state.y + ahead * state.vy};
+}
+
+/// What a target last observed at tick `last` may have done over last + 1 .. `newest` without an
+/// observation: ended at some tick j (after living on unseen until then), or lived on unseen to
+/// `newest`; each tick it ends with pz or lives on unseen with (1 - pz)(1 - pd_at(j)). Ends at or
+/// before `split` and after it are kept apart (the target is there at `split` in the second).
+struct Silence {
+  double ended_by_split = 0.0;
+  double ended_after_split = 0.0;
+  double alive = 1.0;  ///< there, unseen, at `newest`
+  double thereAtSplit() const { return alive + ended_after_split; }
+  double total() const { return thereAtSplit() + ended_by_split; }
+};
+template <class DetectionAt>
+Silence silenceAfter(std::int32_t last, std::int32_t newest, std::int32_t split, double pz, DetectionAt pd_at) {
+  Silence s;
+  for (std::int32_t j = last + 1; j <= newest; ++j) {
+    (j > split ? s.ended_after_split : s.ended_by_split) += s.alive * pz;
+    s.alive *= (1.0 - pz) * (1.0 - pd_at(j));
+  }
+  return s;
+}
+
 /// Sum_{b <= tick} of r^(tick - b), r = (1 - pz)(1 - pd): how many more ways a target whose first
 /// report is of `tick` came to be than eq. (3)'s "born at its first report" counts. It was born at
 /// some tick b from the run's first (tick 1) on and went unseen, and on, until `tick`; at pd near 1
@@ -154,9 +182,9 @@ class Problem {
   /// not against two targets. Anchors: 0.
   double unassignedLogDensity(std::int32_t i) const { return log_unassigned_[static_cast<std::size_t>(i)]; }
   /// The chance that a target last observed at tick `last` gives no observation in last + 1 .. T,
-  /// having ended at one of those ticks or not at all: sum_k [prod_{j<k} q_j] p_z + prod_j q_j,
-  /// q_j = (1 - p_z)(1 - pd_j), pd_j the detection probability at the position `state` (its
-  /// filtered state at `last`) predicts for tick j (the model's pd without coverage).
+  /// having ended at one of those ticks or not at all (silenceAfter), with each tick's pd the one at
+  /// the position `state` (its filtered state at `last`) predicts then (the model's pd without
+  /// coverage).
   double silence(std::int32_t last, const TrackState& state) const;
 
   /// The filtered state of `track` at each of its elements (tick order) into `states`.

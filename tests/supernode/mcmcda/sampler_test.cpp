@@ -345,6 +345,9 @@ TEST_CASE("mcmcda problem and sampler reject bad input with what is wrong", "[mc
   const ModelParams p = handParams();
   CHECK_THROWS_WITH(Problem(p, {{2, 0.0, 0.0, false, {}}, {1, 0.0, 0.0, false, {}}}, 2),
                     Catch::Contains("sorted by tick"));
+  // An observation after T would have a silence of negative length.
+  CHECK_THROWS_WITH(Problem(p, {{1, 0.0, 0.0, false, {}}, {3, 0.0, 0.0, false, {}}}, 2),
+                    Catch::Contains("after the last tick"));
   ModelParams bad = p;
   bad.detection_probability = 1.0;
   CHECK_THROWS_WITH(Problem(bad, {}, 1), Catch::Contains("detection probability"));
